@@ -1,0 +1,31 @@
+/*
+ * Discrete-duty-cycle MPTC (the paper's proposed method):
+ *   1. table 1: alpha-beta flux sector at k+1 and torque demand -> four candidates
+ *      (the torque-raising half is the paper's table; the torque-lowering half is
+ *      its mirror, used when even the zero vector leaves Te(k+2) above Tref);
+ *   2. table 2: x-y flux sector at k+1 -> the candidate whose x-y voltage shrinks
+ *      the x-y flux (two readings, see ctl_ddc_direction_t);
+ *   3. duty search: the vector applied for d*Ts and a zero vector for the rest,
+ *      d over the discrete levels, cost J over the two-step prediction.
+ */
+#ifndef CTL_DDC_H
+#define CTL_DDC_H
+
+#include <stdint.h>
+
+#include "ctl_q.h"
+#include "ctl_search.h"
+
+typedef struct {
+    ctl_q psi_alpha; /* stator flux at k+1, alpha-beta */
+    ctl_q psi_beta;
+    ctl_q psi_mag; /* |psi_s| at k+1 */
+    ctl_q psi_x;   /* x-y flux at k+1 */
+    ctl_q psi_y;
+} ctl_ddc_flux_t;
+
+/* direction: 0 flux-error reading, 1 x-y-table reading (ctl_ddc_direction_t). */
+void ctl_ddc_select(const ctl_horizon_t *h, const ctl_ddc_flux_t *flux, int16_t direction,
+                    const ctl_q *levels, int16_t n_levels, ctl_choice_t *out);
+
+#endif /* CTL_DDC_H */

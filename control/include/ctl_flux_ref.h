@@ -1,0 +1,32 @@
+/*
+ * Stator flux reference: constant, or maximum torque per ampere (MTPA) for
+ * the salient machine (L_d < L_q), tabulated over |Tref| at init and
+ * interpolated per step.
+ */
+#ifndef CTL_FLUX_REF_H
+#define CTL_FLUX_REF_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "ctl_q.h"
+
+#define CTL_FLUX_REF_TABLE_POINTS 33
+
+typedef enum { CTL_FLUX_REF_CONSTANT = 0, CTL_FLUX_REF_MTPA = 1 } ctl_flux_ref_mode_t;
+
+typedef struct {
+    ctl_flux_ref_mode_t mode;
+    ctl_q constant;          /* per unit flux */
+    ctl_q torque_max;        /* table spans |Tref| in [0, torque_max] */
+    ctl_q points_per_torque; /* (points - 1) / torque_max */
+    ctl_q table[CTL_FLUX_REF_TABLE_POINTS];
+} ctl_flux_ref_t;
+
+/* SI in; torque_max_nm sets the table span. False on unusable parameters. */
+bool ctl_flux_ref_init(ctl_flux_ref_t *f, ctl_flux_ref_mode_t mode, float constant_wb, float ld_h,
+                       float lq_h, float psi_f_wb, int16_t pole_pairs, float torque_max_nm);
+
+ctl_q ctl_flux_ref_run(const ctl_flux_ref_t *f, ctl_q torque_ref_pu);
+
+#endif /* CTL_FLUX_REF_H */

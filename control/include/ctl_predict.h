@@ -1,0 +1,88 @@
+/*
+ * Discrete model of the machine for two-step prediction (forward Euler of the
+ * rotor-frame model, the brief's corrected form of the paper's Eq. 17):
+ *
+ *   i_d(k+1) = (1 - R Ts/L_d) i_d + (L_q/L_d) Ts w i_q + (Ts/L_d) u_d
+ *   i_q(k+1) = (1 - R Ts/L_q) i_q - (L_d/L_q) Ts w i_d - (psi_f/L_q) Ts w + (Ts/L_q) u_q
+ *   i_x(k+1) = (1 - R Ts/L_1) i_x + (Ts/L_1) u_x        (likewise y)
+ *
+ * All coefficients are computed once from SI parameters (float, init time);
+ * the per-step path has no division. Everything here is per unit.
+ */
+#ifndef CTL_PREDICT_H
+#define CTL_PREDICT_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "ctl_q.h"
+
+typedef struct {
+    ctl_q a_d;  /* 1 - R Ts / L_d */
+    ctl_q b_d;  /* L_q / L_d * Ts     (times w i_q) */
+    ctl_q c_d;  /* Ts / L_d           (times u_d) */
+    ctl_q a_q;  /* 1 - R Ts / L_q */
+    ctl_q b_q;  /* L_d / L_q * Ts     (times w i_d) */
+    ctl_q e_q;  /* psi_f / L_q * Ts   (times w) */
+    ctl_q c_q;  /* Ts / L_q           (times u_q) */
+    ctl_q a_xy; /* 1 - R Ts / L_1 */
+    ctl_q c_xy; /* Ts / L_1 */
+    ctl_q ld;
+    ctl_q lq;
+    ctl_q lxy;
+    ctl_q psi_f;
+    ctl_q ts; /* sample time, per unit */
+    int16_t pole_pairs;
+} ctl_model_t;
+
+/* SI parameters in, per-unit coefficients out. False if a parameter is not
+ * positive or a coefficient would not fit the number format. */
+bool ctl_model_init(ctl_model_t *m, float r_ohm, float ld_h, float lq_h, float lxy_h,
+                    float psi_f_wb, int16_t pole_pairs, float ts_s);
+
+/* One Euler step of the d-q currents under an average voltage (u_d, u_q). */
+static inline void ctl_predict_dq(const ctl_model_t *m, ctl_q id, ctl_q iq, ctl_q w, ctl_q ud,
+                                  ctl_q uq, ctl_q *id_next, ctl_q *iq_next)
+{
+    const ctl_q w_id = ctl_mul(w, id);
+    const ctl_q w_iq = ctl_mul(w, iq);
+    ctl_q d = ctl_mul(m->a_d, id);
+    ctl_q q = ctl_mul(m->a_q, iq);
+    d = ctl_add(d, ctl_mul(m->b_d, w_iq));
+    d = ctl_add(d, ctl_mul(m->c_d, ud));
+    q = ctl_sub(q, ctl_mul(m->b_q, w_id));
+    q = ctl_sub(q, ctl_mul(m->e_q, w));
+    q = ctl_add(q, ctl_mul(m->c_q, uq));
+    *id_next = d;
+    *iq_next = q;
+}
+
+/* One Euler step of one x-y current component. */
+static inline ctl_q ctl_predict_xy(const ctl_model_t *m, ctl_q i, ctl_q u)
+{
+    return ctl_add(ctl_mul(m->a_xy, i), ctl_mul(m->c_xy, u));
+}
+
+/* Stator flux components from rotor-frame currents. */
+static inline ctl_q ctl_flux_d(const ctl_model_t *m, ctl_q id)
+{
+    return ctl_add(ctl_mul(m->ld, id), m->psi_f);
+}
+static inline ctl_q ctl_flux_q(const ctl_model_t *m, ctl_q iq) { return ctl_mul(m->lq, iq); }
+
+/* Te = Pn (psi_d i_q - psi_q i_d), per unit (torque base is per pole pair). */
+static inline ctl_q ctl_torque(const ctl_model_t *m, ctl_q id, ctl_q iq)
+{
+    const ctl_q t = ctl_sub(ctl_mul(ctl_flux_d(m, id), iq), ctl_mul(ctl_flux_q(m, iq), id));
+    return ctl_mul_int(t, m->pole_pairs);
+}
+
+/* |psi_s| from rotor-frame currents. */
+static inline ctl_q ctl_flux_magnitude(const ctl_model_t *m, ctl_q id, ctl_q iq)
+{
+    const ctl_q pd = ctl_flux_d(m, id);
+    const ctl_q pq = ctl_flux_q(m, iq);
+    return ctl_sqrt(ctl_add(ctl_mul(pd, pd), ctl_mul(pq, pq)));
+}
+
+#endif /* CTL_PREDICT_H */

@@ -1,0 +1,182 @@
+/*
+ * Arithmetic of the control core: one global per-unit number type, ctl_q.
+ *
+ * Fixed-point build (default): ctl_q is int32_t in Q24 (IQmath GLOBAL_Q = 24).
+ *   range       [-128, 128 - 2^-24]   (every per-unit quantity stays below 20)
+ *   resolution  2^-24 = 5.96e-8
+ *   add/sub     saturating
+ *   mul         64-bit intermediate, rounded, saturated
+ *   div         64-bit intermediate, saturated, x/0 = +-max
+ * Float build (CTL_MATH_FLOAT=1): ctl_q is float; the same source computes in
+ * single precision. It is the reference the fixed build is compared with and
+ * a real option on the F28335 FPU.
+ *
+ * Angles are ctl_q per unit of one turn; any value is accepted and wrapped.
+ */
+#ifndef CTL_Q_H
+#define CTL_Q_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#ifndef CTL_MATH_FLOAT
+#define CTL_MATH_FLOAT 0
+#endif
+
+#if CTL_MATH_FLOAT
+
+typedef float ctl_q;
+
+#define CTL_Q(x) ((float)(x))
+#define CTL_Q_MAX (128.0f)
+#define CTL_Q_MIN (-128.0f)
+
+static inline ctl_q ctl_add(ctl_q a, ctl_q b) { return a + b; }
+static inline ctl_q ctl_sub(ctl_q a, ctl_q b) { return a - b; }
+static inline ctl_q ctl_mul(ctl_q a, ctl_q b) { return a * b; }
+static inline ctl_q ctl_mul_int(ctl_q a, int16_t n) { return a * (float)n; }
+static inline ctl_q ctl_div(ctl_q a, ctl_q b)
+{
+    if (b == 0.0f) {
+        return (a >= 0.0f) ? CTL_Q_MAX : CTL_Q_MIN;
+    }
+    return a / b;
+}
+static inline ctl_q ctl_abs(ctl_q a) { return (a < 0.0f) ? -a : a; }
+static inline float ctl_to_float(ctl_q a) { return a; }
+static inline ctl_q ctl_from_float(float x) { return x; }
+
+#else /* fixed point */
+
+typedef int32_t ctl_q;
+
+#define CTL_Q_FRAC_BITS 24
+#define CTL_Q_ONE ((int32_t)1 << CTL_Q_FRAC_BITS)
+#define CTL_Q_MAX INT32_MAX
+#define CTL_Q_MIN INT32_MIN
+/* Compile-time constant conversion; rounds to nearest. */
+#define CTL_Q(x) ((ctl_q)((x)*16777216.0 + (((x) >= 0) ? 0.5 : -0.5)))
+
+static inline ctl_q ctl_sat64(int64_t v)
+{
+    if (v > (int64_t)INT32_MAX) {
+        return INT32_MAX;
+    }
+    if (v < (int64_t)INT32_MIN) {
+        return INT32_MIN;
+    }
+    return (ctl_q)v;
+}
+
+static inline ctl_q ctl_add(ctl_q a, ctl_q b) { return ctl_sat64((int64_t)a + (int64_t)b); }
+static inline ctl_q ctl_sub(ctl_q a, ctl_q b) { return ctl_sat64((int64_t)a - (int64_t)b); }
+
+static inline ctl_q ctl_mul(ctl_q a, ctl_q b)
+{
+    /* Q24 * Q24 = Q48; round half up, then back to Q24. */
+    int64_t p = (int64_t)a * (int64_t)b;
+    return ctl_sat64((p + ((int64_t)1 << (CTL_Q_FRAC_BITS - 1))) >> CTL_Q_FRAC_BITS);
+}
+
+static inline ctl_q ctl_mul_int(ctl_q a, int16_t n) { return ctl_sat64((int64_t)a * (int64_t)n); }
+
+static inline ctl_q ctl_div(ctl_q a, ctl_q b)
+{
+    if (b == 0) {
+        return (a >= 0) ? CTL_Q_MAX : CTL_Q_MIN;
+    }
+    /* Shift in 64 bits; |a| < 2^31 so a * 2^24 < 2^55 cannot overflow. */
+    return ctl_sat64(((int64_t)a * (int64_t)CTL_Q_ONE) / (int64_t)b);
+}
+
+static inline ctl_q ctl_abs(ctl_q a) { return (a < 0) ? ((a == INT32_MIN) ? INT32_MAX : -a) : a; }
+
+static inline float ctl_to_float(ctl_q a) { return (float)a * (1.0f / 16777216.0f); }
+
+static inline ctl_q ctl_from_float(float x)
+{
+    const float scaled = x * 16777216.0f;
+    if (!(scaled == scaled)) { /* NaN */
+        return 0;
+    }
+    if (scaled >= 2147483520.0f) { /* largest float below 2^31 */
+        return INT32_MAX;
+    }
+    if (scaled <= -2147483648.0f) {
+        return INT32_MIN;
+    }
+    return (ctl_q)((scaled >= 0.0f) ? (scaled + 0.5f) : (scaled - 0.5f));
+}
+
+#endif /* CTL_MATH_FLOAT */
+
+/* A turn fraction held in 32 bits (2^32 = one turn) as a per-unit angle. */
+static inline ctl_q ctl_from_turn_u32(uint32_t turn)
+{
+#if CTL_MATH_FLOAT
+    return (float)turn * (1.0f / 4294967296.0f);
+#else
+    return (ctl_q)(turn >> (32 - CTL_Q_FRAC_BITS));
+#endif
+}
+
+/* raw * k where raw is a Q16 integer quantity and k a per-unit factor. */
+static inline ctl_q ctl_mul_q16(int32_t raw_q16, ctl_q k)
+{
+#if CTL_MATH_FLOAT
+    return (float)raw_q16 * (1.0f / 65536.0f) * k;
+#else
+    return ctl_sat64(((int64_t)raw_q16 * (int64_t)k) >> 16);
+#endif
+}
+
+/* x * 2^n rounded to an integer and saturated to int32 (n in 0..24). */
+static inline int32_t ctl_to_qn(ctl_q x, int16_t n)
+{
+#if CTL_MATH_FLOAT
+    float scaled = x * (float)((int32_t)1 << n);
+    if (!(scaled == scaled)) {
+        return 0;
+    }
+    if (scaled >= 2147483520.0f) {
+        return INT32_MAX;
+    }
+    if (scaled <= -2147483648.0f) {
+        return INT32_MIN;
+    }
+    return (int32_t)((scaled >= 0.0f) ? (scaled + 0.5f) : (scaled - 0.5f));
+#else
+    const int16_t shift = (int16_t)(CTL_Q_FRAC_BITS - n);
+    if (shift <= 0) {
+        return x;
+    }
+    return (int32_t)(((int64_t)x + ((int64_t)1 << (shift - 1))) >> shift);
+#endif
+}
+
+static inline ctl_q ctl_min(ctl_q a, ctl_q b) { return (a < b) ? a : b; }
+static inline ctl_q ctl_max(ctl_q a, ctl_q b) { return (a > b) ? a : b; }
+static inline ctl_q ctl_clamp(ctl_q x, ctl_q lo, ctl_q hi) { return ctl_min(ctl_max(x, lo), hi); }
+
+/* Square root; negative input gives 0. */
+ctl_q ctl_sqrt(ctl_q a);
+
+/* Sine and cosine of an angle in per unit of one turn (any value, wrapped). */
+ctl_q ctl_sin_pu(ctl_q angle_turn);
+ctl_q ctl_cos_pu(ctl_q angle_turn);
+void ctl_sincos_pu(ctl_q angle_turn, ctl_q *s, ctl_q *c);
+
+/* Angle of (x, y) in per unit of one turn, in [0, 1). atan2(0, 0) = 0. */
+ctl_q ctl_atan2_pu(ctl_q y, ctl_q x);
+
+/* Wrap an angle into [0, 1) turn. */
+ctl_q ctl_wrap_turn(ctl_q angle_turn);
+
+/* Index of the n-th part of a turn that holds the angle: floor(wrap(angle) * n),
+ * in [0, n). n must be in 1..64. Sector boundaries are therefore at k/n turn. */
+int16_t ctl_turn_sector(ctl_q angle_turn, int16_t n);
+
+/* sqrt on float without libm, for init-time code. */
+float ctl_sqrtf(float x);
+
+#endif /* CTL_Q_H */

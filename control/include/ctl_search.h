@@ -1,0 +1,65 @@
+/*
+ * What the candidate searches share: the prediction horizon k+1 -> k+2 and
+ * the cost J = |Te(k+2) - Tref| + lambda |psi_s(k+2) - psi_ref|.
+ *
+ * The k+2 currents are linear in the candidate's voltage, so the response to
+ * zero voltage (the free response) is computed once per step and each
+ * candidate only adds its forced part (c_d u_d, c_q u_q).
+ */
+#ifndef CTL_SEARCH_H
+#define CTL_SEARCH_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "ctl_predict.h"
+#include "ctl_q.h"
+#include "ctl_vsd.h"
+
+typedef struct {
+    const ctl_model_t *model;
+    ctl_q id2_free; /* k+2 currents with zero voltage over k+1 -> k+2 */
+    ctl_q iq2_free;
+    ctl_q sin1; /* rotor angle used for the k+1 -> k+2 step */
+    ctl_q cos1;
+    ctl_q vdc;
+    ctl_q torque_ref;
+    ctl_q flux_ref;
+    ctl_q lambda;
+} ctl_horizon_t;
+
+typedef struct {
+    int16_t vector; /* active switching state */
+    ctl_q duty;     /* fraction of the period it is applied */
+    ctl_q cost;
+    ctl_q torque; /* predicted at k+2 */
+    ctl_q flux;
+    int16_t candidates;
+    int16_t flux_sector;
+    int16_t xy_sector;
+    bool braking;
+} ctl_choice_t;
+
+/* Forced part of the k+2 currents for a full-period switching state: (c_d u_d, c_q u_q)
+ * with u = Vdc * vector voltage rotated to the rotor frame at k+1. */
+static inline void ctl_horizon_forced(const ctl_horizon_t *h, const ctl_vsd_t *vec, ctl_q *did,
+                                      ctl_q *diq)
+{
+    ctl_q ud;
+    ctl_q uq;
+    ctl_park(ctl_mul(vec->alpha, h->vdc), ctl_mul(vec->beta, h->vdc), h->sin1, h->cos1, &ud, &uq);
+    *did = ctl_mul(h->model->c_d, ud);
+    *diq = ctl_mul(h->model->c_q, uq);
+}
+
+/* Cost of the k+2 currents (id2, iq2); fills torque and flux. */
+static inline ctl_q ctl_horizon_cost(const ctl_horizon_t *h, ctl_q id2, ctl_q iq2, ctl_q *torque,
+                                     ctl_q *flux)
+{
+    *torque = ctl_torque(h->model, id2, iq2);
+    *flux = ctl_flux_magnitude(h->model, id2, iq2);
+    return ctl_add(ctl_abs(ctl_sub(*torque, h->torque_ref)),
+                   ctl_mul(h->lambda, ctl_abs(ctl_sub(*flux, h->flux_ref))));
+}
+
+#endif /* CTL_SEARCH_H */

@@ -1,0 +1,39 @@
+/*
+ * Vector space decomposition of the asymmetrical six-phase machine
+ * (A 0, B 120, C 240, D 30, E 150, F 270 deg), amplitude invariant (1/3
+ * scaling), and the Park rotation of the alpha-beta plane.
+ *
+ * Forward: alpha = 1/3 sum i_k cos th_k, beta = 1/3 sum i_k sin th_k,
+ *          x = 1/3 sum i_k cos 5th_k, y = 1/3 sum i_k sin 5th_k.
+ * Inverse (isolated neutrals, zero-sequence o1 = o2 = 0):
+ *          i_k = alpha cos th_k + beta sin th_k + x cos 5th_k + y sin 5th_k.
+ */
+#ifndef CTL_VSD_H
+#define CTL_VSD_H
+
+#include "ctl_q.h"
+
+typedef struct {
+    ctl_q alpha;
+    ctl_q beta;
+    ctl_q x;
+    ctl_q y;
+} ctl_vsd_t;
+
+void ctl_vsd_forward(const ctl_q phase[6], ctl_vsd_t *out);
+void ctl_vsd_inverse(const ctl_vsd_t *v, ctl_q phase[6]);
+
+/* Rotation into the rotor frame by an angle given as its sine and cosine. */
+static inline void ctl_park(ctl_q alpha, ctl_q beta, ctl_q s, ctl_q c, ctl_q *d, ctl_q *q)
+{
+    *d = ctl_add(ctl_mul(alpha, c), ctl_mul(beta, s));
+    *q = ctl_sub(ctl_mul(beta, c), ctl_mul(alpha, s));
+}
+
+static inline void ctl_park_inverse(ctl_q d, ctl_q q, ctl_q s, ctl_q c, ctl_q *alpha, ctl_q *beta)
+{
+    *alpha = ctl_sub(ctl_mul(d, c), ctl_mul(q, s));
+    *beta = ctl_add(ctl_mul(d, s), ctl_mul(q, c));
+}
+
+#endif /* CTL_VSD_H */

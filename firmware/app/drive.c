@@ -1,0 +1,174 @@
+#include "drive.h"
+
+#include "ctl_pu.h"
+#include "hal_board.h"
+#include "hal_pwm.h"
+
+static void drive_enter_fault(drive_t *d, drive_fault_t fault)
+{
+    hal_pwm_force_off();
+    d->fault = fault;
+    d->state = DRIVE_STATE_FAULT;
+    d->run_requested = false;
+}
+
+void drive_init(drive_t *d, const ctl_params_t *p)
+{
+    int16_t i;
+    d->state = DRIVE_STATE_INIT;
+    d->fault = DRIVE_FAULT_NONE;
+    d->run_requested = false;
+    d->stop_requested = false;
+    d->clear_requested = false;
+    d->calibration_samples = 0;
+    d->isr_count = 0;
+    for (i = 0; i < HAL_ADC_PHASES; i++) {
+        d->offset_sum[i] = 0;
+        d->offset_counts[i] = (int16_t)HAL_BOARD_CURRENT_ZERO_COUNTS;
+    }
+    d->current_pu_per_count =
+        ctl_from_float((float)(HAL_BOARD_CURRENT_A_PER_COUNT / CTL_BASE_CURRENT_A));
+    d->vdc_pu_per_count = ctl_from_float((float)(HAL_BOARD_VDC_V_PER_COUNT / CTL_BASE_VOLTAGE_V));
+    d->omega_pu_per_rev_s =
+        ctl_from_float((float)(CTL_TWO_PI / CTL_BASE_OMEGA_RAD_S) * (float)p->pole_pairs);
+    hal_pwm_force_off();
+    if (!ctl_init(&d->ctl, p)) {
+        drive_enter_fault(d, DRIVE_FAULT_PARAMS);
+        return;
+    }
+    d->state = DRIVE_STATE_CALIBRATE;
+}
+
+static void drive_calibrate(drive_t *d)
+{
+    int16_t i;
+    for (i = 0; i < HAL_ADC_PHASES; i++) {
+        d->offset_sum[i] += (int32_t)d->adc.phase[i];
+    }
+    d->calibration_samples++;
+    if (d->calibration_samples < DRIVE_CALIBRATION_SAMPLES) {
+        return;
+    }
+    for (i = 0; i < HAL_ADC_PHASES; i++) {
+        const int32_t mean =
+            (d->offset_sum[i] + DRIVE_CALIBRATION_SAMPLES / 2) / DRIVE_CALIBRATION_SAMPLES;
+        const int32_t dev = mean - (int32_t)HAL_BOARD_CURRENT_ZERO_COUNTS;
+        if (dev > DRIVE_OFFSET_TOLERANCE_COUNTS || dev < -DRIVE_OFFSET_TOLERANCE_COUNTS) {
+            drive_enter_fault(d, DRIVE_FAULT_ADC_OFFSET);
+            return;
+        }
+        d->offset_counts[i] = (int16_t)mean;
+    }
+    d->state = DRIVE_STATE_READY;
+}
+
+static void drive_scale_measurements(drive_t *d)
+{
+    int16_t i;
+    for (i = 0; i < HAL_ADC_PHASES; i++) {
+        const int16_t counts = (int16_t)((int16_t)d->adc.phase[i] - d->offset_counts[i]);
+        d->meas.i_phase[i] = ctl_mul_int(d->current_pu_per_count, counts);
+    }
+    d->meas.vdc = ctl_mul_int(d->vdc_pu_per_count, (int16_t)d->adc.vdc);
+    d->meas.theta_e = ctl_from_turn_u32(d->encoder.elec_angle);
+    d->meas.omega_e = ctl_mul_q16(d->encoder.mech_speed_q16, d->omega_pu_per_rev_s);
+}
+
+uint16_t drive_duty_to_hal(ctl_q duty)
+{
+    const int32_t q15 = ctl_to_qn(duty, 15);
+    if (q15 <= 0) {
+        return 0u;
+    }
+    if (q15 >= (int32_t)HAL_PWM_DUTY_ONE) {
+        return (uint16_t)HAL_PWM_DUTY_ONE;
+    }
+    return (uint16_t)q15;
+}
+
+static void drive_run_step(drive_t *d)
+{
+    uint16_t duty[HAL_PWM_LEGS];
+    int16_t i;
+    ctl_step(&d->ctl, &d->meas, &d->cmd);
+    if (!d->cmd.enable) {
+        hal_pwm_force_off();
+        return;
+    }
+    for (i = 0; i < HAL_PWM_LEGS; i++) {
+        duty[i] = drive_duty_to_hal(d->cmd.leg_duty[i]);
+    }
+    hal_pwm_write(duty);
+}
+
+void drive_control_isr(drive_t *d)
+{
+    const bool fresh = hal_adc_read(&d->adc);
+    hal_encoder_read(&d->encoder);
+    d->isr_count++;
+
+    if (hal_pwm_hw_trip_seen() && d->state != DRIVE_STATE_FAULT) {
+        drive_enter_fault(d, DRIVE_FAULT_HW_TRIP);
+    }
+    if (!fresh && (d->state == DRIVE_STATE_RUN || d->state == DRIVE_STATE_CALIBRATE)) {
+        drive_enter_fault(d, DRIVE_FAULT_ADC_MISSING);
+    }
+
+    switch (d->state) {
+    case DRIVE_STATE_CALIBRATE:
+        drive_calibrate(d);
+        break;
+    case DRIVE_STATE_READY:
+        if (d->run_requested) {
+            d->run_requested = false;
+            d->stop_requested = false;
+            ctl_reset(&d->ctl);
+            drive_scale_measurements(d);
+            d->state = DRIVE_STATE_RUN;
+            hal_pwm_enable();
+            drive_run_step(d);
+        }
+        break;
+    case DRIVE_STATE_RUN:
+        if (d->stop_requested) {
+            d->stop_requested = false;
+            hal_pwm_force_off();
+            d->state = DRIVE_STATE_READY;
+            break;
+        }
+        drive_scale_measurements(d);
+        drive_run_step(d);
+        break;
+    case DRIVE_STATE_FAULT:
+        hal_pwm_force_off();
+        if (d->clear_requested) {
+            d->clear_requested = false;
+            if (d->fault != DRIVE_FAULT_PARAMS && !hal_pwm_hw_trip_seen()) {
+                d->fault = DRIVE_FAULT_NONE;
+                d->state = DRIVE_STATE_READY;
+            }
+        }
+        break;
+    case DRIVE_STATE_INIT:
+    default:
+        hal_pwm_force_off();
+        break;
+    }
+}
+
+void drive_request_run(drive_t *d) { d->run_requested = true; }
+void drive_request_stop(drive_t *d) { d->stop_requested = true; }
+void drive_request_clear_fault(drive_t *d) { d->clear_requested = true; }
+
+void drive_set_speed_ref_rpm(drive_t *d, float rpm)
+{
+    const float omega_e = rpm * (float)(CTL_TWO_PI / 60.0) * (float)d->ctl.params.pole_pairs;
+    ctl_set_loop_mode(&d->ctl, CTL_LOOP_SPEED);
+    ctl_set_speed_ref(&d->ctl, ctl_from_float(omega_e / (float)CTL_BASE_OMEGA_RAD_S));
+}
+
+void drive_set_torque_ref_nm(drive_t *d, float torque_nm)
+{
+    ctl_set_loop_mode(&d->ctl, CTL_LOOP_TORQUE);
+    ctl_set_torque_ref(&d->ctl, ctl_from_float(torque_nm / (float)CTL_BASE_TORQUE_NM));
+}

@@ -1,0 +1,81 @@
+/*
+ * The drive application: the control-period ISR body and the drive state
+ * machine, written against the HAL only. The F28335 firmware calls it from
+ * the ADC interrupt; the simulator calls it through the simulated HAL, so
+ * the simulated loop is the firmware's loop.
+ *
+ * States: INIT -> CALIBRATE (PWM off, ADC offsets averaged) -> READY
+ *         READY -> RUN on a run command; RUN -> READY on stop;
+ *         any -> FAULT (PWM forced off, latched) ; FAULT -> READY on a clear
+ *         command when healthy.
+ */
+#ifndef DRIVE_H
+#define DRIVE_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "ctl.h"
+#include "hal_adc.h"
+#include "hal_encoder.h"
+
+#define DRIVE_CALIBRATION_SAMPLES 1024
+/* Offsets further than this from mid scale mean a broken sensor or front end. */
+#define DRIVE_OFFSET_TOLERANCE_COUNTS 200
+
+typedef enum {
+    DRIVE_STATE_INIT = 0,
+    DRIVE_STATE_CALIBRATE = 1,
+    DRIVE_STATE_READY = 2,
+    DRIVE_STATE_RUN = 3,
+    DRIVE_STATE_FAULT = 4
+} drive_state_t;
+
+typedef enum {
+    DRIVE_FAULT_NONE = 0,
+    DRIVE_FAULT_PARAMS = 1,      /* controller parameters rejected at init */
+    DRIVE_FAULT_ADC_OFFSET = 2,  /* calibration offset out of range */
+    DRIVE_FAULT_ADC_MISSING = 3, /* ISR ran without a new conversion */
+    DRIVE_FAULT_HW_TRIP = 4      /* hardware over-current trip zone fired */
+} drive_fault_t;
+
+typedef struct {
+    ctl_t ctl;
+    drive_state_t state;
+    drive_fault_t fault;
+    bool run_requested;
+    bool stop_requested;
+    bool clear_requested;
+    /* ADC calibration */
+    int32_t offset_sum[HAL_ADC_PHASES];
+    int16_t offset_counts[HAL_ADC_PHASES];
+    int16_t calibration_samples;
+    /* scaling, per unit per count */
+    ctl_q current_pu_per_count;
+    ctl_q vdc_pu_per_count;
+    ctl_q omega_pu_per_rev_s; /* electrical per unit per mechanical rev/s */
+    /* last step */
+    hal_adc_sample_t adc;
+    hal_encoder_sample_t encoder;
+    ctl_meas_t meas;
+    ctl_cmd_t cmd;
+    uint32_t isr_count;
+} drive_t;
+
+/* Configure the controller; HAL peripherals must be initialised already. */
+void drive_init(drive_t *d, const ctl_params_t *p);
+
+/* One control period: sample, state machine, control step, PWM write. */
+void drive_control_isr(drive_t *d);
+
+/* Background-side commands, acted on by the next ISR. */
+void drive_request_run(drive_t *d);
+void drive_request_stop(drive_t *d);
+void drive_request_clear_fault(drive_t *d);
+void drive_set_speed_ref_rpm(drive_t *d, float rpm);
+void drive_set_torque_ref_nm(drive_t *d, float torque_nm);
+
+/* Per-unit duty to the HAL's unsigned Q15 duty. */
+uint16_t drive_duty_to_hal(ctl_q duty);
+
+#endif /* DRIVE_H */

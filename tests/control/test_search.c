@@ -1,0 +1,208 @@
+/* The candidate searches pick the right candidate on hand-built cases. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include <cmocka.h>
+
+#include "ctl_ddc.h"
+#include "ctl_mptc.h"
+#include "ctl_tables.h"
+#include "ctl_vectors.h"
+#include "test_support.h"
+
+static ctl_model_t model;
+
+static int setup(void **state)
+{
+    (void)state;
+    return ctl_model_init(&model, 2.0f, 0.035f, 0.055f, 0.01f, 0.225f, 3, 1e-4f) ? 0 : -1;
+}
+
+/* A horizon at rotor angle 0 with a plausible free response at rated load. */
+static ctl_horizon_t horizon(void)
+{
+    ctl_horizon_t h;
+    h.model = &model;
+    h.id2_free = CTL_Q(-0.08);
+    h.iq2_free = CTL_Q(0.30);
+    h.sin1 = CTL_Q(0.0);
+    h.cos1 = CTL_Q(1.0);
+    h.vdc = CTL_Q(1.0);
+    h.torque_ref = CTL_Q(0.0);
+    h.flux_ref = CTL_Q(0.45);
+    h.lambda = CTL_Q(0.0);
+    return h;
+}
+
+/* Predicted k+2 torque and flux of a switching state held for duty d. */
+static void predicted(const ctl_horizon_t *h, int16_t v, ctl_q d, ctl_q *torque, ctl_q *flux)
+{
+    ctl_q did;
+    ctl_q diq;
+    ctl_horizon_forced(h, &ctl_vector_vsd[v], &did, &diq);
+    (void)ctl_horizon_cost(h, ctl_add(h->id2_free, ctl_mul(d, did)),
+                           ctl_add(h->iq2_free, ctl_mul(d, diq)), torque, flux);
+}
+
+static void test_mptc_picks_the_vector_that_meets_the_torque_reference(void **state)
+{
+    static const int16_t targets[] = {044, 066, 024, 011, 052, 035};
+    int16_t i;
+    (void)state;
+    for (i = 0; i < (int16_t)(sizeof targets / sizeof targets[0]); i++) {
+        ctl_horizon_t h = horizon();
+        ctl_choice_t c;
+        ctl_q flux;
+        predicted(&h, targets[i], CTL_Q(1.0), &h.torque_ref, &flux);
+        ctl_mptc_select(&h, ctl_mptc49_vectors, CTL_MPTC49_CANDIDATES, 0, &c);
+        assert_int_equal(c.vector, targets[i]);
+        assert_near((double)ctl_to_float(c.cost), 0.0, 1e-5);
+        assert_int_equal(c.candidates, 49);
+    }
+}
+
+/* With a dominant flux weight the flux term decides: a reference equal to one candidate's
+ * predicted flux and torque selects that candidate. */
+static void test_mptc_flux_weight_selects_flux_match(void **state)
+{
+    ctl_horizon_t h = horizon();
+    ctl_choice_t c;
+    (void)state;
+    predicted(&h, 026, CTL_Q(1.0), &h.torque_ref, &h.flux_ref);
+    h.lambda = CTL_Q(50.0);
+    ctl_mptc_select(&h, ctl_mptc13_vectors, CTL_MPTC13_CANDIDATES, 0, &c);
+    assert_int_equal(c.vector, 026);
+}
+
+/* The zero candidate is realised as u77 when the state in force has more upper switches on. */
+static void test_mptc_zero_vector_follows_state_in_force(void **state)
+{
+    ctl_horizon_t h = horizon();
+    ctl_choice_t c;
+    ctl_q flux;
+    (void)state;
+    predicted(&h, 0, CTL_Q(0.0), &h.torque_ref, &flux);
+    ctl_mptc_select(&h, ctl_mptc13_vectors, CTL_MPTC13_CANDIDATES, 066, &c);
+    assert_int_equal(c.vector, 077);
+    ctl_mptc_select(&h, ctl_mptc13_vectors, CTL_MPTC13_CANDIDATES, 044, &c);
+    assert_int_equal(c.vector, 0);
+}
+
+static const ctl_q levels6[6] = {CTL_Q(1.0), CTL_Q(0.8), CTL_Q(0.6),
+                                 CTL_Q(0.4), CTL_Q(0.2), CTL_Q(0.0)};
+
+/* Flux at k+1 in sector I (angle 0), x-y flux in x-y sector 0, |psi| below the reference:
+ * table 1 row 0 candidates; the duty whose torque meets Tref is chosen. */
+static void test_ddc_picks_duty_that_meets_torque(void **state)
+{
+    const ctl_q duties[] = {CTL_Q(0.2), CTL_Q(0.4), CTL_Q(0.6), CTL_Q(0.8), CTL_Q(1.0)};
+    ctl_ddc_flux_t f = {CTL_Q(0.40), CTL_Q(0.0), CTL_Q(0.40), CTL_Q(0.01), CTL_Q(0.001)};
+    int16_t i;
+    (void)state;
+    for (i = 0; i < 5; i++) {
+        ctl_horizon_t h = horizon();
+        ctl_choice_t c;
+        ctl_q flux;
+        const int16_t v = ctl_ddc_table2_flux[0][0][0][0];
+        predicted(&h, v, duties[i], &h.torque_ref, &flux);
+        ctl_ddc_select(&h, &f, 0, levels6, 6, &c);
+        assert_int_equal(c.flux_sector, 0);
+        assert_int_equal(c.xy_sector, 0);
+        assert_false(c.braking);
+        assert_int_equal(c.vector, v);
+        assert_near((double)ctl_to_float(c.duty), (double)ctl_to_float(duties[i]), 1e-6);
+        assert_int_equal(c.candidates, 6);
+    }
+}
+
+/* Flux-error reading: |psi| above the reference selects the flux-lowering direction (105 deg
+ * in sector I), the pair u62 (x-y 345 deg) / u26 (x-y 165 deg); with psi_xy at 100 deg only
+ * u62 opposes it. Below the reference the flux-raising pair u24 (x-y 195 deg) / u66 (x-y
+ * 15 deg) applies, and u24 opposes psi_xy. */
+static void test_ddc_flux_error_reading_lowers_flux_and_xy(void **state)
+{
+    ctl_horizon_t h = horizon();
+    ctl_choice_t c;
+    /* psi_xy at 100 deg: cos 100 = -0.1736, sin 100 = 0.9848 */
+    ctl_ddc_flux_t f = {CTL_Q(0.50), CTL_Q(0.0), CTL_Q(0.50), CTL_Q(-0.01736), CTL_Q(0.09848)};
+    (void)state;
+    h.torque_ref = CTL_Q(2.0); /* far above: full duty */
+    ctl_ddc_select(&h, &f, 0, levels6, 6, &c);
+    assert_int_equal(c.vector, 062);
+    f.psi_mag = CTL_Q(0.30); /* below the reference: flux-raising pair u24 / u66 */
+    ctl_ddc_select(&h, &f, 0, levels6, 6, &c);
+    assert_int_equal(c.vector, 024);
+}
+
+/* The x-y-table reading follows the paper's Table 2 in sector I. */
+static void test_ddc_xy_reading_follows_paper_table2(void **state)
+{
+    static const int16_t expected[4] = {024, 062, 066, 026};
+    int16_t quadrant;
+    (void)state;
+    for (quadrant = 0; quadrant < 4; quadrant++) {
+        const double ang = (45.0 + 90.0 * quadrant) * TEST_PI / 180.0;
+        ctl_ddc_flux_t f = {CTL_Q(0.45), CTL_Q(0.0), CTL_Q(0.45), ctl_from_float((float)(0.01 * cos(ang))),
+                            ctl_from_float((float)(0.01 * sin(ang)))};
+        ctl_horizon_t h = horizon();
+        ctl_choice_t c;
+        h.torque_ref = CTL_Q(2.0);
+        ctl_ddc_select(&h, &f, 1, levels6, 6, &c);
+        assert_int_equal(c.vector, expected[quadrant]);
+    }
+}
+
+/* When the zero vector alone leaves torque above the reference, the torque-lowering half of
+ * table 1 is used and a large drop picks full duty of a lowering vector. */
+static void test_ddc_braking_half(void **state)
+{
+    ctl_horizon_t h = horizon();
+    ctl_choice_t c;
+    ctl_q t0;
+    ctl_q flux;
+    ctl_ddc_flux_t f = {CTL_Q(0.45), CTL_Q(0.0), CTL_Q(0.45), CTL_Q(0.01), CTL_Q(0.001)};
+    int16_t k;
+    bool in_lower_half = false;
+    (void)state;
+    predicted(&h, 0, CTL_Q(0.0), &t0, &flux);
+    h.torque_ref = ctl_sub(t0, CTL_Q(1.0));
+    ctl_ddc_select(&h, &f, 0, levels6, 6, &c);
+    assert_true(c.braking);
+    for (k = 0; k < 4; k++) {
+        in_lower_half = in_lower_half || (ctl_ddc_table1[0][1][k] == c.vector);
+    }
+    assert_true(in_lower_half);
+    assert_near((double)ctl_to_float(c.duty), 1.0, 1e-6);
+    assert_true(c.torque < t0);
+}
+
+/* Duty 0 (the zero vector) wins when it already meets the reference exactly. */
+static void test_ddc_zero_duty(void **state)
+{
+    ctl_horizon_t h = horizon();
+    ctl_choice_t c;
+    ctl_q flux;
+    ctl_ddc_flux_t f = {CTL_Q(0.45), CTL_Q(0.0), CTL_Q(0.45), CTL_Q(0.01), CTL_Q(0.001)};
+    (void)state;
+    predicted(&h, 0, CTL_Q(0.0), &h.torque_ref, &flux);
+    ctl_ddc_select(&h, &f, 0, levels6, 6, &c);
+    assert_near((double)ctl_to_float(c.duty), 0.0, 1e-9);
+    assert_false(c.braking);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_mptc_picks_the_vector_that_meets_the_torque_reference),
+        cmocka_unit_test(test_mptc_flux_weight_selects_flux_match),
+        cmocka_unit_test(test_mptc_zero_vector_follows_state_in_force),
+        cmocka_unit_test(test_ddc_picks_duty_that_meets_torque),
+        cmocka_unit_test(test_ddc_flux_error_reading_lowers_flux_and_xy),
+        cmocka_unit_test(test_ddc_xy_reading_follows_paper_table2),
+        cmocka_unit_test(test_ddc_braking_half),
+        cmocka_unit_test(test_ddc_zero_duty),
+    };
+    return cmocka_run_group_tests(tests, setup, NULL);
+}
