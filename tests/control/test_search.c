@@ -144,7 +144,8 @@ static void test_ddc_xy_reading_follows_paper_table2(void **state)
     (void)state;
     for (quadrant = 0; quadrant < 4; quadrant++) {
         const double ang = (45.0 + 90.0 * quadrant) * TEST_PI / 180.0;
-        ctl_ddc_flux_t f = {CTL_Q(0.45), CTL_Q(0.0), CTL_Q(0.45), ctl_from_float((float)(0.01 * cos(ang))),
+        ctl_ddc_flux_t f = {CTL_Q(0.45), CTL_Q(0.0), CTL_Q(0.45),
+                            ctl_from_float((float)(0.01 * cos(ang))),
                             ctl_from_float((float)(0.01 * sin(ang)))};
         ctl_horizon_t h = horizon();
         ctl_choice_t c;

@@ -1,0 +1,173 @@
+/*
+ * Fixed-point build against the float build on many random operating points, both driven
+ * through the public control-step API. Counts how often the chosen vector/duty differ and,
+ * when they do, how much worse the fixed choice is under an independent double-precision
+ * evaluation of the paper's cost (two-step Euler prediction, J = |Te - Tref| + lambda
+ * |psi - psi_ref|). The figures are recorded in docs/design.md.
+ */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdbool.h>
+#include <stdint.h>
+
+#include <cmocka.h>
+
+#include "fvf.h"
+#include "test_support.h"
+
+#define R_OHM 2.0
+#define LD_H 0.035
+#define LQ_H 0.055
+#define PSI_F 0.225
+#define TS_S 1.0e-4
+#define POINTS 20000
+
+static const double phase_deg[6] = {0.0, 120.0, 240.0, 30.0, 150.0, 270.0};
+
+/* alpha-beta voltage of a switching state per unit of Vdc, from the phase-voltage formula. */
+static void state_voltage(int16_t v, double *ua, double *ub)
+{
+    double s[6];
+    double m1;
+    double m2;
+    int16_t k;
+    for (k = 0; k < 6; k++) {
+        s[k] = (double)((v >> (5 - k)) & 1);
+    }
+    m1 = (s[0] + s[1] + s[2]) / 3.0;
+    m2 = (s[3] + s[4] + s[5]) / 3.0;
+    *ua = 0.0;
+    *ub = 0.0;
+    for (k = 0; k < 6; k++) {
+        const double ph = s[k] - (k < 3 ? m1 : m2);
+        *ua += ph * cos(phase_deg[k] * TEST_PI / 180.0) / 3.0;
+        *ub += ph * sin(phase_deg[k] * TEST_PI / 180.0) / 3.0;
+    }
+}
+
+static void euler(double *id, double *iq, double w, double ud, double uq)
+{
+    const double d = *id + TS_S * (ud - R_OHM * *id + w * LQ_H * *iq) / LD_H;
+    const double q = *iq + TS_S * (uq - R_OHM * *iq - w * LD_H * *id - w * PSI_F) / LQ_H;
+    *id = d;
+    *iq = q;
+}
+
+static void rotate(double ua, double ub, double theta_turn, double *ud, double *uq)
+{
+    const double a = 2.0 * TEST_PI * theta_turn;
+    *ud = ua * cos(a) + ub * sin(a);
+    *uq = -ua * sin(a) + ub * cos(a);
+}
+
+static double reference_cost(const fvf_point_t *p, double flux_ref, int16_t v, double d)
+{
+    double id = p->id;
+    double iq = p->iq;
+    double ua;
+    double ub;
+    double ud;
+    double uq;
+    double te;
+    double psi;
+    state_voltage(p->vector_in_force, &ua, &ub);
+    rotate(p->duty_in_force * p->vdc * ua, p->duty_in_force * p->vdc * ub, p->theta, &ud, &uq);
+    euler(&id, &iq, p->omega, ud, uq);
+    state_voltage(v, &ua, &ub);
+    rotate(d * p->vdc * ua, d * p->vdc * ub, p->theta + p->omega * TS_S / (2.0 * TEST_PI), &ud,
+           &uq);
+    euler(&id, &iq, p->omega, ud, uq);
+    te = 9.0 * ((LD_H * id + PSI_F) * iq - LQ_H * iq * id);
+    psi = hypot(LD_H * id + PSI_F, LQ_H * iq);
+    return fabs(te - p->torque_ref) + p->lambda * fabs(psi - flux_ref);
+}
+
+static uint32_t rng = 99u;
+static double uniform(double lo, double hi)
+{
+    rng = rng * 1664525u + 1013904223u;
+    return lo + (hi - lo) * (double)(rng >> 8) / 16777216.0;
+}
+
+static void compare(int16_t controller, double max_mismatch_fraction, double max_cost_excess)
+{
+    static const double lambdas[3] = {20.0, 100.0, 200.0};
+    int32_t n;
+    int32_t mismatches = 0;
+    int32_t vector_mismatches = 0;
+    double excess_sum = 0.0;
+    double excess_max = 0.0;
+    double cost_sum = 0.0;
+    for (n = 0; n < POINTS; n++) {
+        fvf_point_t p;
+        fvf_result_t fx;
+        fvf_result_t fl;
+        double te;
+        p.controller = controller;
+        p.lambda = lambdas[n % 3];
+        p.id = uniform(-2.0, 0.5);
+        p.iq = uniform(-4.0, 4.0);
+        p.ix = uniform(-0.5, 0.5);
+        p.iy = uniform(-0.5, 0.5);
+        p.theta = uniform(0.0, 1.0);
+        p.omega = uniform(-1.0, 1.0) * 1600.0 * TEST_PI / 30.0 * 3.0;
+        p.vdc = uniform(510.0, 570.0);
+        p.vector_in_force = (int16_t)(uniform(0.0, 64.0));
+        p.duty_in_force = controller == 0 ? (double)(int32_t)uniform(0.0, 6.0) / 5.0 : 1.0;
+        te = 9.0 * ((LD_H * p.id + PSI_F) * p.iq - LQ_H * p.iq * p.id);
+        p.torque_ref = fmax(-7.0, fmin(7.0, te + uniform(-1.0, 1.0)));
+        fvf_evaluate(&p, &fx);
+        flt_fvf_evaluate(&p, &fl);
+        assert_true(fx.vector >= 0 && fl.vector >= 0);
+        cost_sum += reference_cost(&p, fl.flux_ref, fl.vector, fl.duty);
+        if (fx.vector != fl.vector || fabs(fx.duty - fl.duty) > 1e-6) {
+            /* u00 and u77 are the same voltage: not a different choice */
+            const bool both_zero = (fx.vector == 0 || fx.vector == 077 || fx.duty == 0.0) &&
+                                   (fl.vector == 0 || fl.vector == 077 || fl.duty == 0.0);
+            if (!both_zero) {
+                const double excess = reference_cost(&p, fl.flux_ref, fx.vector, fx.duty) -
+                                      reference_cost(&p, fl.flux_ref, fl.vector, fl.duty);
+                mismatches++;
+                vector_mismatches += (fx.vector != fl.vector) ? 1 : 0;
+                excess_sum += excess;
+                excess_max = fmax(excess_max, excess);
+            }
+        }
+    }
+    print_message("controller %d: %d points, choice differs in %d (%.3f %%; vector differs in %d), "
+                  "mean cost %.4f, cost excess of the fixed choice when different: mean %.5f, "
+                  "max %.5f (cost units N*m)\n",
+                  controller, POINTS, mismatches, 100.0 * mismatches / POINTS, vector_mismatches,
+                  cost_sum / POINTS, mismatches ? excess_sum / mismatches : 0.0, excess_max);
+    assert_true((double)mismatches / POINTS <= max_mismatch_fraction);
+    assert_true(excess_max <= max_cost_excess);
+}
+
+static void test_ddc(void **state)
+{
+    (void)state;
+    compare(0, 0.01, 0.02);
+}
+
+static void test_mptc49(void **state)
+{
+    (void)state;
+    compare(1, 0.01, 0.02);
+}
+
+static void test_mptc13(void **state)
+{
+    (void)state;
+    compare(2, 0.01, 0.02);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_ddc),
+        cmocka_unit_test(test_mptc49),
+        cmocka_unit_test(test_mptc13),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

@@ -1,0 +1,154 @@
+/* Speed PI with clamping anti-windup; stator flux reference (constant and MTPA). */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include <cmocka.h>
+
+#include "ctl_flux_ref.h"
+#include "ctl_pu.h"
+#include "ctl_speed_pi.h"
+#include "test_support.h"
+
+static void test_pi_proportional_and_integral(void **state)
+{
+    ctl_speed_pi_t pi;
+    ctl_q out;
+    int16_t k;
+    (void)state;
+    ctl_speed_pi_init(&pi, CTL_Q(2.0), CTL_Q(0.01), CTL_Q(1.0));
+    out = ctl_speed_pi_run(&pi, CTL_Q(0.1), CTL_Q(0.0));
+    assert_near((double)ctl_to_float(out), 0.2 + 0.001, 1e-6);
+    for (k = 1; k < 10; k++) {
+        out = ctl_speed_pi_run(&pi, CTL_Q(0.1), CTL_Q(0.0));
+    }
+    assert_near((double)ctl_to_float(out), 0.2 + 0.01, 1e-6);
+    ctl_speed_pi_reset(&pi);
+    out = ctl_speed_pi_run(&pi, CTL_Q(0.0), CTL_Q(0.0));
+    assert_near((double)ctl_to_float(out), 0.0, 1e-9);
+}
+
+/* Anti-windup: after a long saturation the integrator is bounded, so the output leaves the
+ * limit as soon as the error reverses instead of after an unwinding delay. */
+static void test_pi_anti_windup(void **state)
+{
+    ctl_speed_pi_t pi;
+    ctl_q out = CTL_Q(0.0);
+    int32_t k;
+    (void)state;
+    ctl_speed_pi_init(&pi, CTL_Q(1.0), CTL_Q(0.05), CTL_Q(0.4));
+    for (k = 0; k < 10000; k++) {
+        out = ctl_speed_pi_run(&pi, CTL_Q(1.0), CTL_Q(0.0));
+    }
+    assert_near((double)ctl_to_float(out), 0.4, 1e-7);
+    assert_true(pi.integ <= CTL_Q(0.4));
+    /* integration stopped once the output saturated: integrator stays below the limit */
+    assert_true(pi.integ < CTL_Q(0.4));
+    out = ctl_speed_pi_run(&pi, CTL_Q(0.0), CTL_Q(0.1)); /* error -0.1 */
+    assert_true(out < CTL_Q(0.4));
+    assert_true(out < pi.integ);
+    /* negative side is symmetric */
+    for (k = 0; k < 10000; k++) {
+        out = ctl_speed_pi_run(&pi, CTL_Q(-1.0), CTL_Q(0.0));
+    }
+    assert_near((double)ctl_to_float(out), -0.4, 1e-7);
+    assert_true(pi.integ >= CTL_Q(-0.4));
+    out = ctl_speed_pi_run(&pi, CTL_Q(0.1), CTL_Q(0.0));
+    assert_true(out > CTL_Q(-0.4));
+}
+
+/* Output never exceeds the limit even for extreme inputs (saturating arithmetic). */
+static void test_pi_extreme_inputs(void **state)
+{
+    ctl_speed_pi_t pi;
+    ctl_q out;
+    (void)state;
+    ctl_speed_pi_init(&pi, CTL_Q(50.0), CTL_Q(10.0), CTL_Q(0.5));
+    out = ctl_speed_pi_run(&pi, CTL_Q_MAX, CTL_Q_MIN);
+    assert_near((double)ctl_to_float(out), 0.5, 1e-9);
+    out = ctl_speed_pi_run(&pi, CTL_Q_MIN, CTL_Q_MAX);
+    assert_near((double)ctl_to_float(out), -0.5, 1e-9);
+}
+
+static void test_flux_ref_constant(void **state)
+{
+    ctl_flux_ref_t f;
+    (void)state;
+    assert_true(
+        ctl_flux_ref_init(&f, CTL_FLUX_REF_CONSTANT, 0.26f, 0.035f, 0.055f, 0.225f, 3, 7.0f));
+    assert_near((double)ctl_to_float(ctl_flux_ref_run(&f, CTL_Q(0.3))) * CTL_BASE_FLUX_WB, 0.26,
+                1e-6);
+    assert_false(
+        ctl_flux_ref_init(&f, CTL_FLUX_REF_CONSTANT, 0.0f, 0.035f, 0.055f, 0.225f, 3, 7.0f));
+    assert_false(ctl_flux_ref_init(&f, CTL_FLUX_REF_MTPA, 0.26f, 0.035f, 0.055f, 0.225f, 3, 0.0f));
+}
+
+/* MTPA: for a torque T the reference equals the flux of the smallest current that produces T,
+ * found here by brute force over the current angle. */
+static double brute_force_mtpa_flux(double torque)
+{
+    const double ld = 0.035;
+    const double lq = 0.055;
+    const double psi_f = 0.225;
+    double lo = 0.0;
+    double hi = 20.0;
+    double best_flux = 0.0;
+    int32_t it;
+    for (it = 0; it < 60; it++) { /* bisect the current magnitude */
+        const double i = 0.5 * (lo + hi);
+        double tmax = -1.0;
+        int32_t k;
+        for (k = 0; k <= 9000; k++) {
+            const double beta = (double)k / 9000.0 * TEST_PI / 2.0; /* angle from q toward -d */
+            const double id = -i * sin(beta);
+            const double iq = i * cos(beta);
+            const double t = 9.0 * ((ld * id + psi_f) * iq - lq * iq * id);
+            if (t > tmax) {
+                tmax = t;
+                best_flux = hypot(ld * id + psi_f, lq * iq);
+            }
+        }
+        if (tmax < torque) {
+            lo = i;
+        } else {
+            hi = i;
+        }
+    }
+    return best_flux;
+}
+
+static void test_flux_ref_mtpa(void **state)
+{
+    ctl_flux_ref_t f;
+    const double torques[] = {0.0, 1.0, 3.5, 5.0, 7.0, -4.0};
+    int16_t k;
+    (void)state;
+    assert_true(ctl_flux_ref_init(&f, CTL_FLUX_REF_MTPA, 0.26f, 0.035f, 0.055f, 0.225f, 3, 7.0f));
+    for (k = 0; k < 6; k++) {
+        const double t = torques[k];
+        const double ref = brute_force_mtpa_flux(fabs(t));
+        const double got = (double)ctl_to_float(ctl_flux_ref_run(
+                               &f, ctl_from_float((float)(t / CTL_BASE_TORQUE_NM)))) *
+                           CTL_BASE_FLUX_WB;
+        assert_near(got, ref, 0.002); /* 2 mWb: table interpolation and brute-force grid */
+    }
+    /* beyond the table span the last point holds */
+    assert_int_equal(ctl_flux_ref_run(&f, CTL_Q(5.0)), f.table[CTL_FLUX_REF_TABLE_POINTS - 1]);
+    /* the MTPA flux grows with torque */
+    for (k = 1; k < CTL_FLUX_REF_TABLE_POINTS; k++) {
+        assert_true(f.table[k] >= f.table[k - 1]);
+    }
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_pi_proportional_and_integral),
+        cmocka_unit_test(test_pi_anti_windup),
+        cmocka_unit_test(test_pi_extreme_inputs),
+        cmocka_unit_test(test_flux_ref_constant),
+        cmocka_unit_test(test_flux_ref_mtpa),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
