@@ -13,7 +13,7 @@ float ctl_sqrtf(float x)
     if (!(x > 0.0f)) { /* negative, zero or NaN */
         return 0.0f;
     }
-    if (x > 3.0e38f) {
+    if (x > 3.40282347e38f) { /* only +inf (literal = FLT_MAX); Newton would give inf/inf */
         return x;
     }
     /* Halving the exponent gives a first guess within a few percent. */
@@ -123,7 +123,7 @@ int16_t ctl_turn_sector(ctl_q angle_turn, int16_t n)
 
 #endif /* CTL_MATH_FLOAT */
 
-ctl_q ctl_cos_pu(ctl_q angle_turn) { return ctl_sin_pu(ctl_add(angle_turn, CTL_Q(0.25))); }
+ctl_q ctl_cos_pu(ctl_q angle_turn) { return ctl_sin_pu(ctl_wrap_turn(angle_turn) + CTL_Q(0.25)); }
 
 void ctl_sincos_pu(ctl_q angle_turn, ctl_q *s, ctl_q *c)
 {

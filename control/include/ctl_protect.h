@@ -1,0 +1,143 @@
+/*
+ * Protection: fault detection with stated thresholds and filters, a latched fault
+ * mask, and a log of fault records that survives until read. Pure logic: the drive
+ * feeds it each control period and forces the outputs off (PWM trip) in the same
+ * period when it reports a fault.
+ *
+ * Filters count consecutive control periods a condition holds; a condition that
+ * clears resets its counter. Several faults in one period are all latched and go
+ * into one record (its mask has every bit); a full log keeps the oldest records
+ * (the root cause) and counts what it had to drop.
+ */
+#ifndef CTL_PROTECT_H
+#define CTL_PROTECT_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "ctl_q.h"
+
+typedef enum {
+    CTL_FAULT_OVERCURRENT = 0x0001,     /* |i_phase| above limit */
+    CTL_FAULT_DC_OVERVOLTAGE = 0x0002,  /* Vdc above limit */
+    CTL_FAULT_DC_UNDERVOLTAGE = 0x0004, /* Vdc below limit while running */
+    CTL_FAULT_OVERSPEED = 0x0008,       /* |speed| above limit */
+    CTL_FAULT_ENCODER = 0x0010,         /* unhealthy, stopped under torque, or angle jump */
+    CTL_FAULT_ADC_RAIL = 0x0020,        /* a conversion at the rail */
+    CTL_FAULT_ADC_STUCK = 0x0040,       /* a channel frozen while current flows */
+    CTL_FAULT_ADC_OFFSET = 0x0080,      /* calibration offset out of range */
+    CTL_FAULT_OVERRUN = 0x0100,         /* control step not finished within the period */
+    CTL_FAULT_CURRENT_SUM = 0x0200,     /* a three-phase set does not sum to zero */
+    CTL_FAULT_OPEN_PHASE = 0x0400,      /* one phase carries no current while others do */
+    CTL_FAULT_HW_TRIP = 0x0800,         /* hardware over-current trip zone */
+    CTL_FAULT_PARAMS = 0x1000,          /* controller parameters unusable */
+    CTL_FAULT_MEASUREMENT = 0x2000      /* a measurement is not a number (float build) */
+} ctl_fault_t;
+
+#define CTL_PROTECT_LOG_SIZE 8
+#define CTL_PROTECT_OPEN_PHASE_WINDOW                                                              \
+    400 /* periods: 40 ms at 10 kHz, > 1 electrical period at 300 r/min */
+
+/* Thresholds and filters in per unit (see ctl_protect_default for the SI values). */
+typedef struct {
+    ctl_q overcurrent; /* |i| limit */
+    int16_t overcurrent_periods;
+    ctl_q dc_overvoltage;
+    int16_t dc_overvoltage_periods;
+    ctl_q dc_undervoltage;
+    int16_t dc_undervoltage_periods;
+    ctl_q overspeed; /* |omega_e| limit */
+    int16_t overspeed_periods;
+    ctl_q current_sum; /* |i_a + i_b + i_c| limit per set */
+    int16_t current_sum_periods;
+    int16_t adc_rail_low; /* raw counts at or below: at the rail */
+    int16_t adc_rail_high;
+    int16_t adc_rail_periods;
+    int16_t adc_stuck_periods;   /* identical raw value this long while current flows */
+    ctl_q stuck_min_current;     /* "current flows": largest |i_phase| above this */
+    ctl_q encoder_torque;        /* |Te| above this accumulates expected motion */
+    ctl_q encoder_expected_turn; /* expected electrical motion (turns) with no counts -> fault */
+    ctl_q encoder_jump;          /* |angle step - omega Ts| above this (turns) -> fault */
+    ctl_q torque_to_dspeed;      /* Ts * Pn / J in per unit: d omega_e per period per unit torque */
+    ctl_q ts_turns;              /* Ts * w_b / (2 pi): angle advance in turns per unit speed */
+    ctl_q open_phase_min_mean;   /* mean |i| over phases that makes the check meaningful */
+    ctl_q open_phase_ratio;      /* a phase below this fraction of the mean is open */
+} ctl_protect_limits_t;
+
+/* One control period's inputs. Raw counts are the ADC's (0..4095), per unit values the
+ * drive's scaled measurements. */
+typedef struct {
+    ctl_q i_phase[6];
+    ctl_q vdc;
+    ctl_q theta_e;
+    ctl_q omega_e;
+    ctl_q torque_est; /* from measured currents */
+    int16_t raw_phase[6];
+    int16_t raw_vdc;
+    bool encoder_healthy;
+    bool overrun;
+    bool hw_trip;
+    bool running; /* PWM enabled this period (under-voltage, stuck, encoder, open phase need it) */
+} ctl_protect_input_t;
+
+typedef struct {
+    uint16_t faults; /* every fault detected in that period */
+    uint32_t period; /* control-period count at detection */
+    ctl_q i_phase[6];
+    ctl_q vdc;
+    ctl_q theta_e;
+    ctl_q omega_e;
+    ctl_q torque_est;
+    ctl_q torque_ref;
+    int16_t vector; /* command in force */
+    ctl_q duty;
+} ctl_fault_record_t;
+
+typedef struct {
+    ctl_protect_limits_t limits;
+    uint16_t latched; /* faults since the last successful clear */
+    uint16_t active;  /* faults whose condition held in the last period */
+    uint32_t period;
+    /* filter counters */
+    int16_t n_overcurrent;
+    int16_t n_overvoltage;
+    int16_t n_undervoltage;
+    int16_t n_overspeed;
+    int16_t n_sum;
+    int16_t n_rail;
+    int16_t n_stuck[7];
+    int16_t last_raw[7];
+    ctl_q expected_speed; /* electrical speed the torque should have built up without counts */
+    ctl_q expected_angle; /* and the angle (turns) it should have turned through */
+    ctl_q last_theta;
+    bool have_last;
+    ctl_q open_sum[6];
+    int16_t open_count;
+    /* log */
+    ctl_fault_record_t log[CTL_PROTECT_LOG_SIZE];
+    int16_t log_head;
+    int16_t log_count;
+    uint16_t log_dropped;
+} ctl_protect_t;
+
+/* Limits for the reference drive: 15 A, 720 V / 350 V, 2000 r/min, ... in SI, converted. */
+void ctl_protect_default(ctl_protect_limits_t *l, float sample_time_s, int16_t pole_pairs,
+                         float inertia_kg_m2);
+void ctl_protect_init(ctl_protect_t *p, const ctl_protect_limits_t *l);
+
+/* Run the detection for one period; returns the faults detected in this period (0: none).
+ * On a non-zero return the caller must force the outputs off in this same period.
+ * torque_ref, vector and duty only go into the record. */
+uint16_t ctl_protect_check(ctl_protect_t *p, const ctl_protect_input_t *in, ctl_q torque_ref,
+                           int16_t vector, ctl_q duty);
+
+/* Latch a fault found outside the periodic check (calibration, parameters). */
+void ctl_protect_raise(ctl_protect_t *p, uint16_t faults, const ctl_protect_input_t *in);
+
+/* Clear the latch if no fault condition is active; true on success. The log is kept. */
+bool ctl_protect_clear(ctl_protect_t *p);
+
+/* Oldest unread record; false when the log is empty. */
+bool ctl_protect_read_record(ctl_protect_t *p, ctl_fault_record_t *r);
+
+#endif /* CTL_PROTECT_H */

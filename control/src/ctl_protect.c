@@ -1,0 +1,318 @@
+#include "ctl_protect.h"
+
+#include "ctl_pu.h"
+
+void ctl_protect_default(ctl_protect_limits_t *l, float sample_time_s, int16_t pole_pairs,
+                         float inertia_kg_m2)
+{
+    const float ib = (float)CTL_BASE_CURRENT_A;
+    const float vb = (float)CTL_BASE_VOLTAGE_V;
+    const float wb = (float)CTL_BASE_OMEGA_RAD_S;
+    const float two_pi = (float)CTL_TWO_PI;
+    const float pp = (pole_pairs > 0) ? (float)pole_pairs : 1.0f;
+    const float inertia = (inertia_kg_m2 > 0.0f) ? inertia_kg_m2 : 1.0f;
+    l->overcurrent = ctl_from_float(15.0f / ib); /* hardware trip is the first line */
+    l->overcurrent_periods = 1;
+    l->dc_overvoltage = ctl_from_float(720.0f / vb);
+    l->dc_overvoltage_periods = 3;
+    l->dc_undervoltage = ctl_from_float(350.0f / vb);
+    l->dc_undervoltage_periods = 10;
+    l->overspeed = ctl_from_float(2000.0f * two_pi / 60.0f * pp / wb); /* 2000 r/min */
+    l->overspeed_periods = 5;
+    l->current_sum = ctl_from_float(2.0f / ib);
+    l->current_sum_periods = 5;
+    l->adc_rail_low = 2;
+    l->adc_rail_high = 4093;
+    l->adc_rail_periods = 3;
+    l->adc_stuck_periods = 500;
+    l->stuck_min_current = ctl_from_float(1.0f / ib);
+    l->encoder_torque = ctl_from_float(1.0f / (float)CTL_BASE_TORQUE_NM);
+    l->encoder_expected_turn = CTL_Q(0.25);
+    l->encoder_jump = CTL_Q(0.05);
+    l->torque_to_dspeed =
+        ctl_from_float((float)CTL_BASE_TORQUE_NM * pp * sample_time_s / (inertia * wb));
+    l->ts_turns = ctl_from_float(sample_time_s * wb / two_pi);
+    l->open_phase_min_mean = ctl_from_float(1.0f / ib);
+    l->open_phase_ratio = CTL_Q(0.2);
+}
+
+static void reset_filters(ctl_protect_t *p)
+{
+    int16_t k;
+    p->n_overcurrent = 0;
+    p->n_overvoltage = 0;
+    p->n_undervoltage = 0;
+    p->n_overspeed = 0;
+    p->n_sum = 0;
+    p->n_rail = 0;
+    for (k = 0; k < 7; k++) {
+        p->n_stuck[k] = 0;
+        p->last_raw[k] = -1;
+    }
+    p->expected_speed = CTL_Q(0.0);
+    p->expected_angle = CTL_Q(0.0);
+    p->have_last = false;
+    p->last_theta = CTL_Q(0.0);
+    for (k = 0; k < 6; k++) {
+        p->open_sum[k] = CTL_Q(0.0);
+    }
+    p->open_count = 0;
+}
+
+void ctl_protect_init(ctl_protect_t *p, const ctl_protect_limits_t *l)
+{
+    p->limits = *l;
+    p->latched = 0u;
+    p->active = 0u;
+    p->period = 0u;
+    p->log_head = 0;
+    p->log_count = 0;
+    p->log_dropped = 0u;
+    reset_filters(p);
+}
+
+/* Count consecutive periods a condition holds; true once it held for `periods`. */
+static bool filtered(bool condition, int16_t *count, int16_t periods)
+{
+    if (!condition) {
+        *count = 0;
+        return false;
+    }
+    if (*count < periods) {
+        (*count)++;
+    }
+    return *count >= periods;
+}
+
+static bool any_nan(const ctl_protect_input_t *in)
+{
+#if CTL_MATH_FLOAT
+    int16_t k;
+    bool nan = !(in->vdc == in->vdc) || !(in->theta_e == in->theta_e) ||
+               !(in->omega_e == in->omega_e) || !(in->torque_est == in->torque_est);
+    for (k = 0; k < 6; k++) {
+        nan = nan || !(in->i_phase[k] == in->i_phase[k]);
+    }
+    return nan;
+#else
+    (void)in;
+    return false;
+#endif
+}
+
+/* Signed angle difference in turns, in [-0.5, 0.5). */
+static ctl_q turn_difference(ctl_q a, ctl_q b)
+{
+    return ctl_sub(ctl_wrap_turn(ctl_add(ctl_sub(a, b), CTL_Q(0.5))), CTL_Q(0.5));
+}
+
+static uint16_t check_encoder(ctl_protect_t *p, const ctl_protect_input_t *in)
+{
+    const ctl_protect_limits_t *l = &p->limits;
+    uint16_t f = 0u;
+    if (!in->encoder_healthy) {
+        f |= CTL_FAULT_ENCODER;
+    }
+    if (!in->running) {
+        p->have_last = false;
+        p->expected_speed = CTL_Q(0.0);
+        p->expected_angle = CTL_Q(0.0);
+        return f;
+    }
+    if (p->have_last) {
+        const ctl_q step = turn_difference(in->theta_e, p->last_theta);
+        const ctl_q predicted = ctl_mul(in->omega_e, l->ts_turns);
+        if (ctl_abs(ctl_sub(step, predicted)) > l->encoder_jump) {
+            f |= CTL_FAULT_ENCODER;
+        }
+        if (step != CTL_Q(0.0)) {
+            p->expected_speed = CTL_Q(0.0);
+            p->expected_angle = CTL_Q(0.0);
+        } else if (ctl_abs(in->torque_est) > l->encoder_torque) {
+            /* No count this period while torque acts: the motion a free rotor would have
+             * made since the last count (speed grows linearly, angle with its sum). */
+            p->expected_speed =
+                ctl_add(p->expected_speed, ctl_abs(ctl_mul(in->torque_est, l->torque_to_dspeed)));
+            p->expected_angle = ctl_add(p->expected_angle, ctl_mul(p->expected_speed, l->ts_turns));
+            if (p->expected_angle > l->encoder_expected_turn) {
+                f |= CTL_FAULT_ENCODER;
+            }
+        }
+    }
+    p->last_theta = in->theta_e;
+    p->have_last = true;
+    return f;
+}
+
+static uint16_t check_adc(ctl_protect_t *p, const ctl_protect_input_t *in)
+{
+    const ctl_protect_limits_t *l = &p->limits;
+    uint16_t f = 0u;
+    bool rail = false;
+    bool flowing = false;
+    int16_t k;
+    for (k = 0; k < 6; k++) {
+        rail = rail || in->raw_phase[k] <= l->adc_rail_low || in->raw_phase[k] >= l->adc_rail_high;
+        flowing = flowing || ctl_abs(in->i_phase[k]) > l->stuck_min_current;
+    }
+    rail = rail || in->raw_vdc <= l->adc_rail_low || in->raw_vdc >= l->adc_rail_high;
+    if (filtered(rail, &p->n_rail, l->adc_rail_periods)) {
+        f |= CTL_FAULT_ADC_RAIL;
+    }
+    /* Phase currents ripple every period while the inverter switches: a frozen word is a
+     * dead converter or multiplexer. */
+    for (k = 0; k < 6; k++) {
+        const bool same = in->running && flowing && in->raw_phase[k] == p->last_raw[k];
+        if (filtered(same, &p->n_stuck[k], l->adc_stuck_periods)) {
+            f |= CTL_FAULT_ADC_STUCK;
+        }
+        p->last_raw[k] = in->raw_phase[k];
+    }
+    return f;
+}
+
+static uint16_t check_open_phase(ctl_protect_t *p, const ctl_protect_input_t *in)
+{
+    const ctl_protect_limits_t *l = &p->limits;
+    ctl_q mean = CTL_Q(0.0);
+    uint16_t f = 0u;
+    int16_t k;
+    if (!in->running) {
+        for (k = 0; k < 6; k++) {
+            p->open_sum[k] = CTL_Q(0.0);
+        }
+        p->open_count = 0;
+        return 0u;
+    }
+    /* Mean |i| per phase over a window longer than an electrical period at low speed. */
+    for (k = 0; k < 6; k++) {
+        p->open_sum[k] = ctl_add(p->open_sum[k], ctl_abs(in->i_phase[k]));
+    }
+    p->open_count++;
+    if (p->open_count < CTL_PROTECT_OPEN_PHASE_WINDOW) {
+        return 0u;
+    }
+    for (k = 0; k < 6; k++) {
+        mean = ctl_add(mean, ctl_mul(p->open_sum[k], CTL_Q(1.0 / 6.0)));
+    }
+    if (mean > ctl_mul_int(l->open_phase_min_mean, CTL_PROTECT_OPEN_PHASE_WINDOW)) {
+        const ctl_q floor = ctl_mul(mean, l->open_phase_ratio);
+        for (k = 0; k < 6; k++) {
+            if (p->open_sum[k] < floor) {
+                f |= CTL_FAULT_OPEN_PHASE;
+            }
+        }
+    }
+    for (k = 0; k < 6; k++) {
+        p->open_sum[k] = CTL_Q(0.0);
+    }
+    p->open_count = 0;
+    return f;
+}
+
+static void record(ctl_protect_t *p, uint16_t faults, const ctl_protect_input_t *in,
+                   ctl_q torque_ref, int16_t vector, ctl_q duty)
+{
+    ctl_fault_record_t *r;
+    int16_t k;
+    if (p->log_count >= CTL_PROTECT_LOG_SIZE) {
+        p->log_dropped++; /* keep the oldest: the first fault is the root cause */
+        return;
+    }
+    r = &p->log[(p->log_head + p->log_count) % CTL_PROTECT_LOG_SIZE];
+    p->log_count++;
+    r->faults = faults;
+    r->period = p->period;
+    for (k = 0; k < 6; k++) {
+        r->i_phase[k] = in->i_phase[k];
+    }
+    r->vdc = in->vdc;
+    r->theta_e = in->theta_e;
+    r->omega_e = in->omega_e;
+    r->torque_est = in->torque_est;
+    r->torque_ref = torque_ref;
+    r->vector = vector;
+    r->duty = duty;
+}
+
+uint16_t ctl_protect_check(ctl_protect_t *p, const ctl_protect_input_t *in, ctl_q torque_ref,
+                           int16_t vector, ctl_q duty)
+{
+    const ctl_protect_limits_t *l = &p->limits;
+    uint16_t f = 0u;
+    bool over = false;
+    int16_t k;
+    p->period++;
+    if (any_nan(in)) {
+        f |= CTL_FAULT_MEASUREMENT;
+    }
+    for (k = 0; k < 6; k++) {
+        over = over || ctl_abs(in->i_phase[k]) > l->overcurrent;
+    }
+    if (filtered(over, &p->n_overcurrent, l->overcurrent_periods)) {
+        f |= CTL_FAULT_OVERCURRENT;
+    }
+    if (filtered(in->vdc > l->dc_overvoltage, &p->n_overvoltage, l->dc_overvoltage_periods)) {
+        f |= CTL_FAULT_DC_OVERVOLTAGE;
+    }
+    if (filtered(in->running && in->vdc < l->dc_undervoltage, &p->n_undervoltage,
+                 l->dc_undervoltage_periods)) {
+        f |= CTL_FAULT_DC_UNDERVOLTAGE;
+    }
+    if (filtered(ctl_abs(in->omega_e) > l->overspeed, &p->n_overspeed, l->overspeed_periods)) {
+        f |= CTL_FAULT_OVERSPEED;
+    }
+    {
+        const ctl_q sum1 = ctl_add(ctl_add(in->i_phase[0], in->i_phase[1]), in->i_phase[2]);
+        const ctl_q sum2 = ctl_add(ctl_add(in->i_phase[3], in->i_phase[4]), in->i_phase[5]);
+        const bool bad = ctl_abs(sum1) > l->current_sum || ctl_abs(sum2) > l->current_sum;
+        if (filtered(bad, &p->n_sum, l->current_sum_periods)) {
+            f |= CTL_FAULT_CURRENT_SUM;
+        }
+    }
+    if (in->overrun) {
+        f |= CTL_FAULT_OVERRUN;
+    }
+    if (in->hw_trip) {
+        f |= CTL_FAULT_HW_TRIP;
+    }
+    f |= check_encoder(p, in);
+    f |= check_adc(p, in);
+    f |= check_open_phase(p, in);
+
+    p->active = f;
+    if ((f & (uint16_t)~p->latched) != 0u) {
+        record(p, f, in, torque_ref, vector, duty);
+    }
+    p->latched |= f;
+    return f;
+}
+
+void ctl_protect_raise(ctl_protect_t *p, uint16_t faults, const ctl_protect_input_t *in)
+{
+    if ((faults & (uint16_t)~p->latched) != 0u) {
+        record(p, faults, in, CTL_Q(0.0), 0, CTL_Q(0.0));
+    }
+    p->latched |= faults;
+}
+
+bool ctl_protect_clear(ctl_protect_t *p)
+{
+    if (p->active != 0u) {
+        return false;
+    }
+    p->latched = 0u;
+    reset_filters(p);
+    return true;
+}
+
+bool ctl_protect_read_record(ctl_protect_t *p, ctl_fault_record_t *r)
+{
+    if (p->log_count == 0) {
+        return false;
+    }
+    *r = p->log[p->log_head];
+    p->log_head = (int16_t)((p->log_head + 1) % CTL_PROTECT_LOG_SIZE);
+    p->log_count--;
+    return true;
+}

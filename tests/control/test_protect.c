@@ -1,0 +1,281 @@
+/* Protection: each fault's threshold and filter, latching, records, clearing. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include <cmocka.h>
+
+#include "ctl_protect.h"
+#include "ctl_pu.h"
+#include "test_support.h"
+
+static ctl_protect_t prot;
+
+static int setup(void **state)
+{
+    ctl_protect_limits_t l;
+    (void)state;
+    ctl_protect_default(&l, 1.0e-4f, 3, 0.01f);
+    ctl_protect_init(&prot, &l);
+    return 0;
+}
+
+static ctl_q amps(double a) { return ctl_from_float((float)(a / CTL_BASE_CURRENT_A)); }
+
+/* A healthy running sample: balanced 3 A currents at angle theta, 540 V, 1500 r/min. */
+static ctl_protect_input_t healthy(int32_t n)
+{
+    static const double deg[6] = {0.0, 120.0, 240.0, 30.0, 150.0, 270.0};
+    ctl_protect_input_t in;
+    const double w = 1500.0 * TEST_PI / 30.0 * 3.0;
+    const double theta = w * 1.0e-4 * (double)n;
+    int16_t k;
+    for (k = 0; k < 6; k++) {
+        const double i = 3.0 * cos(theta - deg[k] * TEST_PI / 180.0);
+        in.i_phase[k] = amps(i);
+        in.raw_phase[k] = (int16_t)(2048.0 + i / (40.0 / 4096.0));
+    }
+    in.vdc = ctl_from_float((float)(540.0 / CTL_BASE_VOLTAGE_V));
+    in.raw_vdc = (int16_t)(540.0 / (800.0 / 4096.0));
+    in.theta_e = ctl_wrap_turn(ctl_from_float((float)fmod(theta / (2.0 * TEST_PI), 1.0)));
+    in.omega_e = ctl_from_float((float)(w / CTL_BASE_OMEGA_RAD_S));
+    in.torque_est = ctl_from_float((float)(7.0 / CTL_BASE_TORQUE_NM));
+    in.encoder_healthy = true;
+    in.overrun = false;
+    in.hw_trip = false;
+    in.running = true;
+    return in;
+}
+
+/* Run healthy periods, then the faulty ones from `modify`; return the period (1-based, from
+ * the first faulty one) at which `fault` was first reported, or -1. */
+typedef void (*modify_fn)(ctl_protect_input_t *in, int32_t n);
+
+static int32_t periods_to_detect(modify_fn modify, uint16_t fault, int32_t max_periods)
+{
+    int32_t n;
+    for (n = 0; n < 500; n++) {
+        const ctl_protect_input_t in = healthy(n);
+        assert_int_equal(ctl_protect_check(&prot, &in, CTL_Q(0.3), 044, CTL_Q(0.6)), 0);
+    }
+    for (n = 0; n < max_periods; n++) {
+        ctl_protect_input_t in = healthy(500 + n);
+        modify(&in, n);
+        if ((ctl_protect_check(&prot, &in, CTL_Q(0.3), 044, CTL_Q(0.6)) & fault) != 0u) {
+            return n + 1;
+        }
+    }
+    return -1;
+}
+
+static void overcurrent(ctl_protect_input_t *in, int32_t n)
+{
+    (void)n;
+    in->i_phase[2] = amps(-15.2);
+}
+static void dc_over(ctl_protect_input_t *in, int32_t n)
+{
+    (void)n;
+    in->vdc = ctl_from_float((float)(730.0 / CTL_BASE_VOLTAGE_V));
+}
+static void dc_under(ctl_protect_input_t *in, int32_t n)
+{
+    (void)n;
+    in->vdc = ctl_from_float((float)(340.0 / CTL_BASE_VOLTAGE_V));
+}
+static void overspeed(ctl_protect_input_t *in, int32_t n)
+{
+    (void)n;
+    in->omega_e = ctl_from_float((float)(2100.0 * TEST_PI / 30.0 * 3.0 / CTL_BASE_OMEGA_RAD_S));
+}
+static void sum_error(ctl_protect_input_t *in, int32_t n)
+{
+    (void)n;
+    in->i_phase[4] = ctl_add(in->i_phase[4], amps(2.5));
+}
+static void rail(ctl_protect_input_t *in, int32_t n)
+{
+    (void)n;
+    in->raw_phase[5] = 4095;
+}
+static ctl_q frozen_theta;
+static void stopped_encoder(ctl_protect_input_t *in, int32_t n)
+{
+    if (n == 0) {
+        frozen_theta = in->theta_e;
+    }
+    in->theta_e = frozen_theta;
+    in->omega_e = CTL_Q(0.0);
+}
+static void angle_jump(ctl_protect_input_t *in, int32_t n)
+{
+    (void)n;
+    in->theta_e = ctl_wrap_turn(ctl_add(in->theta_e, CTL_Q(0.25)));
+}
+static void unhealthy_encoder(ctl_protect_input_t *in, int32_t n)
+{
+    (void)n;
+    in->encoder_healthy = false;
+}
+static void stuck_adc(ctl_protect_input_t *in, int32_t n)
+{
+    (void)n;
+    in->raw_phase[1] = 2500;
+}
+static void open_phase(ctl_protect_input_t *in, int32_t n)
+{
+    (void)n;
+    /* phase D open: E and F carry equal and opposite currents */
+    in->i_phase[4] = ctl_sub(in->i_phase[4], ctl_mul(in->i_phase[3], CTL_Q(-0.5)));
+    in->i_phase[5] = ctl_sub(CTL_Q(0.0), in->i_phase[4]);
+    in->i_phase[3] = CTL_Q(0.0);
+}
+static void overrun(ctl_protect_input_t *in, int32_t n) { in->overrun = n == 3; }
+
+static void test_detection_latency_of_each_fault(void **state)
+{
+    (void)state;
+    /* threshold and filter per fault: the period of detection is the filter length */
+    assert_int_equal(periods_to_detect(overcurrent, CTL_FAULT_OVERCURRENT, 10), 1);
+    setup(NULL);
+    assert_int_equal(periods_to_detect(dc_over, CTL_FAULT_DC_OVERVOLTAGE, 10), 3);
+    setup(NULL);
+    assert_int_equal(periods_to_detect(dc_under, CTL_FAULT_DC_UNDERVOLTAGE, 20), 10);
+    setup(NULL);
+    assert_int_equal(periods_to_detect(overspeed, CTL_FAULT_OVERSPEED, 10), 5);
+    setup(NULL);
+    assert_int_equal(periods_to_detect(sum_error, CTL_FAULT_CURRENT_SUM, 10), 5);
+    setup(NULL);
+    assert_int_equal(periods_to_detect(rail, CTL_FAULT_ADC_RAIL, 10), 3);
+    setup(NULL);
+    assert_int_equal(periods_to_detect(unhealthy_encoder, CTL_FAULT_ENCODER, 10), 1);
+    setup(NULL);
+    assert_int_equal(periods_to_detect(angle_jump, CTL_FAULT_ENCODER, 10), 1);
+    setup(NULL);
+    /* stuck: 500 repeats of the same word, i.e. the 501st frozen sample */
+    assert_int_equal(periods_to_detect(stuck_adc, CTL_FAULT_ADC_STUCK, 1000), 501);
+    setup(NULL);
+    assert_int_equal(periods_to_detect(overrun, CTL_FAULT_OVERRUN, 10), 4);
+}
+
+/* A stopped encoder under 7 N m: a free rotor (J = 0.01) turns 90 electrical degrees in
+ * about 37 ms; detection must come by then (plus one window of margin: 45 ms). */
+static void test_stopped_encoder_under_torque(void **state)
+{
+    int32_t n;
+    (void)state;
+    n = periods_to_detect(stopped_encoder, CTL_FAULT_ENCODER, 2000);
+    print_message("stopped encoder detected after %d periods\n", n);
+    assert_in_range(n, 300, 450);
+}
+
+/* Open phase: detected at the end of the first full 40 ms window after the fault. */
+static void test_open_phase(void **state)
+{
+    int32_t n;
+    (void)state;
+    n = periods_to_detect(open_phase, CTL_FAULT_OPEN_PHASE, 2000);
+    assert_in_range(n, 1, 2 * CTL_PROTECT_OPEN_PHASE_WINDOW);
+}
+
+/* Healthy operation over a long run never reports anything (no false trips). */
+static void test_no_false_trip(void **state)
+{
+    int32_t n;
+    (void)state;
+    for (n = 0; n < 20000; n++) {
+        const ctl_protect_input_t in = healthy(n);
+        assert_int_equal(ctl_protect_check(&prot, &in, CTL_Q(0.3), 044, CTL_Q(0.6)), 0);
+    }
+    assert_int_equal(prot.latched, 0);
+}
+
+/* Faults in one period all latch and go into one record; a full log keeps the oldest. */
+static void test_records_and_latch(void **state)
+{
+    ctl_protect_input_t in = healthy(0);
+    ctl_fault_record_t r;
+    uint16_t f;
+    int16_t k;
+    (void)state;
+    in.i_phase[0] = amps(16.0);
+    in.overrun = true;
+    in.hw_trip = true;
+    f = ctl_protect_check(&prot, &in, CTL_Q(0.3), 044, CTL_Q(0.6));
+    assert_int_equal(f & (CTL_FAULT_OVERCURRENT | CTL_FAULT_OVERRUN | CTL_FAULT_HW_TRIP),
+                     CTL_FAULT_OVERCURRENT | CTL_FAULT_OVERRUN | CTL_FAULT_HW_TRIP);
+    assert_int_equal(prot.log_count, 1);
+    /* the same faults again: latched already, no new record */
+    (void)ctl_protect_check(&prot, &in, CTL_Q(0.3), 044, CTL_Q(0.6));
+    assert_int_equal(prot.log_count, 1);
+    /* while a condition is active the latch cannot be cleared */
+    assert_false(ctl_protect_clear(&prot));
+    in = healthy(1);
+    (void)ctl_protect_check(&prot, &in, CTL_Q(0.3), 044, CTL_Q(0.6));
+    assert_true(ctl_protect_clear(&prot));
+    assert_int_equal(prot.latched, 0);
+    /* fill the log: 8 kept, the rest counted as dropped */
+    for (k = 0; k < CTL_PROTECT_LOG_SIZE + 3; k++) {
+        in = healthy(2 + k);
+        in.overrun = true;
+        (void)ctl_protect_check(&prot, &in, CTL_Q(0.3), 044, CTL_Q(0.6));
+        in = healthy(2 + k);
+        (void)ctl_protect_check(&prot, &in, CTL_Q(0.3), 044, CTL_Q(0.6));
+        assert_true(ctl_protect_clear(&prot));
+    }
+    assert_int_equal(prot.log_count, CTL_PROTECT_LOG_SIZE);
+    assert_int_equal(prot.log_dropped, 4);
+    assert_true(ctl_protect_read_record(&prot, &r));
+    assert_int_equal(r.faults & CTL_FAULT_OVERCURRENT, CTL_FAULT_OVERCURRENT);
+    assert_int_equal(r.faults & CTL_FAULT_HW_TRIP, CTL_FAULT_HW_TRIP);
+    assert_int_equal(r.vector, 044);
+    assert_int_equal(r.i_phase[0], amps(16.0));
+    assert_int_equal(r.period, 1);
+    for (k = 1; k < CTL_PROTECT_LOG_SIZE; k++) {
+        assert_true(ctl_protect_read_record(&prot, &r));
+        assert_int_equal(r.faults, CTL_FAULT_OVERRUN);
+    }
+    assert_false(ctl_protect_read_record(&prot, &r));
+}
+
+static void test_raise_from_outside(void **state)
+{
+    const ctl_protect_input_t in = healthy(0);
+    ctl_fault_record_t r;
+    (void)state;
+    ctl_protect_raise(&prot, CTL_FAULT_ADC_OFFSET, &in);
+    assert_int_equal(prot.latched, CTL_FAULT_ADC_OFFSET);
+    assert_true(ctl_protect_read_record(&prot, &r));
+    assert_int_equal(r.faults, CTL_FAULT_ADC_OFFSET);
+    assert_true(ctl_protect_clear(&prot));
+}
+
+static void test_not_a_number(void **state)
+{
+    ctl_protect_input_t in = healthy(0);
+    (void)state;
+#if CTL_MATH_FLOAT
+    in.i_phase[3] = (float)NAN;
+    assert_int_equal(ctl_protect_check(&prot, &in, CTL_Q(0.3), 044, CTL_Q(0.6)) &
+                         CTL_FAULT_MEASUREMENT,
+                     CTL_FAULT_MEASUREMENT);
+#else
+    assert_int_equal(ctl_protect_check(&prot, &in, CTL_Q(0.3), 044, CTL_Q(0.6)), 0);
+#endif
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test_setup(test_detection_latency_of_each_fault, setup),
+        cmocka_unit_test_setup(test_stopped_encoder_under_torque, setup),
+        cmocka_unit_test_setup(test_open_phase, setup),
+        cmocka_unit_test_setup(test_no_false_trip, setup),
+        cmocka_unit_test_setup(test_records_and_latch, setup),
+        cmocka_unit_test_setup(test_raise_from_outside, setup),
+        cmocka_unit_test_setup(test_not_a_number, setup),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
