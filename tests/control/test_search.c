@@ -33,6 +33,7 @@ static ctl_horizon_t horizon(void)
     h.torque_ref = CTL_Q(0.0);
     h.flux_ref = CTL_Q(0.45);
     h.lambda = CTL_Q(0.0);
+    ctl_horizon_prepare(&h);
     return h;
 }
 
