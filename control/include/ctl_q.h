@@ -176,7 +176,11 @@ ctl_q ctl_wrap_turn(ctl_q angle_turn);
  * in [0, n). n must be in 1..64. Sector boundaries are therefore at k/n turn. */
 int16_t ctl_turn_sector(ctl_q angle_turn, int16_t n);
 
-/* sqrt on float without libm, for init-time code. */
+/* Index k in 0..23 of the 15-degree sector [15k, 15k + 15) deg that holds the vector (x, y),
+ * by comparisons against tan(15 deg) multiples (no atan, no division). (0, 0) gives 0. */
+int16_t ctl_sector24(ctl_q y, ctl_q x);
+
+/* sqrt on float without libm. */
 float ctl_sqrtf(float x);
 
 #endif /* CTL_Q_H */

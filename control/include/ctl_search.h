@@ -26,7 +26,24 @@ typedef struct {
     ctl_q torque_ref;
     ctl_q flux_ref;
     ctl_q lambda;
+    /* Set by ctl_horizon_prepare: forced k+2 currents per unit of alpha/beta voltage
+     * (per unit of Vdc), i.e. c_d/c_q times Vdc times the rotation to the rotor frame. */
+    ctl_q kd_alpha;
+    ctl_q kd_beta;
+    ctl_q kq_alpha;
+    ctl_q kq_beta;
 } ctl_horizon_t;
+
+/* Completes a horizon whose model, angle, Vdc, references and weight are set. */
+static inline void ctl_horizon_prepare(ctl_horizon_t *h)
+{
+    const ctl_q cd = ctl_mul(h->model->c_d, h->vdc);
+    const ctl_q cq = ctl_mul(h->model->c_q, h->vdc);
+    h->kd_alpha = ctl_mul(cd, h->cos1);
+    h->kd_beta = ctl_mul(cd, h->sin1);
+    h->kq_alpha = ctl_sub(CTL_Q(0.0), ctl_mul(cq, h->sin1));
+    h->kq_beta = ctl_mul(cq, h->cos1);
+}
 
 typedef struct {
     int16_t vector; /* active switching state */
@@ -41,7 +58,7 @@ typedef struct {
 } ctl_choice_t;
 
 /* Forced part of the k+2 currents for a full-period switching state: (c_d u_d, c_q u_q)
- * with u = Vdc * vector voltage rotated to the rotor frame at k+1. */
+ * with u = Vdc * vector voltage rotated to the rotor frame at k+1 (four multiplies). */
 static inline void ctl_horizon_forced(const ctl_horizon_t *h, const ctl_vsd_t *vec, ctl_q *did,
                                       ctl_q *diq)
 {
@@ -56,8 +73,10 @@ static inline void ctl_horizon_forced(const ctl_horizon_t *h, const ctl_vsd_t *v
 static inline ctl_q ctl_horizon_cost(const ctl_horizon_t *h, ctl_q id2, ctl_q iq2, ctl_q *torque,
                                      ctl_q *flux)
 {
-    *torque = ctl_torque(h->model, id2, iq2);
-    *flux = ctl_flux_magnitude(h->model, id2, iq2);
+    const ctl_q psi_d = ctl_flux_d(h->model, id2);
+    const ctl_q psi_q = ctl_flux_q(h->model, iq2);
+    *torque = ctl_mul_int(ctl_sub(ctl_mul(psi_d, iq2), ctl_mul(psi_q, id2)), h->model->pole_pairs);
+    *flux = ctl_sqrt(ctl_add(ctl_mul(psi_d, psi_d), ctl_mul(psi_q, psi_q)));
     return ctl_add(ctl_abs(ctl_sub(*torque, h->torque_ref)),
                    ctl_mul(h->lambda, ctl_abs(ctl_sub(*flux, h->flux_ref))));
 }

@@ -250,6 +250,7 @@ void ctl_step(ctl_t *c, const ctl_meas_t *m, ctl_cmd_t *cmd)
     h.torque_ref = torque_ref;
     h.flux_ref = flux_ref;
     h.lambda = c->lambda_pu;
+    ctl_horizon_prepare(&h);
 
     if (c->params.controller == CTL_CONTROLLER_DDC) {
         ctl_ddc_flux_t f;

@@ -6,13 +6,13 @@
 void ctl_ddc_select(const ctl_horizon_t *h, const ctl_ddc_flux_t *flux, int16_t direction,
                     const ctl_q *levels, int16_t n_levels, ctl_choice_t *out)
 {
-    /* Sector s spans [30s - 15, 30s + 15) deg: shift by half a sector before slicing. */
-    const int16_t sector = ctl_turn_sector(
-        ctl_add(ctl_atan2_pu(flux->psi_beta, flux->psi_alpha), CTL_Q(1.0 / 24.0)), CTL_SECTORS);
-    const int16_t xy_sector =
-        ctl_turn_sector(ctl_atan2_pu(flux->psi_y, flux->psi_x), CTL_XY_SECTORS);
+    /* Flux sector s spans [30s - 15, 30s + 15) deg, i.e. the 15-degree sectors 2s - 1, 2s. */
+    const int16_t sector =
+        (int16_t)(((ctl_sector24(flux->psi_beta, flux->psi_alpha) + 1) / 2) % CTL_SECTORS);
+    const int16_t xy_sector = ctl_sector24(flux->psi_y, flux->psi_x);
     ctl_q torque_zero;
     ctl_q flux_zero;
+    ctl_q cost_zero;
     int16_t torque_half;
     int16_t vector;
     ctl_q did;
@@ -21,7 +21,7 @@ void ctl_ddc_select(const ctl_horizon_t *h, const ctl_ddc_flux_t *flux, int16_t 
 
     /* Table 1 half: the zero vector alone (duty 0) already overshoots a lower reference
      * -> the torque-lowering mirror set (paper Eq. 10 compares Te under zero against Tref). */
-    (void)ctl_horizon_cost(h, h->id2_free, h->iq2_free, &torque_zero, &flux_zero);
+    cost_zero = ctl_horizon_cost(h, h->id2_free, h->iq2_free, &torque_zero, &flux_zero);
     torque_half = (torque_zero > h->torque_ref) ? 1 : 0;
 
     if (direction == 1) {
@@ -39,11 +39,14 @@ void ctl_ddc_select(const ctl_horizon_t *h, const ctl_ddc_flux_t *flux, int16_t 
     out->flux = flux_zero;
     for (k = 0; k < n_levels; k++) {
         const ctl_q d = levels[k];
-        ctl_q torque;
-        ctl_q flux_mag;
+        ctl_q torque = torque_zero;
+        ctl_q flux_mag = flux_zero;
+        /* duty 0 is the zero vector, already evaluated for the table-1 half */
         const ctl_q cost =
-            ctl_horizon_cost(h, ctl_add(h->id2_free, ctl_mul(d, did)),
-                             ctl_add(h->iq2_free, ctl_mul(d, diq)), &torque, &flux_mag);
+            (d == CTL_Q(0.0))
+                ? cost_zero
+                : ctl_horizon_cost(h, ctl_add(h->id2_free, ctl_mul(d, did)),
+                                   ctl_add(h->iq2_free, ctl_mul(d, diq)), &torque, &flux_mag);
         if (cost < out->cost) {
             out->cost = cost;
             out->duty = d;

@@ -19,21 +19,19 @@ static const ctl_q vsd_sin5[6] = {
 
 void ctl_vsd_forward(const ctl_q phase[6], ctl_vsd_t *out)
 {
-    ctl_q a = CTL_Q(0.0);
-    ctl_q b = CTL_Q(0.0);
-    ctl_q x = CTL_Q(0.0);
-    ctl_q y = CTL_Q(0.0);
-    int16_t k;
-    for (k = 0; k < 6; k++) {
-        a = ctl_add(a, ctl_mul(phase[k], vsd_cos1[k]));
-        b = ctl_add(b, ctl_mul(phase[k], vsd_sin1[k]));
-        x = ctl_add(x, ctl_mul(phase[k], vsd_cos5[k]));
-        y = ctl_add(y, ctl_mul(phase[k], vsd_sin5[k]));
-    }
-    out->alpha = ctl_mul(a, CTL_Q(1.0 / 3.0));
-    out->beta = ctl_mul(b, CTL_Q(1.0 / 3.0));
-    out->x = ctl_mul(x, CTL_Q(1.0 / 3.0));
-    out->y = ctl_mul(y, CTL_Q(1.0 / 3.0));
+    /* The rows share terms: with a = i_A/3 - (i_B + i_C)/6, p = (i_D - i_E) sqrt3/6,
+     * b = (i_D + i_E)/6 - i_F/3 and q = (i_B - i_C) sqrt3/6:
+     * alpha = a + p, x = a - p, beta = b + q, y = b - q. Six multiplies instead of 24. */
+    const ctl_q a = ctl_sub(ctl_mul(phase[0], CTL_Q(1.0 / 3.0)),
+                            ctl_mul(ctl_add(phase[1], phase[2]), CTL_Q(1.0 / 6.0)));
+    const ctl_q p = ctl_mul(ctl_sub(phase[3], phase[4]), CTL_Q(CTL_VSD_SQRT3_2 / 3.0));
+    const ctl_q b = ctl_sub(ctl_mul(ctl_add(phase[3], phase[4]), CTL_Q(1.0 / 6.0)),
+                            ctl_mul(phase[5], CTL_Q(1.0 / 3.0)));
+    const ctl_q q = ctl_mul(ctl_sub(phase[1], phase[2]), CTL_Q(CTL_VSD_SQRT3_2 / 3.0));
+    out->alpha = ctl_add(a, p);
+    out->x = ctl_sub(a, p);
+    out->beta = ctl_add(b, q);
+    out->y = ctl_sub(b, q);
 }
 
 void ctl_vsd_inverse(const ctl_vsd_t *v, ctl_q phase[6])

@@ -1,0 +1,35 @@
+/* Control-step benchmark: operating points replayed through one arithmetic build of the
+ * core. Double-only interface so the fixed and float builds link into one program (the
+ * float copy's symbols carry the prefix flt_). */
+#ifndef BENCH_H
+#define BENCH_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+typedef struct {
+    double i_phase[6]; /* A */
+    double vdc;        /* V */
+    double theta_e;    /* rad */
+    double omega_e;    /* electrical rad/s */
+    double torque_ref; /* N*m */
+} bench_point_t;
+
+/* Converts the points to the build's measurement format (outside the measured region).
+ * Returns the number kept (at most BENCH_MAX_POINTS). */
+#define BENCH_MAX_POINTS 400000
+size_t bench_prepare(const bench_point_t *points, size_t n);
+size_t flt_bench_prepare(const bench_point_t *points, size_t n);
+
+/* Initialises the controller (0 DDC, 1 MPTC-49, 2 MPTC-13) with default parameters in
+ * torque mode. 0 on success. Not measured. */
+int16_t bench_setup(int16_t controller);
+int16_t flt_bench_setup(int16_t controller);
+
+/* Runs the control step over every prepared point, `reps` times, with the recorded torque
+ * reference. Returns a checksum of the commands (keeps the work observable). Only this
+ * function is measured. */
+uint32_t bench_run(int32_t reps);
+uint32_t flt_bench_run(int32_t reps);
+
+#endif /* BENCH_H */

@@ -1,0 +1,59 @@
+/* The measured loop of the benchmark, compiled once per arithmetic. */
+#include "bench.h"
+#include "ctl.h"
+#include "ctl_pu.h"
+
+static ctl_meas_t meas[BENCH_MAX_POINTS];
+static ctl_q torque_ref[BENCH_MAX_POINTS];
+static size_t count;
+static ctl_t controller_state;
+
+static ctl_q pu(double si, double base) { return ctl_from_float((float)(si / base)); }
+
+size_t bench_prepare(const bench_point_t *points, size_t n)
+{
+    size_t i;
+    count = (n < BENCH_MAX_POINTS) ? n : BENCH_MAX_POINTS;
+    for (i = 0; i < count; i++) {
+        int16_t k;
+        for (k = 0; k < 6; k++) {
+            meas[i].i_phase[k] = pu(points[i].i_phase[k], CTL_BASE_CURRENT_A);
+        }
+        meas[i].vdc = pu(points[i].vdc, CTL_BASE_VOLTAGE_V);
+        meas[i].theta_e = ctl_wrap_turn(pu(points[i].theta_e, CTL_TWO_PI));
+        meas[i].omega_e = pu(points[i].omega_e, CTL_BASE_OMEGA_RAD_S);
+        torque_ref[i] = pu(points[i].torque_ref, CTL_BASE_TORQUE_NM);
+    }
+    return count;
+}
+
+int16_t bench_setup(int16_t controller)
+{
+    ctl_params_t p;
+    ctl_params_default(&p);
+    p.controller = (ctl_controller_t)controller;
+    if (!ctl_init(&controller_state, &p)) {
+        return -1;
+    }
+    ctl_set_loop_mode(&controller_state, CTL_LOOP_TORQUE);
+    return 0;
+}
+
+uint32_t bench_run(int32_t reps)
+{
+    ctl_cmd_t cmd;
+    uint32_t checksum = 0u;
+    int32_t r;
+    size_t i;
+    for (r = 0; r < reps; r++) {
+        ctl_reset(&controller_state);
+        for (i = 0; i < count; i++) {
+            ctl_set_torque_ref(&controller_state, torque_ref[i]);
+            ctl_step(&controller_state, &meas[i], &cmd);
+            const uint32_t vector = (uint32_t)(uint16_t)cmd.vector;
+            const uint32_t duty = (uint32_t)ctl_to_qn(cmd.duty, 8);
+            checksum = checksum * 31u + vector + duty;
+        }
+    }
+    return checksum;
+}
