@@ -19,8 +19,8 @@
 typedef struct {
     ctl_q psi_alpha; /* stator flux at k+1, alpha-beta */
     ctl_q psi_beta;
-    ctl_q psi_mag; /* |psi_s| at k+1 */
-    ctl_q psi_x;   /* x-y flux at k+1 */
+    ctl_q psi_mag_sq; /* |psi_s|^2 at k+1 */
+    ctl_q psi_x;      /* x-y flux at k+1 */
     ctl_q psi_y;
 } ctl_ddc_flux_t;
 

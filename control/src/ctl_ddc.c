@@ -27,7 +27,8 @@ void ctl_ddc_select(const ctl_horizon_t *h, const ctl_ddc_flux_t *flux, int16_t 
     if (direction == 1) {
         vector = ctl_ddc_table2_xy[sector][torque_half][xy_sector];
     } else {
-        const int16_t lower_flux = (flux->psi_mag >= h->flux_ref) ? 1 : 0;
+        /* |psi| >= psi_ref compared as squares: both are non-negative, no root needed */
+        const int16_t lower_flux = (flux->psi_mag_sq >= ctl_mul(h->flux_ref, h->flux_ref)) ? 1 : 0;
         vector = ctl_ddc_table2_flux[sector][torque_half][lower_flux][xy_sector];
     }
 

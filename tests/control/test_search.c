@@ -99,7 +99,7 @@ static const ctl_q levels6[6] = {CTL_Q(1.0), CTL_Q(0.8), CTL_Q(0.6),
 static void test_ddc_picks_duty_that_meets_torque(void **state)
 {
     const ctl_q duties[] = {CTL_Q(0.2), CTL_Q(0.4), CTL_Q(0.6), CTL_Q(0.8), CTL_Q(1.0)};
-    ctl_ddc_flux_t f = {CTL_Q(0.40), CTL_Q(0.0), CTL_Q(0.40), CTL_Q(0.01), CTL_Q(0.001)};
+    ctl_ddc_flux_t f = {CTL_Q(0.40), CTL_Q(0.0), CTL_Q(0.16), CTL_Q(0.01), CTL_Q(0.001)};
     int16_t i;
     (void)state;
     for (i = 0; i < 5; i++) {
@@ -127,12 +127,12 @@ static void test_ddc_flux_error_reading_lowers_flux_and_xy(void **state)
     ctl_horizon_t h = horizon();
     ctl_choice_t c;
     /* psi_xy at 100 deg: cos 100 = -0.1736, sin 100 = 0.9848 */
-    ctl_ddc_flux_t f = {CTL_Q(0.50), CTL_Q(0.0), CTL_Q(0.50), CTL_Q(-0.01736), CTL_Q(0.09848)};
+    ctl_ddc_flux_t f = {CTL_Q(0.50), CTL_Q(0.0), CTL_Q(0.25), CTL_Q(-0.01736), CTL_Q(0.09848)};
     (void)state;
     h.torque_ref = CTL_Q(2.0); /* far above: full duty */
     ctl_ddc_select(&h, &f, 0, levels6, 6, &c);
     assert_int_equal(c.vector, 062);
-    f.psi_mag = CTL_Q(0.30); /* below the reference: flux-raising pair u24 / u66 */
+    f.psi_mag_sq = CTL_Q(0.09); /* below the reference: flux-raising pair u24 / u66 */
     ctl_ddc_select(&h, &f, 0, levels6, 6, &c);
     assert_int_equal(c.vector, 024);
 }
@@ -145,7 +145,7 @@ static void test_ddc_xy_reading_follows_paper_table2(void **state)
     (void)state;
     for (quadrant = 0; quadrant < 4; quadrant++) {
         const double ang = (45.0 + 90.0 * quadrant) * TEST_PI / 180.0;
-        ctl_ddc_flux_t f = {CTL_Q(0.45), CTL_Q(0.0), CTL_Q(0.45),
+        ctl_ddc_flux_t f = {CTL_Q(0.45), CTL_Q(0.0), CTL_Q(0.2025),
                             ctl_from_float((float)(0.01 * cos(ang))),
                             ctl_from_float((float)(0.01 * sin(ang)))};
         ctl_horizon_t h = horizon();
@@ -164,7 +164,7 @@ static void test_ddc_braking_half(void **state)
     ctl_choice_t c;
     ctl_q t0;
     ctl_q flux;
-    ctl_ddc_flux_t f = {CTL_Q(0.45), CTL_Q(0.0), CTL_Q(0.45), CTL_Q(0.01), CTL_Q(0.001)};
+    ctl_ddc_flux_t f = {CTL_Q(0.45), CTL_Q(0.0), CTL_Q(0.2025), CTL_Q(0.01), CTL_Q(0.001)};
     int16_t k;
     bool in_lower_half = false;
     (void)state;
@@ -186,7 +186,7 @@ static void test_ddc_zero_duty(void **state)
     ctl_horizon_t h = horizon();
     ctl_choice_t c;
     ctl_q flux;
-    ctl_ddc_flux_t f = {CTL_Q(0.45), CTL_Q(0.0), CTL_Q(0.45), CTL_Q(0.01), CTL_Q(0.001)};
+    ctl_ddc_flux_t f = {CTL_Q(0.45), CTL_Q(0.0), CTL_Q(0.2025), CTL_Q(0.01), CTL_Q(0.001)};
     (void)state;
     predicted(&h, 0, CTL_Q(0.0), &h.torque_ref, &flux);
     ctl_ddc_select(&h, &f, 0, levels6, 6, &c);

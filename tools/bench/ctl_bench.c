@@ -44,8 +44,9 @@ static int column_index(char *header, const char *name)
 /* Appends the trace's points; returns the new count or -1 with a message. */
 static long read_trace(const char *path, size_t have, double vdc)
 {
-    static const char *names[9] = {"theta_e", "speed_rpm", "i_a", "i_b", "i_c",
-                                   "i_d_ph", "i_e", "i_f", "tref"};
+    /* column names of sixphase-sim's trace.csv (phase currents i_A..i_F; i_d is the d axis) */
+    static const char *names[9] = {"theta_e", "speed_rpm", "i_A", "i_B", "i_C",
+                                   "i_D", "i_E", "i_F", "Tref"};
     int col[9];
     char line[4096];
     char copy[4096];
