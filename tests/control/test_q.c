@@ -871,8 +871,7 @@ int main(void)
         cmocka_unit_test(test_sqrt_sweep),  cmocka_unit_test(test_sqrtf),
         cmocka_unit_test(test_sin_cos),     cmocka_unit_test(test_atan2_axes),
         cmocka_unit_test(test_atan2_sweep), cmocka_unit_test(test_wrap_turn),
-        cmocka_unit_test(test_turn_sector),
-        cmocka_unit_test(test_sector24),
+        cmocka_unit_test(test_turn_sector), cmocka_unit_test(test_sector24),
     };
     print_message("arithmetic: %s\n", CTL_MATH_FLOAT ? "float" : "Q24 fixed point");
     return cmocka_run_group_tests(tests, NULL, NULL);

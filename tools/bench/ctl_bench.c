@@ -46,7 +46,7 @@ static long read_trace(const char *path, size_t have, double vdc)
 {
     /* column names of sixphase-sim's trace.csv (phase currents i_A..i_F; i_d is the d axis) */
     static const char *names[9] = {"theta_e", "speed_rpm", "i_A", "i_B", "i_C",
-                                   "i_D", "i_E", "i_F", "Tref"};
+                                   "i_D",     "i_E",       "i_F", "Tref"};
     int col[9];
     char line[4096];
     char copy[4096];
@@ -143,8 +143,9 @@ int main(int argc, char **argv)
                 return 2;
             }
         } else if (argv[a][0] == '-') {
-            fprintf(stderr, "ctl-bench: unknown option '%s' (usage: ctl-bench [--reps N] [--vdc V] "
-                            "TRACE.csv...)\n",
+            fprintf(stderr,
+                    "ctl-bench: unknown option '%s' (usage: ctl-bench [--reps N] [--vdc V] "
+                    "TRACE.csv...)\n",
                     argv[a]);
             return 2;
         } else {
