@@ -27,7 +27,7 @@
 #include "ctl_speed_pi.h"
 
 #define CTL_PHASES 6
-#define CTL_DUTY_LEVELS_MAX 11
+#define CTL_DUTY_LEVELS_MAX 11 /* = CTL_DDC_LEVELS_MAX */
 
 typedef enum {
     CTL_CONTROLLER_DDC = 0,    /* the paper's discrete-duty MPTC */
@@ -63,6 +63,8 @@ typedef struct {
     float lambda_nm_per_wb; /* flux weight of the cost */
     int16_t duty_levels;    /* DDC: levels k/(n-1), k = 0..n-1; paper: 6 */
     ctl_ddc_direction_t ddc_direction;
+    /* improvement over the paper (docs/improvements.md); false = the paper's method */
+    bool ddc_torque_guard; /* flux weighting limited to one duty step of torque */
     ctl_flux_ref_mode_t flux_ref_mode;
     float flux_ref_wb; /* used when flux_ref_mode is constant */
     /* speed loop */

@@ -11,6 +11,7 @@
 #ifndef CTL_DDC_H
 #define CTL_DDC_H
 
+#include <stdbool.h>
 #include <stdint.h>
 
 #include "ctl_q.h"
@@ -24,8 +25,16 @@ typedef struct {
     ctl_q psi_y;
 } ctl_ddc_flux_t;
 
-/* direction: 0 flux-error reading, 1 x-y-table reading (ctl_ddc_direction_t). */
-void ctl_ddc_select(const ctl_horizon_t *h, const ctl_ddc_flux_t *flux, int16_t direction,
-                    const ctl_q *levels, int16_t n_levels, ctl_choice_t *out);
+#define CTL_DDC_LEVELS_MAX 11
+
+typedef struct {
+    int16_t direction;   /* 0 flux-error reading, 1 x-y-table reading (ctl_ddc_direction_t) */
+    const ctl_q *levels; /* duty levels, 1 first, 0 last */
+    int16_t n_levels;    /* 2..CTL_DDC_LEVELS_MAX */
+    bool torque_guard;   /* improvement: flux weighting limited to one duty step of torque */
+} ctl_ddc_config_t;
+
+void ctl_ddc_select(const ctl_horizon_t *h, const ctl_ddc_flux_t *flux, const ctl_ddc_config_t *cfg,
+                    ctl_choice_t *out);
 
 #endif /* CTL_DDC_H */

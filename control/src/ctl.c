@@ -20,6 +20,7 @@ void ctl_params_default(ctl_params_t *p)
     p->lambda_nm_per_wb = 100.0f;
     p->duty_levels = 6;
     p->ddc_direction = CTL_DDC_DIRECTION_FLUX_ERROR;
+    p->ddc_torque_guard = false;
     p->flux_ref_mode = CTL_FLUX_REF_MTPA;
     p->flux_ref_wb = 0.26f;
     p->speed_kp_nm_per_rad_s = 1.5f;
@@ -273,8 +274,12 @@ void ctl_step(ctl_t *c, const ctl_meas_t *m, ctl_cmd_t *cmd)
         f.psi_mag_sq = ctl_add(ctl_mul(psi_d1, psi_d1), ctl_mul(psi_q1, psi_q1));
         f.psi_x = ctl_mul(c->model.lxy, ix1);
         f.psi_y = ctl_mul(c->model.lxy, iy1);
-        ctl_ddc_select(&h, &f, (int16_t)c->params.ddc_direction, c->duty_level,
-                       c->params.duty_levels, &choice);
+        ctl_ddc_config_t cfg;
+        cfg.direction = (int16_t)c->params.ddc_direction;
+        cfg.levels = c->duty_level;
+        cfg.n_levels = c->params.duty_levels;
+        cfg.torque_guard = c->params.ddc_torque_guard;
+        ctl_ddc_select(&h, &f, &cfg, &choice);
     } else if (c->params.controller == CTL_CONTROLLER_MPTC49) {
         ctl_mptc_select(&h, ctl_mptc49_vectors, CTL_MPTC49_CANDIDATES, c->applied_vector, &choice);
     } else {

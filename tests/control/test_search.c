@@ -93,6 +93,8 @@ static void test_mptc_zero_vector_follows_state_in_force(void **state)
 
 static const ctl_q levels6[6] = {CTL_Q(1.0), CTL_Q(0.8), CTL_Q(0.6),
                                  CTL_Q(0.4), CTL_Q(0.2), CTL_Q(0.0)};
+static const ctl_ddc_config_t paper_flux_error = {0, levels6, 6, false};
+static const ctl_ddc_config_t paper_xy_table = {1, levels6, 6, false};
 
 /* Flux at k+1 in sector I (angle 0), x-y flux in x-y sector 0, |psi| below the reference:
  * table 1 row 0 candidates; the duty whose torque meets Tref is chosen. */
@@ -108,7 +110,7 @@ static void test_ddc_picks_duty_that_meets_torque(void **state)
         ctl_q flux;
         const int16_t v = ctl_ddc_table2_flux[0][0][0][0];
         predicted(&h, v, duties[i], &h.torque_ref, &flux);
-        ctl_ddc_select(&h, &f, 0, levels6, 6, &c);
+        ctl_ddc_select(&h, &f, &paper_flux_error, &c);
         assert_int_equal(c.flux_sector, 0);
         assert_int_equal(c.xy_sector, 0);
         assert_false(c.braking);
@@ -130,10 +132,10 @@ static void test_ddc_flux_error_reading_lowers_flux_and_xy(void **state)
     ctl_ddc_flux_t f = {CTL_Q(0.50), CTL_Q(0.0), CTL_Q(0.25), CTL_Q(-0.01736), CTL_Q(0.09848)};
     (void)state;
     h.torque_ref = CTL_Q(2.0); /* far above: full duty */
-    ctl_ddc_select(&h, &f, 0, levels6, 6, &c);
+    ctl_ddc_select(&h, &f, &paper_flux_error, &c);
     assert_int_equal(c.vector, 062);
     f.psi_mag_sq = CTL_Q(0.09); /* below the reference: flux-raising pair u24 / u66 */
-    ctl_ddc_select(&h, &f, 0, levels6, 6, &c);
+    ctl_ddc_select(&h, &f, &paper_flux_error, &c);
     assert_int_equal(c.vector, 024);
 }
 
@@ -151,7 +153,7 @@ static void test_ddc_xy_reading_follows_paper_table2(void **state)
         ctl_horizon_t h = horizon();
         ctl_choice_t c;
         h.torque_ref = CTL_Q(2.0);
-        ctl_ddc_select(&h, &f, 1, levels6, 6, &c);
+        ctl_ddc_select(&h, &f, &paper_xy_table, &c);
         assert_int_equal(c.vector, expected[quadrant]);
     }
 }
@@ -170,7 +172,7 @@ static void test_ddc_braking_half(void **state)
     (void)state;
     predicted(&h, 0, CTL_Q(0.0), &t0, &flux);
     h.torque_ref = ctl_sub(t0, CTL_Q(1.0));
-    ctl_ddc_select(&h, &f, 0, levels6, 6, &c);
+    ctl_ddc_select(&h, &f, &paper_flux_error, &c);
     assert_true(c.braking);
     for (k = 0; k < 4; k++) {
         in_lower_half = in_lower_half || (ctl_ddc_table1[0][1][k] == c.vector);
@@ -189,9 +191,42 @@ static void test_ddc_zero_duty(void **state)
     ctl_ddc_flux_t f = {CTL_Q(0.45), CTL_Q(0.0), CTL_Q(0.2025), CTL_Q(0.01), CTL_Q(0.001)};
     (void)state;
     predicted(&h, 0, CTL_Q(0.0), &h.torque_ref, &flux);
-    ctl_ddc_select(&h, &f, 0, levels6, 6, &c);
+    ctl_ddc_select(&h, &f, &paper_flux_error, &c);
     assert_near((double)ctl_to_float(c.duty), 0.0, 1e-9);
     assert_false(c.braking);
+}
+
+/* The heavy-flux-weighting trap and the torque guard: with a flux reference met by the zero
+ * vector and a torque reference met by full duty, a large lambda makes the paper's search
+ * give up torque for flux; the guard keeps the torque error within one duty step. */
+static void test_torque_guard(void **state)
+{
+    static const ctl_ddc_config_t guarded = {0, levels6, 6, true};
+    ctl_horizon_t h = horizon();
+    ctl_choice_t paper;
+    ctl_choice_t guard;
+    ctl_q t0;
+    ctl_q t1;
+    ctl_q psi1;
+    ctl_ddc_flux_t f = {CTL_Q(0.40), CTL_Q(0.0), CTL_Q(0.16), CTL_Q(0.01), CTL_Q(0.001)};
+    const int16_t v = ctl_ddc_table2_flux[0][0][0][0];
+    (void)state;
+    predicted(&h, v, CTL_Q(0.0), &t0, &h.flux_ref);
+    predicted(&h, v, CTL_Q(1.0), &t1, &psi1);
+    h.torque_ref = t1;
+    h.lambda = CTL_Q(20.0);
+    ctl_horizon_prepare(&h);
+    ctl_ddc_select(&h, &f, &paper_flux_error, &paper);
+    ctl_ddc_select(&h, &f, &guarded, &guard);
+    assert_true(paper.duty < CTL_Q(0.8)); /* the trap: torque given up for flux */
+    assert_true(guard.duty >= CTL_Q(0.8));
+    assert_true(ctl_abs(ctl_sub(guard.torque, h.torque_ref)) <=
+                ctl_add(ctl_div(ctl_abs(ctl_sub(t1, t0)), CTL_Q(5.0)), CTL_Q(1e-6)));
+    /* with no flux weight the guard changes nothing */
+    h.lambda = CTL_Q(0.0);
+    ctl_ddc_select(&h, &f, &paper_flux_error, &paper);
+    ctl_ddc_select(&h, &f, &guarded, &guard);
+    assert_int_equal(paper.duty, guard.duty);
 }
 
 int main(void)
@@ -205,6 +240,7 @@ int main(void)
         cmocka_unit_test(test_ddc_xy_reading_follows_paper_table2),
         cmocka_unit_test(test_ddc_braking_half),
         cmocka_unit_test(test_ddc_zero_duty),
+        cmocka_unit_test(test_torque_guard),
     };
     return cmocka_run_group_tests(tests, setup, NULL);
 }
