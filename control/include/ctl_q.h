@@ -23,6 +23,24 @@
 #define CTL_MATH_FLOAT 0
 #endif
 
+/* Operation counting for the target-time estimate (tools/bench): a build with
+ * CTL_COUNT_OPS defined counts every arithmetic primitive; normal builds compile it away. */
+typedef enum {
+    CTL_OP_ADD = 0, /* saturating add or subtract */
+    CTL_OP_MUL,     /* multiply (Q x Q, or Q x integer) */
+    CTL_OP_DIV,     /* divide */
+    CTL_OP_SQRT,    /* square root */
+    CTL_OP_SIN,     /* sine table interpolation (a cosine is one too) */
+    CTL_OP_KINDS
+} ctl_op_t;
+
+#if defined(CTL_COUNT_OPS)
+extern uint32_t ctl_op_counts[CTL_OP_KINDS];
+#define CTL_COUNT_OP(kind) (ctl_op_counts[(kind)]++)
+#else
+#define CTL_COUNT_OP(kind) ((void)0)
+#endif
+
 #if CTL_MATH_FLOAT
 
 typedef float ctl_q;
@@ -31,12 +49,29 @@ typedef float ctl_q;
 #define CTL_Q_MAX (128.0f)
 #define CTL_Q_MIN (-128.0f)
 
-static inline ctl_q ctl_add(ctl_q a, ctl_q b) { return a + b; }
-static inline ctl_q ctl_sub(ctl_q a, ctl_q b) { return a - b; }
-static inline ctl_q ctl_mul(ctl_q a, ctl_q b) { return a * b; }
-static inline ctl_q ctl_mul_int(ctl_q a, int16_t n) { return a * (float)n; }
+static inline ctl_q ctl_add(ctl_q a, ctl_q b)
+{
+    CTL_COUNT_OP(CTL_OP_ADD);
+    return a + b;
+}
+static inline ctl_q ctl_sub(ctl_q a, ctl_q b)
+{
+    CTL_COUNT_OP(CTL_OP_ADD);
+    return a - b;
+}
+static inline ctl_q ctl_mul(ctl_q a, ctl_q b)
+{
+    CTL_COUNT_OP(CTL_OP_MUL);
+    return a * b;
+}
+static inline ctl_q ctl_mul_int(ctl_q a, int16_t n)
+{
+    CTL_COUNT_OP(CTL_OP_MUL);
+    return a * (float)n;
+}
 static inline ctl_q ctl_div(ctl_q a, ctl_q b)
 {
+    CTL_COUNT_OP(CTL_OP_DIV);
     if (b == 0.0f) {
         return (a >= 0.0f) ? CTL_Q_MAX : CTL_Q_MIN;
     }
@@ -68,20 +103,34 @@ static inline ctl_q ctl_sat64(int64_t v)
     return (ctl_q)v;
 }
 
-static inline ctl_q ctl_add(ctl_q a, ctl_q b) { return ctl_sat64((int64_t)a + (int64_t)b); }
-static inline ctl_q ctl_sub(ctl_q a, ctl_q b) { return ctl_sat64((int64_t)a - (int64_t)b); }
+static inline ctl_q ctl_add(ctl_q a, ctl_q b)
+{
+    CTL_COUNT_OP(CTL_OP_ADD);
+    return ctl_sat64((int64_t)a + (int64_t)b);
+}
+static inline ctl_q ctl_sub(ctl_q a, ctl_q b)
+{
+    CTL_COUNT_OP(CTL_OP_ADD);
+    return ctl_sat64((int64_t)a - (int64_t)b);
+}
 
 static inline ctl_q ctl_mul(ctl_q a, ctl_q b)
 {
     /* Q24 * Q24 = Q48; round half up, then back to Q24. */
     int64_t p = (int64_t)a * (int64_t)b;
+    CTL_COUNT_OP(CTL_OP_MUL);
     return ctl_sat64((p + ((int64_t)1 << (CTL_Q_FRAC_BITS - 1))) >> CTL_Q_FRAC_BITS);
 }
 
-static inline ctl_q ctl_mul_int(ctl_q a, int16_t n) { return ctl_sat64((int64_t)a * (int64_t)n); }
+static inline ctl_q ctl_mul_int(ctl_q a, int16_t n)
+{
+    CTL_COUNT_OP(CTL_OP_MUL);
+    return ctl_sat64((int64_t)a * (int64_t)n);
+}
 
 static inline ctl_q ctl_div(ctl_q a, ctl_q b)
 {
+    CTL_COUNT_OP(CTL_OP_DIV);
     if (b == 0) {
         return (a >= 0) ? CTL_Q_MAX : CTL_Q_MIN;
     }

@@ -2,6 +2,10 @@
 
 #include "ctl_tables.h"
 
+#if defined(CTL_COUNT_OPS)
+uint32_t ctl_op_counts[CTL_OP_KINDS];
+#endif
+
 float ctl_sqrtf(float x)
 {
     union {
@@ -31,7 +35,11 @@ float ctl_sqrtf(float x)
 
 #if CTL_MATH_FLOAT
 
-ctl_q ctl_sqrt(ctl_q a) { return ctl_sqrtf(a); }
+ctl_q ctl_sqrt(ctl_q a)
+{
+    CTL_COUNT_OP(CTL_OP_SQRT);
+    return ctl_sqrtf(a);
+}
 
 ctl_q ctl_wrap_turn(ctl_q angle_turn)
 {
@@ -56,6 +64,7 @@ ctl_q ctl_sin_pu(ctl_q angle_turn)
     const float pos = ctl_wrap_turn(angle_turn) * (float)CTL_SIN_SEGMENTS;
     int32_t k = (int32_t)pos;
     float frac;
+    CTL_COUNT_OP(CTL_OP_SIN);
     if (k >= CTL_SIN_SEGMENTS) {
         k = CTL_SIN_SEGMENTS - 1;
     }
@@ -117,6 +126,7 @@ ctl_q ctl_sqrt(ctl_q a)
     int16_t it;
     uint64_t root;
     int16_t shift;
+    CTL_COUNT_OP(CTL_OP_SQRT);
     if (a <= 0) {
         return 0;
     }
@@ -156,6 +166,7 @@ ctl_q ctl_sin_pu(ctl_q angle_turn)
     /* 10 index bits, 14 interpolation bits of the 24-bit turn fraction. */
     const uint32_t w = (uint32_t)ctl_wrap_turn(angle_turn);
     const uint32_t k = w >> 14;
+    CTL_COUNT_OP(CTL_OP_SIN);
     const int32_t frac = (int32_t)(w & 0x3FFFu);
     const int32_t y0 = ctl_sin_table[k];
     const int32_t dy = ctl_sin_table[k + 1u] - y0;

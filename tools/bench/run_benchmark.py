@@ -17,6 +17,15 @@ import tempfile
 SCENARIOS = ["steady", "load-step", "accel", "reversal"]
 CONFIGS = ["ddc_fixed", "ddc_float", "mptc49_fixed", "mptc49_float", "mptc13_fixed", "mptc13_float"]
 PAPER_US = {"ddc": 50.6, "mptc49": 74.2}
+OPS = ["add", "mul", "div", "sqrt", "sin"]
+# Assumed C28x cycles per primitive (see the estimate section of the report for the reasoning).
+CYCLES = {
+    "fixed": {"add": 10, "mul": 14, "div": 60, "sqrt": 150, "sin": 25},
+    "float": {"add": 2, "mul": 2, "div": 15, "sqrt": 25, "sin": 20},
+}
+OVERHEAD = 1.5  # loads, stores, branches and calls around the counted arithmetic
+CPU_HZ = 150e6
+PERIOD_US = 100.0
 
 
 def fail(msg):
@@ -82,6 +91,18 @@ def instruction_counts(bench, traces, work):
     return counts, profiles
 
 
+def op_counts(tool, traces):
+    out = run([tool] + traces)
+    counts = {}
+    for line in out.splitlines():
+        f = line.split()
+        if not f:
+            continue
+        vals = dict(zip(f[1::2], f[2::2]))
+        counts[f[0]] = {op: (float(vals[op + "_mean"]), int(vals[op + "_max"])) for op in OPS}
+    return counts
+
+
 def freestanding_sizes(root, work):
     out = run([os.path.join(root, "tools", "check_freestanding.sh"), os.path.join(work, "fs")])
     sizes = re.findall(r"control core \((\w+)\).*?\n\s+text (\d+)\s+data (\d+)\s+bss (\d+)", out)
@@ -105,11 +126,13 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--sim", required=True)
     ap.add_argument("--bench", required=True)
+    ap.add_argument("--opcount-fixed", required=True)
+    ap.add_argument("--opcount-float", required=True)
     ap.add_argument("--out", required=True)
     ap.add_argument("--flags", default="-O3 (CMake Release)")
     ap.add_argument("--work")
     a = ap.parse_args()
-    for p in (a.sim, a.bench):
+    for p in (a.sim, a.bench, a.opcount_fixed, a.opcount_float):
         if not os.access(p, os.X_OK):
             fail("not an executable: %s" % p)
     root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
@@ -119,6 +142,7 @@ def main():
     points, ns = wall_times(a.bench, traces)
     counts, profiles = instruction_counts(a.bench, traces, work)
     sizes = freestanding_sizes(root, work)
+    ops = {"fixed": op_counts(a.opcount_fixed, traces), "float": op_counts(a.opcount_float, traces)}
     per_step = {c: counts[c] / points for c in CONFIGS}
 
     L = []
@@ -171,6 +195,42 @@ def main():
         for name, ir, pct in profiles[c][:8]:
             w("| `%s` | %.0f | %.1f %% |" % (name, ir / points, pct))
         w("")
+    w("## Estimated time on the F28335 (150 MHz)")
+    w("")
+    w("Not a measurement: TI's compiler and a board are not available here. The arithmetic")
+    w("primitives of each step are counted exactly (a build of the core with `CTL_COUNT_OPS`,")
+    w("tools `ctl-opcount-fixed` / `ctl-opcount-float`, same operating points; worst case over")
+    w("all steps), and priced with assumed C28x cycle costs per primitive:")
+    w("")
+    w("| primitive | fixed Q24 (portable C, 64-bit intermediate, saturating) | float (FPU32) |")
+    w("|---|---|---|")
+    notes = {"add": "saturating add/sub", "mul": "multiply", "div": "divide",
+             "sqrt": "square root", "sin": "sine/cosine table interpolation"}
+    for op in OPS:
+        w("| %s | %d cycles | %d cycles |" % (notes[op], CYCLES["fixed"][op], CYCLES["float"][op]))
+    w("")
+    w("The fixed-point costs assume the compiler's 32x32->64 multiply (IMPYL/QMPYL) plus 64-bit")
+    w("rounding, shift and saturation compares; the square root is the seeded three-step Newton")
+    w("iteration in 64-bit arithmetic. The float costs are the FPU's two-cycle multiply/add latency")
+    w("(dependent chains) and the float square root of `ctl_sqrtf` (about a dozen flops). Loads,")
+    w("stores, branches and calls are added as a factor of %.1f. Read the result as an order of" % OVERHEAD)
+    w("magnitude: the firmware's stage profiler (docs/profiling.md) measures it on a board.")
+    w("")
+    w("| controller | arithmetic | adds | multiplies | roots | sines | est. cycles | est. us | share of the %.0f us period |" % PERIOD_US)
+    w("|---|---|---|---|---|---|---|---|---|")
+    for ctrl in ("ddc", "mptc49", "mptc13"):
+        for arith in ("fixed", "float"):
+            cnt = ops[arith][ctrl]
+            cycles = OVERHEAD * sum(cnt[op][1] * CYCLES[arith][op] for op in OPS)
+            us = cycles / CPU_HZ * 1e6
+            w("| %s | %s | %d | %d | %d | %d | %.0f | %.1f | %.0f %% |" % (
+                {"ddc": "DDC", "mptc49": "MPTC-49", "mptc13": "MPTC-13"}[ctrl], arith,
+                cnt["add"][1], cnt["mul"][1], cnt["sqrt"][1], cnt["sin"][1], cycles, us,
+                100.0 * us / PERIOD_US))
+    w("")
+    w("Operation counts are the same in both arithmetics (one source); the paper measured")
+    w("%.1f us (DDC) and %.1f us (MPTC) on this chip." % (PAPER_US["ddc"], PAPER_US["mptc49"]))
+    w("")
     w("## Memory (control core, freestanding build)")
     w("")
     w("`arm-none-eabi-gcc -O2 -mcpu=cortex-m4 -ffreestanding` objects of `control/src`, as a proxy")

@@ -1,0 +1,83 @@
+/*
+ * ctl-opcount-fixed / ctl-opcount-float: arithmetic operations per control step of the core
+ * (a build with CTL_COUNT_OPS), mean and worst case over recorded operating points, per
+ * controller. The counts feed the F28335 time estimate in docs/performance.md.
+ *
+ * usage: ctl-opcount-ARITH TRACE.csv...
+ */
+#include <stdio.h>
+#include <string.h>
+
+#include "ctl.h"
+#include "ctl_pu.h"
+#include "trace_csv.h"
+
+static bench_point_t points[BENCH_MAX_POINTS];
+
+static ctl_q pu(double si, double base) { return ctl_from_float((float)(si / base)); }
+
+int main(int argc, char **argv)
+{
+    static const char *names[3] = {"ddc", "mptc49", "mptc13"};
+    static const char *ops[CTL_OP_KINDS] = {"add", "mul", "div", "sqrt", "sin"};
+    size_t n = 0;
+    int a;
+    int16_t controller;
+    for (a = 1; a < argc; a++) {
+        long got;
+        if (argv[a][0] == '-') {
+            fprintf(stderr, "ctl-opcount: unknown option '%s' (usage: ctl-opcount TRACE.csv...)\n",
+                    argv[a]);
+            return 2;
+        }
+        got = trace_csv_read(argv[a], points, n, BENCH_MAX_POINTS, 540.0, "ctl-opcount");
+        if (got < 0) {
+            return 1;
+        }
+        n = (size_t)got;
+    }
+    if (n == 0) {
+        fprintf(stderr, "ctl-opcount: no operating points (usage: ctl-opcount TRACE.csv...)\n");
+        return 2;
+    }
+    for (controller = 0; controller < 3; controller++) {
+        ctl_params_t p;
+        ctl_t c;
+        double sum[CTL_OP_KINDS] = {0};
+        uint32_t max[CTL_OP_KINDS] = {0};
+        size_t i;
+        int16_t k;
+        ctl_params_default(&p);
+        p.controller = (ctl_controller_t)controller;
+        if (!ctl_init(&c, &p)) {
+            fprintf(stderr, "ctl-opcount: controller %s did not initialise\n", names[controller]);
+            return 1;
+        }
+        ctl_set_loop_mode(&c, CTL_LOOP_TORQUE);
+        for (i = 0; i < n; i++) {
+            ctl_meas_t m;
+            ctl_cmd_t cmd;
+            for (k = 0; k < 6; k++) {
+                m.i_phase[k] = pu(points[i].i_phase[k], CTL_BASE_CURRENT_A);
+            }
+            m.vdc = pu(points[i].vdc, CTL_BASE_VOLTAGE_V);
+            m.theta_e = ctl_wrap_turn(pu(points[i].theta_e, CTL_TWO_PI));
+            m.omega_e = pu(points[i].omega_e, CTL_BASE_OMEGA_RAD_S);
+            ctl_set_torque_ref(&c, pu(points[i].torque_ref, CTL_BASE_TORQUE_NM));
+            memset(ctl_op_counts, 0, sizeof ctl_op_counts);
+            ctl_step(&c, &m, &cmd);
+            for (k = 0; k < CTL_OP_KINDS; k++) {
+                sum[k] += (double)ctl_op_counts[k];
+                if (ctl_op_counts[k] > max[k]) {
+                    max[k] = ctl_op_counts[k];
+                }
+            }
+        }
+        printf("%s", names[controller]);
+        for (k = 0; k < CTL_OP_KINDS; k++) {
+            printf(" %s_mean %.2f %s_max %u", ops[k], sum[k] / (double)n, ops[k], (unsigned)max[k]);
+        }
+        printf("\n");
+    }
+    return 0;
+}
