@@ -199,7 +199,7 @@ void ctl_step(ctl_t *c, const ctl_meas_t *m, ctl_cmd_t *cmd)
     ctl_q ix1;
     ctl_q iy1;
     ctl_q delta;
-    ctl_horizon_t h;
+    ctl_horizon_t h = {0};
     ctl_choice_t choice;
     const ctl_vsd_t *applied;
     ctl_q applied_scale;

@@ -63,7 +63,7 @@ void ctl_ddc_select(const ctl_horizon_t *h, const ctl_ddc_flux_t *flux, const ct
     const int16_t sector =
         (int16_t)(((ctl_sector24(flux->psi_beta, flux->psi_alpha) + 1) / 2) % CTL_SECTORS);
     const int16_t xy_sector = ctl_sector24(flux->psi_y, flux->psi_x);
-    ctl_choice_t zero;
+    ctl_choice_t zero = {0};
     int16_t torque_half;
     int16_t vector;
 

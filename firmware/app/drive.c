@@ -10,6 +10,7 @@ static void drive_enter_fault(drive_t *d, drive_fault_t fault)
     d->fault = fault;
     d->state = DRIVE_STATE_FAULT;
     d->run_requested = false;
+    d->clear_requested = false;
 }
 
 void drive_init(drive_t *d, const ctl_params_t *p)
@@ -22,6 +23,13 @@ void drive_init(drive_t *d, const ctl_params_t *p)
     d->clear_requested = false;
     d->calibration_samples = 0;
     d->isr_count = 0;
+    d->calibrated = false;
+    d->run_refused = 0u;
+    d->params_bg = *p;
+    d->speed_ref_rpm = 0.0f;
+    d->torque_ref_nm = 0.0f;
+    d->isr_cycles_last = 0u;
+    d->isr_cycles_max = 0u;
     for (i = 0; i < HAL_ADC_PHASES; i++) {
         d->offset_sum[i] = 0;
         d->offset_counts[i] = (int16_t)HAL_BOARD_CURRENT_ZERO_COUNTS;
@@ -59,7 +67,18 @@ static void drive_calibrate(drive_t *d)
         }
         d->offset_counts[i] = (int16_t)mean;
     }
+    d->calibrated = true;
     d->state = DRIVE_STATE_READY;
+}
+
+static void drive_start_calibration(drive_t *d)
+{
+    int16_t i;
+    for (i = 0; i < HAL_ADC_PHASES; i++) {
+        d->offset_sum[i] = 0;
+    }
+    d->calibration_samples = 0;
+    d->state = DRIVE_STATE_CALIBRATE;
 }
 
 static void drive_scale_measurements(drive_t *d)
@@ -113,12 +132,28 @@ void drive_control_isr(drive_t *d)
     if (!fresh && (d->state == DRIVE_STATE_RUN || d->state == DRIVE_STATE_CALIBRATE)) {
         drive_enter_fault(d, DRIVE_FAULT_ADC_MISSING);
     }
+    if (d->state == DRIVE_STATE_RUN && !d->encoder.healthy) {
+        drive_enter_fault(d, DRIVE_FAULT_ENCODER);
+    }
+    if (d->run_requested && d->state != DRIVE_STATE_READY) {
+        d->run_requested = false; /* refused, not deferred */
+        if (d->state != DRIVE_STATE_RUN) {
+            d->run_refused++;
+        }
+    }
+    if (d->clear_requested && d->state != DRIVE_STATE_FAULT) {
+        d->clear_requested = false; /* never pre-arm the clearing of a later fault */
+    }
 
     switch (d->state) {
     case DRIVE_STATE_CALIBRATE:
         drive_calibrate(d);
         break;
     case DRIVE_STATE_READY:
+        if (d->run_requested && !d->encoder.healthy) {
+            d->run_requested = false;
+            d->run_refused++;
+        }
         if (d->run_requested) {
             d->run_requested = false;
             d->stop_requested = false;
@@ -143,9 +178,17 @@ void drive_control_isr(drive_t *d)
         hal_pwm_force_off();
         if (d->clear_requested) {
             d->clear_requested = false;
-            if (d->fault != DRIVE_FAULT_PARAMS && !hal_pwm_hw_trip_seen()) {
+            /* healthy: parameters usable, no trip input active, encoder fine
+             * if that was the cause */
+            if (d->fault != DRIVE_FAULT_PARAMS && d->fault != DRIVE_FAULT_STARTUP &&
+                !hal_pwm_hw_trip_seen() &&
+                (d->fault != DRIVE_FAULT_ENCODER || d->encoder.healthy)) {
                 d->fault = DRIVE_FAULT_NONE;
-                d->state = DRIVE_STATE_READY;
+                if (d->calibrated) {
+                    d->state = DRIVE_STATE_READY;
+                } else {
+                    drive_start_calibration(d);
+                }
             }
         }
         break;
@@ -157,18 +200,41 @@ void drive_control_isr(drive_t *d)
 }
 
 void drive_request_run(drive_t *d) { d->run_requested = true; }
+
+bool drive_request_params(drive_t *d, const ctl_params_t *p)
+{
+    if (!ctl_params_valid(p)) {
+        return false;
+    }
+    d->params_bg = *p;
+    ctl_request_params(&d->ctl, &d->params_bg);
+    return true;
+}
+
+void drive_trip(drive_t *d, drive_fault_t fault)
+{
+    if (d->state != DRIVE_STATE_FAULT) {
+        drive_enter_fault(d, fault);
+    } else {
+        hal_pwm_force_off(); /* first fault code kept */
+    }
+}
+
+void drive_report_overrun(drive_t *d) { drive_trip(d, DRIVE_FAULT_OVERRUN); }
 void drive_request_stop(drive_t *d) { d->stop_requested = true; }
 void drive_request_clear_fault(drive_t *d) { d->clear_requested = true; }
 
 void drive_set_speed_ref_rpm(drive_t *d, float rpm)
 {
-    const float omega_e = rpm * (float)(CTL_TWO_PI / 60.0) * (float)d->ctl.params.pole_pairs;
+    const float omega_e = rpm * (float)(CTL_TWO_PI / 60.0) * (float)d->params_bg.pole_pairs;
+    d->speed_ref_rpm = rpm;
     ctl_set_loop_mode(&d->ctl, CTL_LOOP_SPEED);
     ctl_set_speed_ref(&d->ctl, ctl_from_float(omega_e / (float)CTL_BASE_OMEGA_RAD_S));
 }
 
 void drive_set_torque_ref_nm(drive_t *d, float torque_nm)
 {
+    d->torque_ref_nm = torque_nm;
     ctl_set_loop_mode(&d->ctl, CTL_LOOP_TORQUE);
     ctl_set_torque_ref(&d->ctl, ctl_from_float(torque_nm / (float)CTL_BASE_TORQUE_NM));
 }

@@ -7,7 +7,12 @@
  * States: INIT -> CALIBRATE (PWM off, ADC offsets averaged) -> READY
  *         READY -> RUN on a run command; RUN -> READY on stop;
  *         any -> FAULT (PWM forced off, latched) ; FAULT -> READY on a clear
- *         command when healthy.
+ *         command when healthy (FAULT -> CALIBRATE if the offsets were
+ *         never calibrated successfully).
+ * A run request is acted on in READY only: made in any other state it is
+ * refused (dropped and counted), never deferred. READY -> RUN also needs a
+ * healthy encoder. Likewise a clear request outside FAULT is dropped, so it
+ * can never clear a later fault.
  */
 #ifndef DRIVE_H
 #define DRIVE_H
@@ -36,7 +41,10 @@ typedef enum {
     DRIVE_FAULT_PARAMS = 1,      /* controller parameters rejected at init */
     DRIVE_FAULT_ADC_OFFSET = 2,  /* calibration offset out of range */
     DRIVE_FAULT_ADC_MISSING = 3, /* ISR ran without a new conversion */
-    DRIVE_FAULT_HW_TRIP = 4      /* hardware over-current trip zone fired */
+    DRIVE_FAULT_HW_TRIP = 4,     /* hardware over-current trip zone fired */
+    DRIVE_FAULT_OVERRUN = 5,     /* control ISR did not finish within its period */
+    DRIVE_FAULT_ENCODER = 6,     /* encoder unhealthy while running */
+    DRIVE_FAULT_STARTUP = 7      /* a peripheral failed to initialise (not clearable) */
 } drive_fault_t;
 
 typedef struct {
@@ -60,6 +68,15 @@ typedef struct {
     ctl_meas_t meas;
     ctl_cmd_t cmd;
     uint32_t isr_count;
+    /* bookkeeping for the background side (commands, telemetry) */
+    bool calibrated;        /* offsets calibrated successfully at least once */
+    uint16_t run_refused;   /* run requests dropped (wrong state, encoder) */
+    ctl_params_t params_bg; /* last parameter set requested (background copy) */
+    float speed_ref_rpm;    /* last speed reference set */
+    float torque_ref_nm;    /* last torque reference set */
+    /* ISR timing, filled by the platform's ISR wrapper (0 where unused) */
+    uint32_t isr_cycles_last;
+    uint32_t isr_cycles_max;
 } drive_t;
 
 /* Configure the controller; HAL peripherals must be initialised already. */
@@ -74,6 +91,17 @@ void drive_request_stop(drive_t *d);
 void drive_request_clear_fault(drive_t *d);
 void drive_set_speed_ref_rpm(drive_t *d, float rpm);
 void drive_set_torque_ref_nm(drive_t *d, float torque_nm);
+
+/* Queue a controller parameter change (applied by the control core at the
+ * start of a step). False, and nothing queued, if the set is invalid.
+ * Background side only. */
+bool drive_request_params(drive_t *d, const ctl_params_t *p);
+
+/* The platform detected that the control ISR overran its period: fault. */
+void drive_report_overrun(drive_t *d);
+
+/* Force the drive into FAULT with the given code (PWM off, latched). */
+void drive_trip(drive_t *d, drive_fault_t fault);
 
 /* Per-unit duty to the HAL's unsigned Q15 duty. */
 uint16_t drive_duty_to_hal(ctl_q duty);

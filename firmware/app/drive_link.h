@@ -1,0 +1,27 @@
+/*
+ * Serial commands of the drive: one sixphase-link request frame in, one
+ * reply frame out. Portable (no registers); the firmware's background loop
+ * feeds it, host tests drive it directly.
+ */
+#ifndef DRIVE_LINK_H
+#define DRIVE_LINK_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "drive.h"
+#include "sxlink.h"
+
+#define DRIVE_LINK_MAX_SPEED_01RPM ((int32_t)200000)     /* |speed reference|, 0.1 r/min */
+#define DRIVE_LINK_MAX_TORQUE_MNM ((int32_t)1000000)     /* |torque reference|, mN*m */
+#define DRIVE_LINK_MAX_LAMBDA_MILLI ((uint32_t)2000000u) /* lambda, 0.001 N*m/Wb */
+
+/* Handle req and fill reply (always a reply for a well-formed frame).
+ * rx_errors: malformed frames seen by the receiver, reported in the status. */
+void drive_link_handle(drive_t *d, const sxl_frame_t *req, sxl_frame_t *reply, uint16_t rx_errors);
+
+/* Status payload as sent in the reply to SXL_CMD_GET_STATUS (after the
+ * result byte); out must hold SXL_ST_SIZE bytes. */
+void drive_link_status(const drive_t *d, uint16_t rx_errors, uint16_t *out);
+
+#endif

@@ -1,0 +1,62 @@
+/*
+ * F28335 firmware: start-up, the control interrupt and the background loop.
+ * The same sources build for the target (cl2000) and, against RAM register
+ * frames, for the host (library firmware_f28335_host, tested in
+ * tests/firmware).
+ */
+#ifndef FW_H
+#define FW_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "drive.h"
+#include "f28335_hal.h"
+#include "hal_board.h"
+#include "sxlink.h"
+
+#define FW_PWM_HZ HAL_BOARD_PWM_HZ
+#define FW_DEAD_TIME_NS HAL_BOARD_DEAD_TIME_NS
+#define FW_SCI_BAUD ((uint32_t)115200u)
+/* Electrical angle of the encoder index relative to the d axis (2^32 = one
+ * turn): measure it on the machine (docs/porting.md) and set it here. */
+#define FW_ENCODER_OFFSET ((uint32_t)0u)
+/* ISR time limit in CPU cycles: 80 % of the 15000-cycle period at 10 kHz,
+ * leaving room for the conversion time before the interrupt and the latency. */
+#define FW_ISR_BUDGET_CYCLES ((uint32_t)12000u)
+/* A partial frame older than this is dropped (cycles: 20 ms). */
+#define FW_LINK_GAP_CYCLES ((uint32_t)3000000u)
+
+typedef struct {
+    bool clock_ok;
+    bool hal_ok;
+    uint16_t unexpected_isr;
+    sxl_decoder_t rx;
+    sxl_frame_t req;
+    sxl_frame_t reply;
+    uint16_t tx[SXL_MAX_FRAME];
+    uint16_t tx_len;
+    uint16_t tx_pos;
+    uint32_t last_rx_cycles;
+    uint32_t frames_handled;
+} fw_state_t;
+
+extern drive_t fw_drive;
+extern fw_state_t fw_state;
+
+/* Whole start-up; returns false if a peripheral failed (drive left in FAULT). */
+bool fw_startup(void);
+/* One pass of the background loop: watchdog, serial link. */
+void fw_background_step(void);
+
+/* Copy the ramfuncs section from its flash load address to RAM. */
+void fw_ramfuncs_copy(void);
+/* Word copy used by it: n 16-bit words. */
+void fw_copy_words(uint16_t *dst, const uint16_t *src, uint32_t n);
+
+/* PIE INT1.1 (ADC SEQ1 end of sequence): the control ISR. */
+F28335_INTERRUPT void fw_adc_isr(void);
+/* Every other vector: outputs off, counted; on the target it then halts. */
+F28335_INTERRUPT void fw_unexpected_isr(void);
+
+#endif

@@ -1,0 +1,97 @@
+/*
+ * Start-up sequence. Order matters:
+ *   1. interrupts off, watchdog off (the code-start stub already disabled it)
+ *   2. PLL to 150 MHz, peripheral clocks
+ *   3. ramfuncs copied to RAM, then flash wait states set from RAM
+ *   4. cycle counter, PIE with every vector on fw_unexpected_isr
+ *   5. PWM configured with the outputs tripped off, then ADC, encoder, SCI
+ *   6. drive_init: INIT -> CALIBRATE (PWM stays off while offsets average)
+ *   7. ADC SEQ1 interrupt installed and enabled, interrupts on, watchdog on
+ */
+#include <stdint.h>
+
+#include "fw.h"
+#include "hal_adc.h"
+#include "hal_cycles.h"
+#include "hal_encoder.h"
+#include "hal_pwm.h"
+
+drive_t fw_drive;
+fw_state_t fw_state;
+
+#if F28335_TARGET
+/* Defined by the linker command file (F28335_flash.cmd / F28335_ram.cmd). */
+extern uint16_t RamfuncsLoadStart;
+extern uint16_t RamfuncsLoadEnd;
+extern uint16_t RamfuncsRunStart;
+#else
+/* Host: a stand-in section so the copy runs and can be checked. */
+uint16_t fw_host_ramfuncs_load[4] = {0x1234u, 0x5678u, 0x9ABCu, 0xDEF0u};
+uint16_t fw_host_ramfuncs_run[4];
+#endif
+
+void fw_copy_words(uint16_t *dst, const uint16_t *src, uint32_t n)
+{
+    uint32_t i;
+    for (i = 0u; i < n; i++) {
+        dst[i] = src[i];
+    }
+}
+
+void fw_ramfuncs_copy(void)
+{
+#if F28335_TARGET
+    const uint32_t n = (uint32_t)((uintptr_t)&RamfuncsLoadEnd - (uintptr_t)&RamfuncsLoadStart);
+    fw_copy_words(&RamfuncsRunStart, &RamfuncsLoadStart, n);
+#else
+    fw_copy_words(fw_host_ramfuncs_run, fw_host_ramfuncs_load, 4u);
+#endif
+}
+
+bool fw_startup(void)
+{
+    ctl_params_t p;
+    bool hal_ok = true;
+
+    f28335_interrupts_disable_global();
+    f28335_watchdog_disable();
+    fw_state.clock_ok = f28335_clock_init();
+    fw_ramfuncs_copy();
+    f28335_flash_init();
+    hal_cycles_init();
+    f28335_pie_init(fw_unexpected_isr);
+
+    ctl_params_default(&p);
+    if (!hal_pwm_init(FW_PWM_HZ, FW_DEAD_TIME_NS)) {
+        hal_ok = false;
+    }
+    if (!hal_adc_init()) {
+        hal_ok = false;
+    }
+    if (!hal_encoder_init(HAL_BOARD_ENCODER_LINES, (uint16_t)p.pole_pairs, FW_ENCODER_OFFSET)) {
+        hal_ok = false;
+    }
+    if (!f28335_sci_init(FW_SCI_BAUD)) {
+        hal_ok = false;
+    }
+    fw_state.hal_ok = hal_ok;
+    fw_state.unexpected_isr = 0u;
+    fw_state.tx_len = 0u;
+    fw_state.tx_pos = 0u;
+    fw_state.frames_handled = 0u;
+    fw_state.last_rx_cycles = hal_cycles_now();
+    sxl_decoder_init(&fw_state.rx);
+
+    drive_init(&fw_drive, &p);
+    if (!fw_state.clock_ok || !hal_ok) {
+        /* Never run on a limp-mode clock or a half-configured inverter; the
+         * link stays up to report it. */
+        drive_trip(&fw_drive, DRIVE_FAULT_STARTUP);
+    }
+
+    f28335_pie_install(1u, 1u, fw_adc_isr);
+    f28335_pie_enable(1u, 1u);
+    f28335_interrupts_enable_global();
+    f28335_watchdog_enable();
+    return fw_state.clock_ok && hal_ok;
+}

@@ -1,0 +1,112 @@
+/*
+ * sixphase link: the framed binary protocol of the serial port (SCI-A on the
+ * target, a tty on the host). Pure, portable C shared by the firmware and the
+ * host tool. Bytes are held in uint16_t (0..255) because a char is 16 bits on
+ * the C28x; nothing here assumes 8-bit storage.
+ *
+ * Frame:  0xA5 | LEN | CMD | PAYLOAD (LEN - 1 bytes) | CRC_HI | CRC_LO
+ *   LEN   number of bytes of CMD + PAYLOAD, 1 .. 1 + SXL_MAX_PAYLOAD
+ *   CRC   CRC-16/CCITT-FALSE (poly 0x1021, init 0xFFFF, no reflection, no
+ *         final xor) over LEN, CMD and PAYLOAD
+ * Multi-byte payload fields are little-endian. See docs/serial-protocol.md.
+ */
+#ifndef SXLINK_H
+#define SXLINK_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#define SXL_SOF 0xA5u
+#define SXL_MAX_PAYLOAD 48u
+#define SXL_MAX_FRAME (SXL_MAX_PAYLOAD + 5u)
+#define SXL_VERSION 1u
+
+/* Commands (host -> drive). A reply carries CMD | SXL_REPLY and starts with
+ * a result byte. */
+#define SXL_CMD_PING 0x01u
+#define SXL_CMD_GET_STATUS 0x02u
+#define SXL_CMD_SET_SPEED 0x10u  /* int32 speed reference, 0.1 r/min */
+#define SXL_CMD_SET_TORQUE 0x11u /* int32 torque reference, mN*m */
+#define SXL_CMD_RUN 0x12u
+#define SXL_CMD_STOP 0x13u
+#define SXL_CMD_CLEAR_FAULT 0x14u
+#define SXL_CMD_SET_CONTROLLER 0x15u /* uint8 controller, uint32 lambda in 0.001 N*m/Wb */
+#define SXL_REPLY 0x80u
+
+/* Result byte of every reply. */
+#define SXL_OK 0u
+#define SXL_ERR_LENGTH 1u  /* payload length wrong for the command */
+#define SXL_ERR_VALUE 2u   /* value out of range or parameters rejected */
+#define SXL_ERR_UNKNOWN 3u /* unknown command */
+#define SXL_ERR_REFUSED 4u /* not allowed in the present state */
+
+/* Controller ids of SXL_CMD_SET_CONTROLLER (same values as ctl_controller_t). */
+#define SXL_CONTROLLER_DDC 0u
+#define SXL_CONTROLLER_MPTC49 1u
+#define SXL_CONTROLLER_MPTC13 2u
+
+/* Status payload (after the result byte), offsets in bytes. */
+#define SXL_ST_STATE 0u       /* uint8 drive_state_t */
+#define SXL_ST_FAULT 1u       /* uint8 drive_fault_t */
+#define SXL_ST_FLAGS 2u       /* uint8 SXL_FLAG_* */
+#define SXL_ST_CONTROLLER 3u  /* uint8 controller in force */
+#define SXL_ST_SPEED 4u       /* int32 measured speed, 0.1 r/min */
+#define SXL_ST_SPEED_REF 8u   /* int32 speed reference, 0.1 r/min */
+#define SXL_ST_TORQUE 12u     /* int32 torque estimate, mN*m */
+#define SXL_ST_TORQUE_REF 16u /* int32 torque reference, mN*m */
+#define SXL_ST_LAMBDA 20u     /* uint32 lambda in force, 0.001 N*m/Wb */
+#define SXL_ST_ISR_COUNT 24u  /* uint32 control periods since start */
+#define SXL_ST_ISR_MAX 28u    /* uint32 longest ISR, CPU cycles */
+#define SXL_ST_RX_ERRORS 32u  /* uint16 malformed frames received */
+#define SXL_ST_SIZE 34u
+#define SXL_FLAG_ENCODER_OK 0x01u
+#define SXL_FLAG_PWM_OFF 0x02u
+#define SXL_FLAG_PARAMS_PENDING 0x04u
+
+typedef struct {
+    uint16_t cmd;
+    uint16_t len; /* payload bytes */
+    uint16_t payload[SXL_MAX_PAYLOAD];
+} sxl_frame_t;
+
+typedef enum {
+    SXL_RX_NONE = 0,       /* byte consumed, no frame yet */
+    SXL_RX_FRAME = 1,      /* a complete, valid frame is in *out */
+    SXL_RX_ERR_CRC = 2,    /* frame dropped: CRC mismatch */
+    SXL_RX_ERR_LENGTH = 3, /* frame dropped: LEN 0 or too long */
+    SXL_RX_ERR_BYTE = 4    /* value above 255 pushed: decoder reset */
+} sxl_rx_t;
+
+typedef struct {
+    uint16_t state;
+    uint16_t len;   /* LEN field */
+    uint16_t count; /* body bytes received */
+    uint16_t crc_rx;
+    uint16_t body[SXL_MAX_PAYLOAD + 1u]; /* CMD, PAYLOAD */
+    uint16_t errors;
+} sxl_decoder_t;
+
+uint16_t sxl_crc16(const uint16_t *bytes, uint16_t n, uint16_t crc);
+uint16_t sxl_crc16_byte(uint16_t crc, uint16_t byte);
+
+/* Encode a frame into out (capacity cap bytes). Returns the frame length, or 0
+ * if the payload is too long, a byte is above 255 or out is too small. */
+uint16_t sxl_encode(uint16_t cmd, const uint16_t *payload, uint16_t len, uint16_t *out,
+                    uint16_t cap);
+
+void sxl_decoder_init(sxl_decoder_t *d);
+/* Drop a partial frame (e.g. after an inter-byte gap). */
+void sxl_decoder_reset(sxl_decoder_t *d);
+/* True while no frame is partially received. */
+bool sxl_decoder_idle(const sxl_decoder_t *d);
+sxl_rx_t sxl_decoder_push(sxl_decoder_t *d, uint16_t byte, sxl_frame_t *out);
+
+/* Little-endian payload fields (the caller checks the payload length). */
+void sxl_put_u16(uint16_t *p, uint16_t v);
+void sxl_put_u32(uint16_t *p, uint32_t v);
+uint16_t sxl_get_u16(const uint16_t *p);
+uint32_t sxl_get_u32(const uint16_t *p);
+int32_t sxl_get_i32(const uint16_t *p);
+void sxl_put_i32(uint16_t *p, int32_t v);
+
+#endif /* SXLINK_H */

@@ -1,0 +1,460 @@
+/*
+ * sixphase-link: talk to the drive over its serial port (SCI-A protocol,
+ * docs/serial-protocol.md).
+ *
+ *   sixphase-link [-d DEVICE] [-b BAUD] [-t MS] [-n] COMMAND [ARGS]
+ *
+ * Commands: ping | status | run | stop | clear | speed RPM | torque NM |
+ *           controller ddc|mptc49|mptc13 LAMBDA | decode HEXBYTE...
+ * -n prints the request frame in hex instead of sending it. "decode" checks
+ * and prints a frame given as hex bytes (no device needed).
+ * Every error is one line on stderr and a non-zero exit status
+ * (2: usage, 1: device or protocol).
+ */
+#define _DEFAULT_SOURCE 1
+
+#include <errno.h>
+#include <fcntl.h>
+#include <math.h>
+#include <poll.h>
+#include <stdarg.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <termios.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "sxlink.h"
+
+#define EXIT_USAGE 2
+#define EXIT_IO 1
+
+typedef struct {
+    const char *device;
+    long baud;
+    long timeout_ms;
+    int print_only;
+} options_t;
+
+static const char *const state_names[] = {"INIT", "CALIBRATE", "READY", "RUN", "FAULT"};
+static const char *const fault_names[] = {"NONE",    "PARAMS",  "ADC_OFFSET", "ADC_MISSING",
+                                          "HW_TRIP", "OVERRUN", "ENCODER",    "STARTUP"};
+static const char *const controller_names[] = {"ddc", "mptc49", "mptc13"};
+static const char *const result_names[] = {"ok", "bad length", "bad value", "unknown command",
+                                           "refused"};
+
+static int fail(int code, const char *fmt, ...)
+{
+    va_list ap;
+    fputs("sixphase-link: error: ", stderr);
+    va_start(ap, fmt);
+    vfprintf(stderr, fmt, ap);
+    va_end(ap);
+    fputc('\n', stderr);
+    return code;
+}
+
+static int usage(const char *why)
+{
+    return fail(EXIT_USAGE,
+                "%s (usage: sixphase-link [-d DEVICE] [-b BAUD] [-t MS] [-n] "
+                "ping|status|run|stop|clear|speed RPM|torque NM|controller ddc|mptc49|mptc13 "
+                "LAMBDA|decode HEX...)",
+                why);
+}
+
+static int parse_long(const char *s, long lo, long hi, long *out)
+{
+    char *end = NULL;
+    long v;
+    errno = 0;
+    v = strtol(s, &end, 0);
+    if (errno != 0 || end == s || *end != '\0' || v < lo || v > hi) {
+        return 0;
+    }
+    *out = v;
+    return 1;
+}
+
+static int parse_double(const char *s, double lo, double hi, double *out)
+{
+    char *end = NULL;
+    double v;
+    errno = 0;
+    v = strtod(s, &end);
+    if (errno != 0 || end == s || *end != '\0' || !isfinite(v) || v < lo || v > hi) {
+        return 0;
+    }
+    *out = v;
+    return 1;
+}
+
+static int32_t round_i32(double x)
+{
+    return (int32_t)((x >= 0.0) ? floor(x + 0.5) : ceil(x - 0.5));
+}
+
+static speed_t baud_constant(long baud)
+{
+    switch (baud) {
+    case 9600:
+        return B9600;
+    case 19200:
+        return B19200;
+    case 38400:
+        return B38400;
+    case 57600:
+        return B57600;
+    case 115200:
+        return B115200;
+    case 230400:
+        return B230400;
+    default:
+        return (speed_t)0;
+    }
+}
+
+static int open_port(const options_t *o, int *fd_out)
+{
+    struct termios tio;
+    const speed_t sp = baud_constant(o->baud);
+    int fd;
+    if (sp == (speed_t)0) {
+        return fail(EXIT_USAGE, "unsupported baud rate %ld", o->baud);
+    }
+    fd = open(o->device, O_RDWR | O_NOCTTY | O_NONBLOCK);
+    if (fd < 0) {
+        return fail(EXIT_IO, "cannot open %s: %s", o->device, strerror(errno));
+    }
+    if (tcgetattr(fd, &tio) != 0) {
+        const int e = errno;
+        close(fd);
+        return fail(EXIT_IO, "%s is not a serial port: %s", o->device, strerror(e));
+    }
+    tio.c_iflag &=
+        (tcflag_t) ~(IGNBRK | BRKINT | PARMRK | ISTRIP | INLCR | IGNCR | ICRNL | IXON | IXOFF);
+    tio.c_oflag &= (tcflag_t)~OPOST;
+    tio.c_lflag &= (tcflag_t) ~(ECHO | ECHONL | ICANON | ISIG | IEXTEN);
+    tio.c_cflag &= (tcflag_t) ~(CSIZE | PARENB | CSTOPB);
+    tio.c_cflag |= (tcflag_t)(CS8 | CREAD | CLOCAL);
+    tio.c_cc[VMIN] = 0;
+    tio.c_cc[VTIME] = 0;
+    if (cfsetispeed(&tio, sp) != 0 || cfsetospeed(&tio, sp) != 0 ||
+        tcsetattr(fd, TCSANOW, &tio) != 0) {
+        const int e = errno;
+        close(fd);
+        return fail(EXIT_IO, "cannot configure %s: %s", o->device, strerror(e));
+    }
+    (void)tcflush(fd, TCIOFLUSH);
+    *fd_out = fd;
+    return 0;
+}
+
+static long now_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (long)ts.tv_sec * 1000L + ts.tv_nsec / 1000000L;
+}
+
+static int write_all(int fd, const uint16_t *frame, uint16_t n)
+{
+    unsigned char buf[SXL_MAX_FRAME];
+    size_t off = 0;
+    uint16_t i;
+    for (i = 0u; i < n; i++) {
+        buf[i] = (unsigned char)(frame[i] & 0xFFu);
+    }
+    while (off < n) {
+        const ssize_t w = write(fd, buf + off, (size_t)n - off);
+        if (w < 0) {
+            if (errno == EAGAIN || errno == EINTR) {
+                struct pollfd p = {fd, POLLOUT, 0};
+                (void)poll(&p, 1, 100);
+                continue;
+            }
+            return fail(EXIT_IO, "write failed: %s", strerror(errno));
+        }
+        off += (size_t)w;
+    }
+    return 0;
+}
+
+/* Wait for the reply to cmd; 0 and *reply filled on success. */
+static int read_reply(int fd, uint16_t cmd, long timeout_ms, sxl_frame_t *reply)
+{
+    sxl_decoder_t dec;
+    const long deadline = now_ms() + timeout_ms;
+    sxl_decoder_init(&dec);
+    for (;;) {
+        unsigned char buf[64];
+        struct pollfd p = {fd, POLLIN, 0};
+        const long left = deadline - now_ms();
+        ssize_t r;
+        ssize_t i;
+        if (left <= 0) {
+            return fail(EXIT_IO, "no reply within %ld ms", timeout_ms);
+        }
+        if (poll(&p, 1, (int)left) < 0 && errno != EINTR) {
+            return fail(EXIT_IO, "poll failed: %s", strerror(errno));
+        }
+        r = read(fd, buf, sizeof buf);
+        if (r < 0 && errno != EAGAIN && errno != EINTR) {
+            return fail(EXIT_IO, "read failed: %s", strerror(errno));
+        }
+        for (i = 0; i < r; i++) {
+            const sxl_rx_t res = sxl_decoder_push(&dec, (uint16_t)buf[i], reply);
+            if (res == SXL_RX_ERR_CRC) {
+                return fail(EXIT_IO, "reply with a CRC error");
+            }
+            if (res == SXL_RX_ERR_LENGTH) {
+                return fail(EXIT_IO, "reply with a bad length field");
+            }
+            if (res == SXL_RX_FRAME) {
+                if (reply->cmd != (uint16_t)(cmd | SXL_REPLY) || reply->len < 1u) {
+                    return fail(EXIT_IO, "unexpected reply 0x%02X to command 0x%02X",
+                                (unsigned)reply->cmd, (unsigned)cmd);
+                }
+                return 0;
+            }
+        }
+    }
+}
+
+static const char *name_of(const char *const *names, size_t n, uint16_t v)
+{
+    return (v < n) ? names[v] : "?";
+}
+
+static int print_reply(const sxl_frame_t *r)
+{
+    const uint16_t result = r->payload[0];
+    const uint16_t *st = &r->payload[1];
+    if (result != SXL_OK) {
+        return fail(EXIT_IO, "drive answered: %s",
+                    name_of(result_names, sizeof result_names / sizeof result_names[0], result));
+    }
+    switch (r->cmd & 0x7Fu) {
+    case SXL_CMD_PING:
+        if (r->len < 2u) {
+            return fail(EXIT_IO, "short ping reply");
+        }
+        printf("pong protocol=%u\n", (unsigned)r->payload[1]);
+        return 0;
+    case SXL_CMD_GET_STATUS:
+        if (r->len < 1u + SXL_ST_SIZE) {
+            return fail(EXIT_IO, "short status reply (%u bytes)", (unsigned)r->len);
+        }
+        printf("state=%s fault=%s controller=%s speed=%.1frpm speed_ref=%.1frpm torque=%.3fNm "
+               "torque_ref=%.3fNm lambda=%.3f encoder=%s pwm=%s params_pending=%s isr_count=%lu "
+               "isr_max_cycles=%lu rx_errors=%u\n",
+               name_of(state_names, sizeof state_names / sizeof state_names[0], st[SXL_ST_STATE]),
+               name_of(fault_names, sizeof fault_names / sizeof fault_names[0], st[SXL_ST_FAULT]),
+               name_of(controller_names, 3u, st[SXL_ST_CONTROLLER]),
+               (double)sxl_get_i32(&st[SXL_ST_SPEED]) / 10.0,
+               (double)sxl_get_i32(&st[SXL_ST_SPEED_REF]) / 10.0,
+               (double)sxl_get_i32(&st[SXL_ST_TORQUE]) / 1000.0,
+               (double)sxl_get_i32(&st[SXL_ST_TORQUE_REF]) / 1000.0,
+               (double)sxl_get_u32(&st[SXL_ST_LAMBDA]) / 1000.0,
+               (st[SXL_ST_FLAGS] & SXL_FLAG_ENCODER_OK) ? "ok" : "bad",
+               (st[SXL_ST_FLAGS] & SXL_FLAG_PWM_OFF) ? "off" : "on",
+               (st[SXL_ST_FLAGS] & SXL_FLAG_PARAMS_PENDING) ? "yes" : "no",
+               (unsigned long)sxl_get_u32(&st[SXL_ST_ISR_COUNT]),
+               (unsigned long)sxl_get_u32(&st[SXL_ST_ISR_MAX]),
+               (unsigned)sxl_get_u16(&st[SXL_ST_RX_ERRORS]));
+        return 0;
+    default:
+        printf("ok\n");
+        return 0;
+    }
+}
+
+static int cmd_decode(int argc, char **argv)
+{
+    sxl_decoder_t dec;
+    sxl_frame_t f;
+    int i;
+    sxl_decoder_init(&dec);
+    if (argc < 1) {
+        return usage("decode needs hex bytes");
+    }
+    for (i = 0; i < argc; i++) {
+        long v;
+        sxl_rx_t r;
+        char buf[8];
+        if (strlen(argv[i]) > 4u) {
+            return fail(EXIT_USAGE, "bad byte '%s'", argv[i]);
+        }
+        snprintf(buf, sizeof buf, "0x%s", argv[i]);
+        if (strncmp(argv[i], "0x", 2) == 0 || strncmp(argv[i], "0X", 2) == 0 ||
+            !parse_long(buf, 0, 255, &v)) {
+            return fail(EXIT_USAGE, "bad byte '%s' (hex 00..FF)", argv[i]);
+        }
+        r = sxl_decoder_push(&dec, (uint16_t)v, &f);
+        if (r == SXL_RX_ERR_CRC) {
+            return fail(EXIT_IO, "CRC error at byte %d", i);
+        }
+        if (r == SXL_RX_ERR_LENGTH) {
+            return fail(EXIT_IO, "bad length field at byte %d", i);
+        }
+        if (r == SXL_RX_FRAME) {
+            uint16_t k;
+            if (i != argc - 1) {
+                return fail(EXIT_IO, "trailing bytes after the frame");
+            }
+            printf("frame cmd=0x%02X len=%u payload=", (unsigned)f.cmd, (unsigned)f.len);
+            for (k = 0u; k < f.len; k++) {
+                printf("%02X", (unsigned)f.payload[k]);
+            }
+            printf("\n");
+            return 0;
+        }
+    }
+    return fail(EXIT_IO, "incomplete frame");
+}
+
+/* Build the request for a command line; 0 on success. */
+static int build_request(int argc, char **argv, uint16_t *cmd, uint16_t *payload, uint16_t *len)
+{
+    const char *c = argv[0];
+    *len = 0u;
+    if (strcmp(c, "ping") == 0) {
+        *cmd = SXL_CMD_PING;
+    } else if (strcmp(c, "status") == 0) {
+        *cmd = SXL_CMD_GET_STATUS;
+    } else if (strcmp(c, "run") == 0) {
+        *cmd = SXL_CMD_RUN;
+    } else if (strcmp(c, "stop") == 0) {
+        *cmd = SXL_CMD_STOP;
+    } else if (strcmp(c, "clear") == 0) {
+        *cmd = SXL_CMD_CLEAR_FAULT;
+    } else if (strcmp(c, "speed") == 0) {
+        double rpm;
+        if (argc != 2 || !parse_double(argv[1], -20000.0, 20000.0, &rpm)) {
+            return usage("speed needs one value in r/min, -20000..20000");
+        }
+        *cmd = SXL_CMD_SET_SPEED;
+        sxl_put_i32(payload, round_i32(rpm * 10.0));
+        *len = 4u;
+        return 0;
+    } else if (strcmp(c, "torque") == 0) {
+        double nm;
+        if (argc != 2 || !parse_double(argv[1], -1000.0, 1000.0, &nm)) {
+            return usage("torque needs one value in N*m, -1000..1000");
+        }
+        *cmd = SXL_CMD_SET_TORQUE;
+        sxl_put_i32(payload, round_i32(nm * 1000.0));
+        *len = 4u;
+        return 0;
+    } else if (strcmp(c, "controller") == 0) {
+        double lambda;
+        uint16_t id;
+        if (argc != 3) {
+            return usage("controller needs a name and lambda");
+        }
+        for (id = 0u; id < 3u; id++) {
+            if (strcmp(argv[1], controller_names[id]) == 0) {
+                break;
+            }
+        }
+        if (id == 3u) {
+            return usage("controller must be ddc, mptc49 or mptc13");
+        }
+        if (!parse_double(argv[2], 0.0, 2000.0, &lambda)) {
+            return usage("lambda must be a number in 0..2000 (N*m/Wb)");
+        }
+        *cmd = SXL_CMD_SET_CONTROLLER;
+        payload[0] = id;
+        sxl_put_u32(&payload[1], (uint32_t)round_i32(lambda * 1000.0));
+        *len = 5u;
+        return 0;
+    } else {
+        return usage("unknown command");
+    }
+    if (argc != 1) {
+        return usage("this command takes no arguments");
+    }
+    return 0;
+}
+
+int main(int argc, char **argv)
+{
+    options_t o = {"/dev/ttyUSB0", 115200L, 500L, 0};
+    uint16_t payload[SXL_MAX_PAYLOAD];
+    uint16_t frame[SXL_MAX_FRAME];
+    uint16_t cmd = 0u;
+    uint16_t plen = 0u;
+    uint16_t flen;
+    sxl_frame_t reply;
+    int i = 1;
+    int fd = -1;
+    int rc;
+
+    while (i < argc && argv[i][0] == '-' && argv[i][1] != '\0') {
+        const char *opt = argv[i];
+        if (strcmp(opt, "-n") == 0) {
+            o.print_only = 1;
+            i++;
+            continue;
+        }
+        if (strcmp(opt, "-h") == 0 || strcmp(opt, "--help") == 0) {
+            printf("usage: sixphase-link [-d DEVICE] [-b BAUD] [-t MS] [-n] COMMAND [ARGS]\n"
+                   "commands: ping status run stop clear speed RPM torque NM\n"
+                   "          controller ddc|mptc49|mptc13 LAMBDA decode HEXBYTE...\n");
+            return 0;
+        }
+        if (i + 1 >= argc) {
+            return usage("option needs a value");
+        }
+        if (strcmp(opt, "-d") == 0) {
+            o.device = argv[i + 1];
+        } else if (strcmp(opt, "-b") == 0) {
+            if (!parse_long(argv[i + 1], 1, 4000000, &o.baud)) {
+                return usage("bad baud rate");
+            }
+        } else if (strcmp(opt, "-t") == 0) {
+            if (!parse_long(argv[i + 1], 1, 60000, &o.timeout_ms)) {
+                return usage("bad timeout (1..60000 ms)");
+            }
+        } else {
+            return usage("unknown option");
+        }
+        i += 2;
+    }
+    if (i >= argc) {
+        return usage("missing command");
+    }
+    if (strcmp(argv[i], "decode") == 0) {
+        return cmd_decode(argc - i - 1, &argv[i + 1]);
+    }
+    rc = build_request(argc - i, &argv[i], &cmd, payload, &plen);
+    if (rc != 0) {
+        return rc;
+    }
+    flen = sxl_encode(cmd, payload, plen, frame, (uint16_t)SXL_MAX_FRAME);
+    if (flen == 0u) {
+        return fail(EXIT_USAGE, "cannot encode the request");
+    }
+    if (o.print_only) {
+        uint16_t k;
+        for (k = 0u; k < flen; k++) {
+            printf("%02X%s", (unsigned)frame[k], (k + 1u < flen) ? " " : "\n");
+        }
+        return 0;
+    }
+    rc = open_port(&o, &fd);
+    if (rc != 0) {
+        return rc;
+    }
+    rc = write_all(fd, frame, flen);
+    if (rc == 0) {
+        rc = read_reply(fd, cmd, o.timeout_ms, &reply);
+    }
+    close(fd);
+    if (rc != 0) {
+        return rc;
+    }
+    return print_reply(&reply);
+}

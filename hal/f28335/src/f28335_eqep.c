@@ -1,0 +1,187 @@
+/*
+ * hal_encoder on the F28335: eQEP1 in quadrature mode.
+ *
+ *   position   QPOSCNT counts 0 .. 4 lines - 1 (QPOSMAX), reset by the index
+ *              (PCRM = 0), so after the first index it is the angle from the
+ *              index; QPOSILAT latches the count at each rising index edge
+ *   angle      theta_e = pos * Pn / (4 lines) turns (Q48 factor, no division
+ *              per sample) + elec_offset, 2^32 = one electrical turn
+ *   speed      high speed: position difference over the unit timer
+ *              (QUPRD = SYSCLK / 500 Hz, QCLM = 1 latches QPOSLAT, QCPRDLAT,
+ *              QCTMRLAT together); low speed: capture timer period of
+ *              2^UPPS = 16 counts at SYSCLK / 64; switched with hysteresis
+ *              at 12 / 15 rev/s; capture overflow (slower than about
+ *              0.06 rev/s) reads as standstill
+ *   health     first index seen (QEPSTS.FIMF) and no position-counter error,
+ *              quadrature phase error or loss of edges above 5 rev/s (QEP
+ *              watchdog, 10 ms) since init
+ */
+#include "f28335_hal.h"
+#include "f28335_internal.h"
+#include "hal_encoder.h"
+
+static f28335_qep_state_t qep;
+
+const f28335_qep_state_t *f28335_qep_state(void) { return &qep; }
+
+uint32_t f28335_qep_angle(const f28335_qep_state_t *q, uint32_t pos)
+{
+    const uint64_t turns_q48 = (uint64_t)pos * q->angle_per_count;
+    return (uint32_t)(turns_q48 >> 16) + q->elec_offset;
+}
+
+int32_t f28335_qep_speed_unit(const f28335_qep_state_t *q, int32_t delta_counts)
+{
+    const int64_t v = ((int64_t)delta_counts * q->ut_speed_k) / 65536;
+    if (v > (int64_t)INT32_MAX) {
+        return INT32_MAX;
+    }
+    if (v < -(int64_t)INT32_MAX) {
+        return -INT32_MAX;
+    }
+    return (int32_t)v;
+}
+
+int32_t f28335_qep_speed_capture(const f28335_qep_state_t *q, uint16_t period)
+{
+    uint64_t v;
+    if (period == 0u) {
+        return 0;
+    }
+    v = q->cap_speed_k / period;
+    return (v > (uint64_t)INT32_MAX) ? INT32_MAX : (int32_t)v;
+}
+
+static int32_t abs32(int32_t x) { return (x < 0) ? -x : x; }
+
+bool hal_encoder_init(uint32_t lines, uint16_t pole_pairs, uint32_t elec_offset)
+{
+    volatile f28335_eqep_t *e = F28335_EQEP1;
+    uint16_t pin;
+
+    if (lines == 0u || lines > 0x10000000uL || pole_pairs == 0u) {
+        return false;
+    }
+    qep.counts = 4u * lines;
+    qep.angle_per_count = (((uint64_t)pole_pairs << 48) + qep.counts / 2u) / qep.counts;
+    qep.elec_offset = elec_offset;
+    /* unit timer: rev/s = delta * f_unit / counts; in Q16 with a Q16 factor */
+    qep.ut_speed_k =
+        (int64_t)((((uint64_t)F28335_QEP_UNIT_HZ << 32) + qep.counts / 2u) / qep.counts);
+    /* capture: rev/s = 2^UPPS / counts / (period * 2^CCPS / SYSCLK) */
+    qep.cap_speed_k =
+        (((uint64_t)F28335_SYSCLK_HZ << (16u + F28335_QEP_UPPS)) >> F28335_QEP_CCPS) / qep.counts;
+    qep.last_poslat = 0u;
+    qep.have_poslat = false;
+    qep.use_capture = true;
+    qep.error_latched = false;
+    qep.speed_q16 = 0;
+
+    F28335_EALLOW();
+    F28335_SYSCTRL->PCLKCR1 |= PCLKCR1_EQEP1ENCLK;
+    F28335_EDIS();
+    for (pin = F28335_QEP_A_GPIO; pin < F28335_QEP_A_GPIO + 4u; pin++) {
+        f28335_gpio_set_pullup(pin, true);
+        f28335_gpio_set_qsel(pin, F28335_GPIO_QSEL_SYNC);
+        f28335_gpio_set_mux(pin, F28335_GPIO_MUX_PERIPH1);
+    }
+
+    e->QEPCTL = 0u; /* stop while configuring */
+    e->QDECCTL = EQEP_QDECCTL_QSRC_QUAD;
+    e->QPOSINIT = 0u;
+    e->QPOSMAX = qep.counts - 1u;
+    e->QPOSCNT = 0u;
+    e->QUPRD = F28335_SYSCLK_HZ / F28335_QEP_UNIT_HZ;
+    e->QWDPRD = F28335_QEP_WATCHDOG_PRD;
+    e->QCAPCTL = 0u; /* prescalers change only with the capture unit off */
+    e->QCAPCTL = (uint16_t)((F28335_QEP_CCPS << EQEP_QCAPCTL_CCPS_SHIFT) |
+                            (F28335_QEP_UPPS << EQEP_QCAPCTL_UPPS_SHIFT));
+    e->QCAPCTL = (uint16_t)(e->QCAPCTL | EQEP_QCAPCTL_CEN);
+    e->QEINT = 0u; /* polled from the control ISR */
+    e->QCLR = 0x0FFFu;
+    e->QEPSTS = (uint16_t)(EQEP_STS_FIMF | EQEP_STS_CDEF | EQEP_STS_COEF | EQEP_STS_UPEVNT);
+    e->QEPCTL =
+        (uint16_t)(EQEP_QEPCTL_FREE_SOFT_FREE | EQEP_QEPCTL_PCRM_INDEX | EQEP_QEPCTL_IEL_RISING |
+                   EQEP_QEPCTL_QPEN | EQEP_QEPCTL_QCLM | EQEP_QEPCTL_UTE | EQEP_QEPCTL_WDE);
+    return true;
+}
+
+static void qep_unit_period(volatile f28335_eqep_t *e, uint16_t sts)
+{
+    const uint32_t poslat = e->QPOSLAT;
+    const uint16_t cprd = e->QCPRDLAT;
+    const uint16_t ctmr = e->QCTMRLAT;
+    int32_t ut_speed = qep.speed_q16;
+    int32_t cap_speed;
+    bool cap_valid = true;
+
+    if (qep.have_poslat) {
+        int32_t delta = (int32_t)(poslat - qep.last_poslat);
+        const int32_t half = (int32_t)(qep.counts / 2u);
+        if (delta >= half) {
+            delta -= (int32_t)qep.counts;
+        } else if (delta < -half) {
+            delta += (int32_t)qep.counts;
+        }
+        ut_speed = f28335_qep_speed_unit(&qep, delta);
+    }
+    qep.last_poslat = poslat;
+    qep.have_poslat = true;
+
+    if ((sts & EQEP_STS_COEF) != 0u) {
+        cap_speed = 0; /* capture timer overflowed: slower than the minimum */
+    } else if ((sts & EQEP_STS_CDEF) != 0u || cprd == 0u) {
+        cap_valid = false; /* direction changed within a capture period */
+        cap_speed = ut_speed;
+    } else {
+        /* The period still running bounds the speed from above (deceleration). */
+        cap_speed = f28335_qep_speed_capture(&qep, (ctmr > cprd) ? ctmr : cprd);
+        if ((sts & EQEP_STS_QDF) == 0u) {
+            cap_speed = -cap_speed;
+        }
+    }
+    if ((sts & (EQEP_STS_COEF | EQEP_STS_CDEF)) != 0u) {
+        e->QEPSTS = (uint16_t)(sts & (EQEP_STS_COEF | EQEP_STS_CDEF)); /* write 1 to clear */
+    }
+
+    if (qep.use_capture && abs32(ut_speed) > F28335_QEP_HIGH_SPEED_Q16) {
+        qep.use_capture = false;
+    } else if (!qep.use_capture && abs32(ut_speed) < F28335_QEP_LOW_SPEED_Q16) {
+        qep.use_capture = true;
+    }
+    qep.speed_q16 = (qep.use_capture && cap_valid) ? cap_speed : ut_speed;
+}
+
+F28335_RAMFUNC(hal_encoder_read)
+void hal_encoder_read(hal_encoder_sample_t *s)
+{
+    volatile f28335_eqep_t *e = F28335_EQEP1;
+    const uint32_t pos = e->QPOSCNT;
+    const uint16_t flg = e->QFLG;
+    const uint16_t sts = e->QEPSTS;
+    uint16_t clr = 0u;
+
+    if ((flg & (EQEP_PCE | EQEP_PHE)) != 0u) {
+        qep.error_latched = true;
+        clr = (uint16_t)(flg & (EQEP_PCE | EQEP_PHE)); /* first flag to acknowledge */
+    }
+    if ((flg & EQEP_UTO) != 0u) {
+        qep_unit_period(e, sts);
+        clr = (uint16_t)(clr | EQEP_UTO);
+    }
+    if ((flg & EQEP_WTO) != 0u) {
+        /* No edge for 10 ms: a stop from above the threshold is a lost signal. */
+        if (abs32(qep.speed_q16) > F28335_QEP_TIMEOUT_SPEED_Q16) {
+            qep.error_latched = true;
+        }
+        qep.speed_q16 = 0;
+        clr = (uint16_t)(clr | EQEP_WTO);
+    }
+    if (clr != 0u) {
+        e->QCLR = (uint16_t)(clr | EQEP_INT);
+    }
+
+    s->elec_angle = f28335_qep_angle(&qep, pos);
+    s->mech_speed_q16 = qep.speed_q16;
+    s->healthy = ((sts & EQEP_STS_FIMF) != 0u) && !qep.error_latched;
+}

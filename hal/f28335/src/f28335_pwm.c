@@ -1,0 +1,211 @@
+/*
+ * hal_pwm on the F28335: ePWM1..6, one module per inverter leg (A..F).
+ *
+ *   time base   up-down count, TBCLK = SYSCLKOUT, TBPRD = SYSCLK / (2 f),
+ *               ePWM1 master (SYNCO at CTR = 0), ePWM2..6 slaves (phase 0,
+ *               count up after sync, SYNCI passed on)
+ *   compare     CMPA shadowed, loaded at CTR = 0
+ *   actions     EPWMxA set on CAU, cleared on CAD: high while CTR > CMPA,
+ *               a pulse of 2 (TBPRD - CMPA) TBCLK centred on CTR = TBPRD
+ *   dead band   EPWMxA as source of both edges, full mode, active high
+ *               complementary: xA = upper switch, xB = lower switch
+ *   trip zone   TZ1 (GPIO12, active low) one-shot trips every module, both
+ *               outputs forced low; software force-off = TZFRC.OST
+ *   ADC start   ePWM1 SOCA at CTR = 0 (centre of the zero vector)
+ */
+#include "f28335_hal.h"
+#include "f28335_internal.h"
+#include "hal_pwm.h"
+
+#define PWM_FREE_SOFT_STOP_AT_ZERO 1u /* emulation halt: stop at the end of a period */
+
+static uint16_t pwm_prd;
+static bool pwm_sw_forced = true;
+
+uint16_t f28335_pwm_period_for(uint32_t carrier_hz)
+{
+    uint32_t prd;
+    if (carrier_hz == 0u || carrier_hz > F28335_SYSCLK_HZ / 4u) {
+        return 0u;
+    }
+    /* up-down: period = 2 TBPRD TBCLK; round to nearest */
+    prd = (F28335_SYSCLK_HZ + carrier_hz) / (2u * carrier_hz);
+    if (prd < 2u || prd > 65534u) { /* 65534: duty 0 needs CMPA = TBPRD + 1 */
+        return 0u;
+    }
+    return (uint16_t)prd;
+}
+
+uint16_t f28335_pwm_deadband_for(uint32_t dead_time_ns)
+{
+    /* counts = ns * 150 MHz / 1e9 = ns * 3 / 20, rounded */
+    const uint32_t counts = (dead_time_ns * 3u + 10u) / 20u;
+    if (dead_time_ns > 1000000u || counts > EPWM_DB_MAX_COUNTS) {
+        return 0xFFFFu;
+    }
+    return (uint16_t)counts;
+}
+
+uint16_t f28335_pwm_cmpa_for(uint16_t duty_q15, uint16_t prd)
+{
+    uint32_t on;
+    if (duty_q15 == 0u) {
+        return (uint16_t)(prd + 1u); /* beyond the period: no compare event, output low */
+    }
+    if (duty_q15 >= HAL_PWM_DUTY_ONE) {
+        return 0u; /* set at CTR = 0 (counting up by definition), never cleared */
+    }
+    on = ((uint32_t)duty_q15 * prd + (HAL_PWM_DUTY_ONE / 2u)) >> 15;
+    if (on >= prd) {
+        return 1u; /* keep CMPA >= 1 below full duty (compare loaded at zero) */
+    }
+    return (uint16_t)(prd - on);
+}
+
+uint16_t f28335_pwm_period(void) { return pwm_prd; }
+
+static void pwm_force_all(void)
+{
+    int16_t i;
+    F28335_EALLOW();
+    for (i = 0; i < F28335_EPWM_COUNT; i++) {
+        F28335_EPWM(i)->TZFRC = EPWM_TZ_OST;
+    }
+    F28335_EDIS();
+}
+
+bool hal_pwm_init(uint32_t carrier_hz, uint32_t dead_time_ns)
+{
+    volatile f28335_sysctrl_t *sys = F28335_SYSCTRL;
+    const uint16_t prd = f28335_pwm_period_for(carrier_hz);
+    const uint16_t db = f28335_pwm_deadband_for(dead_time_ns);
+    int16_t i;
+
+    if (prd == 0u || db == 0xFFFFu) {
+        return false;
+    }
+    pwm_prd = prd;
+    pwm_sw_forced = true;
+
+    /* Stop all time bases while configuring; clocks of ePWM1..6 on. */
+    F28335_EALLOW();
+    sys->PCLKCR0 &= (uint16_t)~PCLKCR0_TBCLKSYNC;
+    sys->PCLKCR1 |= PCLKCR1_EPWM_ALL;
+    F28335_EDIS();
+
+    for (i = 0; i < F28335_EPWM_COUNT; i++) {
+        volatile f28335_epwm_t *p = F28335_EPWM(i);
+        uint16_t tbctl = (uint16_t)(EPWM_TBCTL_CTRMODE_UPDOWN |
+                                    (PWM_FREE_SOFT_STOP_AT_ZERO << EPWM_TBCTL_FREE_SOFT_SHIFT));
+
+        /* Trip zone first: outputs forced low before anything else runs. */
+        F28335_EALLOW();
+        p->TZSEL = EPWM_TZSEL_OSHT1;
+        p->TZCTL = (uint16_t)(EPWM_TZCTL_TZA_LOW | EPWM_TZCTL_TZB_LOW);
+        p->TZEINT = 0u;
+        p->TZFRC = EPWM_TZ_OST;
+        F28335_EDIS();
+
+        if (i == 0) {
+            tbctl |= (uint16_t)(EPWM_SYNCOSEL_CTR_ZERO << EPWM_TBCTL_SYNCOSEL_SHIFT);
+        } else {
+            /* SYNCOSEL = SYNCI (value 0): each slave passes the master's sync on */
+            tbctl |= (uint16_t)(EPWM_TBCTL_PHSEN | EPWM_TBCTL_PHSDIR_UP);
+        }
+        p->TBPRD = prd;
+        p->TBPHS = 0u;
+        p->TBPHSHR = 0u;
+        p->TBCTR = 0u;
+        p->TBCTL = tbctl; /* PRDLD = 0 (shadow), HSPCLKDIV = CLKDIV = 0 (/1) */
+
+        p->CMPCTL = 0u; /* CMPA/CMPB shadowed, loaded at CTR = 0 */
+        p->CMPA = f28335_pwm_cmpa_for(0u, prd);
+        p->CMPAHR = 0u;
+        p->CMPB = 0u;
+
+        p->AQCTLA =
+            (uint16_t)((EPWM_AQ_SET << EPWM_AQ_CAU_SHIFT) | (EPWM_AQ_CLEAR << EPWM_AQ_CAD_SHIFT));
+        p->AQCTLB = 0u; /* xB comes from the dead band */
+        p->AQSFRC = 0u;
+        p->AQCSFRC = 0u;
+
+        p->DBCTL = (uint16_t)(EPWM_DBCTL_OUT_MODE_FULL | EPWM_DBCTL_POLSEL_AHC);
+        p->DBRED = db;
+        p->DBFED = db;
+
+        p->PCCTL = 0u;
+        p->HRCNFG = 0u;
+        if (i == 0) {
+            p->ETSEL =
+                (uint16_t)((EPWM_ET_CTR_ZERO << EPWM_ETSEL_SOCASEL_SHIFT) | EPWM_ETSEL_SOCAEN);
+            p->ETPS = (uint16_t)(1u << EPWM_ETPS_SOCAPRD_SHIFT);
+        } else {
+            p->ETSEL = 0u;
+            p->ETPS = 0u;
+        }
+    }
+
+    /* Start all time bases together. */
+    F28335_EALLOW();
+    sys->PCLKCR0 |= PCLKCR0_TBCLKSYNC;
+    F28335_EDIS();
+
+    /* Pins last, when the outputs are already tripped low. GPIO0..11 =
+     * EPWM1A, 1B, 2A, ..., 6B; gate drivers need pull-downs until here. */
+    for (i = 0; i < 2 * F28335_EPWM_COUNT; i++) {
+        f28335_gpio_set_pullup((uint16_t)i, false);
+        f28335_gpio_set_mux((uint16_t)i, F28335_GPIO_MUX_PERIPH1);
+    }
+    f28335_gpio_set_pullup(F28335_PWM_TRIP_GPIO, true);
+    f28335_gpio_set_qsel(F28335_PWM_TRIP_GPIO, F28335_GPIO_QSEL_ASYNC);
+    f28335_gpio_set_mux(F28335_PWM_TRIP_GPIO, F28335_GPIO_MUX_PERIPH1);
+    return true;
+}
+
+F28335_RAMFUNC(hal_pwm_write)
+void hal_pwm_write(const uint16_t duty[HAL_PWM_LEGS])
+{
+    int16_t i;
+    for (i = 0; i < HAL_PWM_LEGS; i++) {
+        F28335_EPWM(i)->CMPA = f28335_pwm_cmpa_for(duty[i], pwm_prd);
+    }
+}
+
+F28335_RAMFUNC(hal_pwm_force_off)
+void hal_pwm_force_off(void)
+{
+    pwm_sw_forced = true;
+    pwm_force_all();
+}
+
+void hal_pwm_enable(void)
+{
+    int16_t i;
+    pwm_sw_forced = false;
+    F28335_EALLOW();
+    for (i = 0; i < F28335_EPWM_COUNT; i++) {
+        F28335_EPWM(i)->TZCLR = (uint16_t)(EPWM_TZ_OST | EPWM_TZ_INT);
+    }
+    F28335_EDIS();
+}
+
+bool hal_pwm_is_off(void)
+{
+    int16_t i;
+    for (i = 0; i < F28335_EPWM_COUNT; i++) {
+        if ((F28335_EPWM(i)->TZFLG & EPWM_TZ_OST) != 0u) {
+            return true;
+        }
+    }
+    return false;
+}
+
+bool hal_pwm_hw_trip_seen(void)
+{
+    /* TZ1 is active low: the comparator still asserting, or a one-shot latch
+     * that software did not cause. */
+    if (!f28335_gpio_read(F28335_PWM_TRIP_GPIO)) {
+        return true;
+    }
+    return !pwm_sw_forced && hal_pwm_is_off();
+}

@@ -1,0 +1,153 @@
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "mock_hal_ctl.h"
+
+mock_record_t mock_rec;
+hal_adc_sample_t mock_adc;
+hal_encoder_sample_t mock_encoder;
+ctl_cmd_t mock_cmd;
+ctl_diag_t mock_diag;
+bool mock_params_valid;
+
+void mock_reset(void)
+{
+    int i;
+    memset(&mock_rec, 0, sizeof mock_rec);
+    memset(&mock_cmd, 0, sizeof mock_cmd);
+    memset(&mock_diag, 0, sizeof mock_diag);
+    for (i = 0; i < HAL_ADC_PHASES; i++) {
+        mock_adc.phase[i] = 2048u;
+    }
+    mock_adc.vdc = 2765u;
+    mock_encoder.elec_angle = 0u;
+    mock_encoder.mech_speed_q16 = 0;
+    mock_encoder.healthy = true;
+    mock_params_valid = true;
+}
+
+/* ---- HAL ---- */
+bool hal_adc_init(void) { return true; }
+
+bool hal_adc_read(hal_adc_sample_t *s)
+{
+    const bool fresh = mock_type(bool);
+    if (fresh) {
+        *s = mock_adc;
+    }
+    return fresh;
+}
+
+bool hal_encoder_init(uint32_t lines, uint16_t pole_pairs, uint32_t elec_offset)
+{
+    (void)lines;
+    (void)pole_pairs;
+    (void)elec_offset;
+    return true;
+}
+
+void hal_encoder_read(hal_encoder_sample_t *s) { *s = mock_encoder; }
+
+bool hal_pwm_init(uint32_t carrier_hz, uint32_t dead_time_ns)
+{
+    (void)carrier_hz;
+    (void)dead_time_ns;
+    return true;
+}
+
+void hal_pwm_write(const uint16_t duty[HAL_PWM_LEGS])
+{
+    int i;
+    mock_rec.write++;
+    for (i = 0; i < HAL_PWM_LEGS; i++) {
+        mock_rec.duty[i] = duty[i];
+    }
+}
+
+void hal_pwm_force_off(void)
+{
+    mock_rec.force_off++;
+    mock_rec.pwm_off = true;
+}
+
+void hal_pwm_enable(void)
+{
+    mock_rec.enable++;
+    mock_rec.pwm_off = false;
+}
+
+bool hal_pwm_is_off(void) { return mock_rec.pwm_off; }
+bool hal_pwm_hw_trip_seen(void) { return mock_rec.hw_trip; }
+
+/* ---- control core ---- */
+void ctl_params_default(ctl_params_t *p)
+{
+    memset(p, 0, sizeof *p);
+    p->pole_pairs = 3;
+    p->controller = CTL_CONTROLLER_DDC;
+    p->lambda_nm_per_wb = 0.5f;
+    p->sample_time_s = 1e-4f;
+}
+
+bool ctl_params_valid(const ctl_params_t *p)
+{
+    (void)p;
+    return mock_params_valid;
+}
+
+bool ctl_init(ctl_t *c, const ctl_params_t *p)
+{
+    memset(c, 0, sizeof *c);
+    c->params = *p;
+    return mock_type(bool);
+}
+
+void ctl_reset(ctl_t *c)
+{
+    (void)c;
+    mock_rec.ctl_reset++;
+}
+
+void ctl_request_params(ctl_t *c, const ctl_params_t *p)
+{
+    c->shadow = *p;
+    c->shadow_pending = true;
+    mock_rec.request_params++;
+    mock_rec.requested = *p;
+}
+
+void ctl_set_loop_mode(ctl_t *c, ctl_loop_mode_t mode)
+{
+    c->loop_mode = mode;
+    mock_rec.loop_mode = mode;
+}
+
+void ctl_set_speed_ref(ctl_t *c, ctl_q omega_e_pu)
+{
+    c->speed_ref = omega_e_pu;
+    mock_rec.speed_ref = omega_e_pu;
+}
+
+void ctl_set_torque_ref(ctl_t *c, ctl_q torque_pu)
+{
+    c->torque_ref_direct = torque_pu;
+    mock_rec.torque_ref = torque_pu;
+}
+
+void ctl_step(ctl_t *c, const ctl_meas_t *m, ctl_cmd_t *cmd)
+{
+    (void)c;
+    (void)m;
+    mock_rec.ctl_step++;
+    *cmd = mock_cmd;
+}
+
+const ctl_diag_t *ctl_diag(const ctl_t *c)
+{
+    (void)c;
+    return &mock_diag;
+}

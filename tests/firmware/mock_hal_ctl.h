@@ -1,0 +1,46 @@
+/*
+ * CMocka mocks of the HAL and of the control core API, for testing the drive
+ * application (firmware/app) alone.
+ *   hal_adc_read   returns mock() (queue with will_return); on true copies
+ *                  mock_adc into the sample
+ *   ctl_init       returns mock() (queue with will_return)
+ *   ctl_params_valid returns mock_params_valid
+ *   everything else records calls and arguments in mock_rec
+ */
+#ifndef MOCK_HAL_CTL_H
+#define MOCK_HAL_CTL_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "ctl.h"
+#include "hal_adc.h"
+#include "hal_encoder.h"
+#include "hal_pwm.h"
+
+typedef struct {
+    uint32_t force_off;
+    uint32_t enable;
+    uint32_t write;
+    uint16_t duty[HAL_PWM_LEGS];
+    bool pwm_off; /* returned by hal_pwm_is_off */
+    bool hw_trip; /* returned by hal_pwm_hw_trip_seen */
+    uint32_t ctl_reset;
+    uint32_t ctl_step;
+    uint32_t request_params;
+    ctl_params_t requested;
+    ctl_loop_mode_t loop_mode;
+    ctl_q speed_ref;
+    ctl_q torque_ref;
+} mock_record_t;
+
+extern mock_record_t mock_rec;
+extern hal_adc_sample_t mock_adc;
+extern hal_encoder_sample_t mock_encoder;
+extern ctl_cmd_t mock_cmd;   /* what ctl_step returns */
+extern ctl_diag_t mock_diag; /* what ctl_diag returns */
+extern bool mock_params_valid;
+
+void mock_reset(void);
+
+#endif

@@ -1,0 +1,341 @@
+/* Drive state machine (firmware/app/drive.c) against the mocked HAL and core. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include <cmocka.h>
+
+#include "drive.h"
+#include "mock_hal_ctl.h"
+
+static drive_t d;
+
+static int setup(void **state)
+{
+    ctl_params_t p;
+    (void)state;
+    mock_reset();
+    ctl_params_default(&p);
+    will_return(ctl_init, true);
+    drive_init(&d, &p);
+    return 0;
+}
+
+/* n control periods with fresh conversions */
+static void run_isr(int n)
+{
+    int i;
+    for (i = 0; i < n; i++) {
+        will_return(hal_adc_read, true);
+        drive_control_isr(&d);
+    }
+}
+
+static void calibrate(void) { run_isr(DRIVE_CALIBRATION_SAMPLES); }
+
+static void test_init_calibrates_with_pwm_off(void **state)
+{
+    (void)state;
+    assert_int_equal(d.state, DRIVE_STATE_CALIBRATE);
+    assert_true(mock_rec.force_off >= 1u);
+    run_isr(10);
+    assert_int_equal(d.state, DRIVE_STATE_CALIBRATE);
+    assert_int_equal(mock_rec.enable, 0u);
+    assert_int_equal(mock_rec.write, 0u);
+}
+
+static void test_calibration_averages_offsets(void **state)
+{
+    int n;
+    int i;
+    (void)state;
+    /* phase i alternates around 2048 + 10 i - 30 by +-5 counts */
+    for (n = 0; n < DRIVE_CALIBRATION_SAMPLES; n++) {
+        for (i = 0; i < HAL_ADC_PHASES; i++) {
+            mock_adc.phase[i] = (uint16_t)(2048 + 10 * i - 30 + ((n & 1) ? 5 : -5));
+        }
+        will_return(hal_adc_read, true);
+        drive_control_isr(&d);
+        if (n < DRIVE_CALIBRATION_SAMPLES - 1) {
+            assert_int_equal(d.state, DRIVE_STATE_CALIBRATE);
+        }
+    }
+    assert_int_equal(d.state, DRIVE_STATE_READY);
+    assert_true(d.calibrated);
+    for (i = 0; i < HAL_ADC_PHASES; i++) {
+        assert_int_equal(d.offset_counts[i], 2048 + 10 * i - 30);
+    }
+    assert_int_equal(mock_rec.enable, 0u); /* PWM stayed off */
+}
+
+static void test_offset_out_of_range_faults(void **state)
+{
+    (void)state;
+    mock_adc.phase[4] = (uint16_t)(2048 + DRIVE_OFFSET_TOLERANCE_COUNTS + 1);
+    calibrate();
+    assert_int_equal(d.state, DRIVE_STATE_FAULT);
+    assert_int_equal(d.fault, DRIVE_FAULT_ADC_OFFSET);
+    assert_true(mock_rec.pwm_off);
+    assert_false(d.calibrated);
+    /* clearing restarts the calibration instead of going READY */
+    mock_adc.phase[4] = 2048u;
+    drive_request_clear_fault(&d);
+    run_isr(1);
+    assert_int_equal(d.state, DRIVE_STATE_CALIBRATE);
+    assert_int_equal(d.fault, DRIVE_FAULT_NONE);
+    calibrate();
+    assert_int_equal(d.state, DRIVE_STATE_READY);
+}
+
+static void test_offset_low_side_faults(void **state)
+{
+    (void)state;
+    mock_adc.phase[0] = (uint16_t)(2048 - DRIVE_OFFSET_TOLERANCE_COUNTS - 1);
+    calibrate();
+    assert_int_equal(d.fault, DRIVE_FAULT_ADC_OFFSET);
+}
+
+static void test_run_refused_until_calibrated(void **state)
+{
+    (void)state;
+    drive_request_run(&d);
+    run_isr(1);
+    assert_int_equal(d.state, DRIVE_STATE_CALIBRATE);
+    assert_int_equal(d.run_refused, 1u);
+    calibrate();
+    /* the early request was dropped, not deferred */
+    assert_int_equal(d.state, DRIVE_STATE_READY);
+    run_isr(5);
+    assert_int_equal(d.state, DRIVE_STATE_READY);
+    assert_int_equal(mock_rec.enable, 0u);
+    assert_int_equal(mock_rec.ctl_step, 0u);
+}
+
+static void test_run_and_stop(void **state)
+{
+    int i;
+    (void)state;
+    calibrate();
+    mock_cmd.enable = true;
+    for (i = 0; i < CTL_PHASES; i++) {
+        mock_cmd.leg_duty[i] = CTL_Q(0.5);
+    }
+    mock_cmd.leg_duty[5] = CTL_Q(1.0);
+    drive_request_run(&d);
+    run_isr(1);
+    assert_int_equal(d.state, DRIVE_STATE_RUN);
+    assert_int_equal(mock_rec.enable, 1u);
+    assert_int_equal(mock_rec.ctl_reset, 1u);
+    assert_int_equal(mock_rec.ctl_step, 1u);
+    assert_int_equal(mock_rec.duty[0], 16384u);
+    assert_int_equal(mock_rec.duty[5], HAL_PWM_DUTY_ONE);
+    run_isr(3);
+    assert_int_equal(mock_rec.ctl_step, 4u);
+    assert_int_equal(mock_rec.write, 4u);
+
+    /* the core disabling its outputs switches everything off */
+    mock_cmd.enable = false;
+    run_isr(1);
+    assert_true(mock_rec.pwm_off);
+    mock_cmd.enable = true;
+
+    drive_request_stop(&d);
+    run_isr(1);
+    assert_int_equal(d.state, DRIVE_STATE_READY);
+    assert_true(mock_rec.pwm_off);
+}
+
+static void test_run_refused_without_encoder(void **state)
+{
+    (void)state;
+    calibrate();
+    mock_encoder.healthy = false;
+    drive_request_run(&d);
+    run_isr(1);
+    assert_int_equal(d.state, DRIVE_STATE_READY);
+    assert_int_equal(d.run_refused, 1u);
+    assert_int_equal(mock_rec.enable, 0u);
+}
+
+static void test_fault_forces_off_and_latches(void **state)
+{
+    uint32_t off_before;
+    (void)state;
+    calibrate();
+    mock_cmd.enable = true;
+    drive_request_run(&d);
+    run_isr(2);
+    assert_int_equal(d.state, DRIVE_STATE_RUN);
+
+    off_before = mock_rec.force_off;
+    mock_rec.hw_trip = true;
+    run_isr(1);
+    assert_int_equal(d.state, DRIVE_STATE_FAULT);
+    assert_int_equal(d.fault, DRIVE_FAULT_HW_TRIP);
+    assert_true(mock_rec.force_off > off_before);
+    assert_true(mock_rec.pwm_off);
+
+    /* latched: trip gone, still FAULT; run refused; PWM kept off */
+    mock_rec.hw_trip = false;
+    drive_request_run(&d);
+    run_isr(5);
+    assert_int_equal(d.state, DRIVE_STATE_FAULT);
+    assert_true(mock_rec.pwm_off);
+
+    /* clear refused while the trip input is active */
+    mock_rec.hw_trip = true;
+    drive_request_clear_fault(&d);
+    run_isr(1);
+    assert_int_equal(d.state, DRIVE_STATE_FAULT);
+    /* clear accepted when healthy, back to READY (calibrated) */
+    mock_rec.hw_trip = false;
+    drive_request_clear_fault(&d);
+    run_isr(1);
+    assert_int_equal(d.state, DRIVE_STATE_READY);
+    assert_int_equal(d.fault, DRIVE_FAULT_NONE);
+    assert_true(mock_rec.pwm_off); /* enabled only by a new run */
+}
+
+static void test_stale_clear_does_not_clear_later_fault(void **state)
+{
+    (void)state;
+    calibrate();
+    drive_request_clear_fault(&d); /* no fault yet: dropped */
+    run_isr(1);
+    assert_false(d.clear_requested);
+    drive_report_overrun(&d);
+    run_isr(3);
+    assert_int_equal(d.state, DRIVE_STATE_FAULT);
+    assert_int_equal(d.fault, DRIVE_FAULT_OVERRUN);
+}
+
+static void test_missing_conversion_faults_in_run(void **state)
+{
+    (void)state;
+    calibrate();
+    mock_cmd.enable = true;
+    drive_request_run(&d);
+    run_isr(1);
+    will_return(hal_adc_read, false);
+    drive_control_isr(&d);
+    assert_int_equal(d.state, DRIVE_STATE_FAULT);
+    assert_int_equal(d.fault, DRIVE_FAULT_ADC_MISSING);
+    assert_true(mock_rec.pwm_off);
+}
+
+static void test_overrun_and_encoder_faults(void **state)
+{
+    (void)state;
+    calibrate();
+    mock_cmd.enable = true;
+    drive_request_run(&d);
+    run_isr(1);
+    drive_report_overrun(&d);
+    assert_int_equal(d.state, DRIVE_STATE_FAULT);
+    assert_int_equal(d.fault, DRIVE_FAULT_OVERRUN);
+    assert_true(mock_rec.pwm_off);
+    /* a second fault keeps the first code */
+    drive_trip(&d, DRIVE_FAULT_HW_TRIP);
+    assert_int_equal(d.fault, DRIVE_FAULT_OVERRUN);
+
+    drive_request_clear_fault(&d);
+    run_isr(1);
+    assert_int_equal(d.state, DRIVE_STATE_READY);
+    drive_request_run(&d);
+    run_isr(1);
+    assert_int_equal(d.state, DRIVE_STATE_RUN);
+    mock_encoder.healthy = false;
+    run_isr(1);
+    assert_int_equal(d.fault, DRIVE_FAULT_ENCODER);
+    /* clear needs the encoder healthy again */
+    drive_request_clear_fault(&d);
+    run_isr(1);
+    assert_int_equal(d.state, DRIVE_STATE_FAULT);
+    mock_encoder.healthy = true;
+    drive_request_clear_fault(&d);
+    run_isr(1);
+    assert_int_equal(d.state, DRIVE_STATE_READY);
+}
+
+static void test_params_rejected_at_init(void **state)
+{
+    ctl_params_t p;
+    (void)state;
+    mock_reset();
+    ctl_params_default(&p);
+    will_return(ctl_init, false);
+    drive_init(&d, &p);
+    assert_int_equal(d.state, DRIVE_STATE_FAULT);
+    assert_int_equal(d.fault, DRIVE_FAULT_PARAMS);
+    assert_true(mock_rec.pwm_off);
+    drive_request_clear_fault(&d);
+    run_isr(3);
+    assert_int_equal(d.state, DRIVE_STATE_FAULT); /* not clearable */
+
+    /* a startup fault is not clearable either */
+    will_return(ctl_init, true);
+    drive_init(&d, &p);
+    drive_trip(&d, DRIVE_FAULT_STARTUP);
+    drive_request_clear_fault(&d);
+    run_isr(1);
+    assert_int_equal(d.state, DRIVE_STATE_FAULT);
+}
+
+static void test_request_params(void **state)
+{
+    ctl_params_t p = d.params_bg;
+    (void)state;
+    p.controller = CTL_CONTROLLER_MPTC13;
+    assert_true(drive_request_params(&d, &p));
+    assert_int_equal(mock_rec.request_params, 1u);
+    assert_int_equal(mock_rec.requested.controller, CTL_CONTROLLER_MPTC13);
+    mock_params_valid = false;
+    p.controller = CTL_CONTROLLER_MPTC49;
+    assert_false(drive_request_params(&d, &p));
+    assert_int_equal(mock_rec.request_params, 1u);
+    assert_int_equal(d.params_bg.controller, CTL_CONTROLLER_MPTC13);
+}
+
+static void test_duty_conversion(void **state)
+{
+    (void)state;
+    assert_int_equal(drive_duty_to_hal(CTL_Q(0.0)), 0u);
+    assert_int_equal(drive_duty_to_hal(CTL_Q(-0.25)), 0u);
+    assert_int_equal(drive_duty_to_hal(CTL_Q(0.5)), 16384u);
+    assert_int_equal(drive_duty_to_hal(CTL_Q(1.0)), 32768u);
+    assert_int_equal(drive_duty_to_hal(CTL_Q(1.5)), 32768u);
+}
+
+static void test_references(void **state)
+{
+    (void)state;
+    drive_set_speed_ref_rpm(&d, 3000.0f); /* 3000 r/min at Pn = 3 is 1.0 pu */
+    assert_int_equal(mock_rec.loop_mode, CTL_LOOP_SPEED);
+    assert_true(mock_rec.speed_ref > CTL_Q(0.999) && mock_rec.speed_ref < CTL_Q(1.001));
+    drive_set_torque_ref_nm(&d, 0.0f);
+    assert_int_equal(mock_rec.loop_mode, CTL_LOOP_TORQUE);
+    assert_int_equal(mock_rec.torque_ref, 0);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test_setup(test_init_calibrates_with_pwm_off, setup),
+        cmocka_unit_test_setup(test_calibration_averages_offsets, setup),
+        cmocka_unit_test_setup(test_offset_out_of_range_faults, setup),
+        cmocka_unit_test_setup(test_offset_low_side_faults, setup),
+        cmocka_unit_test_setup(test_run_refused_until_calibrated, setup),
+        cmocka_unit_test_setup(test_run_and_stop, setup),
+        cmocka_unit_test_setup(test_run_refused_without_encoder, setup),
+        cmocka_unit_test_setup(test_fault_forces_off_and_latches, setup),
+        cmocka_unit_test_setup(test_stale_clear_does_not_clear_later_fault, setup),
+        cmocka_unit_test_setup(test_missing_conversion_faults_in_run, setup),
+        cmocka_unit_test_setup(test_overrun_and_encoder_faults, setup),
+        cmocka_unit_test_setup(test_params_rejected_at_init, setup),
+        cmocka_unit_test_setup(test_request_params, setup),
+        cmocka_unit_test_setup(test_duty_conversion, setup),
+        cmocka_unit_test_setup(test_references, setup),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

@@ -1,0 +1,225 @@
+/* eQEP driver: register set-up, angle and speed at low and high speed, health. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include <cmocka.h>
+
+#include "f28335_hal.h"
+#include "hal_encoder.h"
+
+#define R (f28335_host_regs)
+#define LINES 2500u
+#define COUNTS (4u * LINES)
+#define PN 3u
+
+static int setup(void **state)
+{
+    (void)state;
+    f28335_host_regs_reset();
+    assert_true(hal_encoder_init(LINES, PN, 0u));
+    return 0;
+}
+
+static int32_t q16(double rev_s) { return (int32_t)(rev_s * 65536.0); }
+
+static void assert_near_i32(int32_t got, int32_t want, int32_t tol)
+{
+    const int32_t d = got - want;
+    if (d > tol || d < -tol) {
+        fail_msg("got %d want %d (tol %d)", (int)got, (int)want, (int)tol);
+    }
+}
+
+/* One unit period: position latched at poslat, capture period and status. */
+static void unit_event(uint32_t poslat, uint16_t cprd, uint16_t ctmr, uint16_t sts)
+{
+    R.eqep1.QPOSLAT = poslat;
+    R.eqep1.QCPRDLAT = cprd;
+    R.eqep1.QCTMRLAT = ctmr;
+    R.eqep1.QEPSTS = sts;
+    R.eqep1.QFLG = EQEP_UTO | EQEP_INT;
+}
+
+static void test_init_registers(void **state)
+{
+    (void)state;
+    assert_int_equal(R.eqep1.QDECCTL, 0u); /* quadrature count */
+    assert_int_equal(R.eqep1.QPOSMAX, COUNTS - 1u);
+    assert_int_equal(R.eqep1.QPOSINIT, 0u);
+    assert_int_equal(R.eqep1.QUPRD, 150000000u / 500u);
+    assert_int_equal(R.eqep1.QWDPRD, F28335_QEP_WATCHDOG_PRD);
+    assert_int_equal(R.eqep1.QCAPCTL, EQEP_QCAPCTL_CEN | (6u << 4) | 4u);
+    {
+        const uint16_t c = R.eqep1.QEPCTL;
+        assert_int_equal(c & EQEP_QEPCTL_QPEN, EQEP_QEPCTL_QPEN);
+        assert_int_equal(c & EQEP_QEPCTL_PCRM_MASK, 0u); /* reset on index */
+        assert_int_equal((c >> 4) & 3u, 1u);             /* latch on index rising edge */
+        assert_int_equal(c & EQEP_QEPCTL_UTE, EQEP_QEPCTL_UTE);
+        assert_int_equal(c & EQEP_QEPCTL_QCLM, EQEP_QEPCTL_QCLM);
+        assert_int_equal(c & EQEP_QEPCTL_WDE, EQEP_QEPCTL_WDE);
+    }
+    assert_int_equal(R.sysctrl.PCLKCR1 & PCLKCR1_EQEP1ENCLK, PCLKCR1_EQEP1ENCLK);
+    assert_int_equal(R.gpioctrl.GPAMUX2 & 0xFF00u, 0x5500u); /* GPIO20..23 on mux 1 */
+    assert_false(hal_encoder_init(0u, 3u, 0u));
+    assert_false(hal_encoder_init(2500u, 0u, 0u));
+}
+
+static void test_angle(void **state)
+{
+    hal_encoder_sample_t s;
+    (void)state;
+    R.eqep1.QEPSTS = EQEP_STS_FIMF;
+    R.eqep1.QPOSCNT = 0u;
+    hal_encoder_read(&s);
+    assert_int_equal(s.elec_angle, 0u);
+    assert_true(s.healthy);
+
+    /* a quarter mechanical turn is 3/4 electrical turn at Pn = 3 */
+    R.eqep1.QPOSCNT = COUNTS / 4u;
+    hal_encoder_read(&s);
+    assert_true(s.elec_angle >= 0xBFFFFFF0u && s.elec_angle <= 0xC0000010u);
+
+    /* one electrical turn (counts / 3, not an integer) wraps to ~0 */
+    R.eqep1.QPOSCNT = 3333u; /* 3333 * 3 / 10000 = 0.9999 turn */
+    hal_encoder_read(&s);
+    assert_true(s.elec_angle > 0xFFF00000u);
+
+    /* offset added modulo one turn */
+    assert_true(hal_encoder_init(LINES, PN, 0x40000000u));
+    R.eqep1.QEPSTS = EQEP_STS_FIMF;
+    R.eqep1.QPOSCNT = COUNTS / 4u;
+    hal_encoder_read(&s);
+    assert_true(s.elec_angle <= 0x00000010u || s.elec_angle >= 0xFFFFFFF0u);
+}
+
+static void test_high_speed_unit_timer(void **state)
+{
+    hal_encoder_sample_t s;
+    (void)state;
+    /* 50 rev/s: 500000 counts/s, 1000 counts per 2 ms, crossing the index */
+    unit_event(9500u, 0u, 0u, EQEP_STS_FIMF | EQEP_STS_QDF);
+    hal_encoder_read(&s);
+    assert_int_equal(R.eqep1.QCLR & EQEP_UTO, EQEP_UTO);
+    unit_event(500u, 75u, 10u, EQEP_STS_FIMF | EQEP_STS_QDF);
+    hal_encoder_read(&s);
+    assert_int_equal(s.mech_speed_q16, q16(50.0));
+    assert_false(f28335_qep_state()->use_capture);
+    /* reverse: -1000 counts per period */
+    unit_event(9500u, 75u, 10u, EQEP_STS_FIMF);
+    hal_encoder_read(&s);
+    assert_int_equal(s.mech_speed_q16, q16(-50.0));
+    assert_int_equal(f28335_qep_speed_unit(f28335_qep_state(), 1), q16(0.05));
+}
+
+static void test_low_speed_capture(void **state)
+{
+    hal_encoder_sample_t s;
+    (void)state;
+    /* 0.5 rev/s: 5000 counts/s; 16 counts take 3.2 ms = 7500 capture clocks
+     * at 150 MHz / 64. The unit-timer difference (10 counts / 2 ms) is coarse. */
+    unit_event(100u, 7500u, 100u, EQEP_STS_FIMF | EQEP_STS_QDF);
+    hal_encoder_read(&s);
+    unit_event(110u, 7500u, 100u, EQEP_STS_FIMF | EQEP_STS_QDF);
+    hal_encoder_read(&s);
+    assert_true(f28335_qep_state()->use_capture);
+    assert_near_i32(s.mech_speed_q16, q16(0.5), 10);
+    /* direction from QDF */
+    unit_event(100u, 7500u, 100u, EQEP_STS_FIMF);
+    hal_encoder_read(&s);
+    assert_near_i32(s.mech_speed_q16, q16(-0.5), 10);
+    /* decelerating: the running period bounds the estimate */
+    unit_event(100u, 7500u, 15000u, EQEP_STS_FIMF | EQEP_STS_QDF);
+    hal_encoder_read(&s);
+    assert_near_i32(s.mech_speed_q16, q16(0.25), 10);
+    /* capture overflow: standstill */
+    unit_event(100u, 7500u, 100u, EQEP_STS_FIMF | EQEP_STS_COEF);
+    hal_encoder_read(&s);
+    assert_int_equal(s.mech_speed_q16, 0);
+    assert_int_equal(R.eqep1.QEPSTS & EQEP_STS_COEF, EQEP_STS_COEF); /* written back to clear */
+    assert_true(s.healthy);                                          /* standing still is healthy */
+}
+
+static void test_switch_with_hysteresis(void **state)
+{
+    hal_encoder_sample_t s;
+    uint32_t pos = 0u;
+    (void)state;
+    unit_event(pos, 1000u, 10u, EQEP_STS_FIMF | EQEP_STS_QDF);
+    hal_encoder_read(&s);
+    /* 13.5 rev/s = 270 counts per unit: between thresholds, stays on capture */
+    pos += 270u;
+    unit_event(pos, 278u, 10u, EQEP_STS_FIMF | EQEP_STS_QDF);
+    hal_encoder_read(&s);
+    assert_true(f28335_qep_state()->use_capture);
+    /* 16 rev/s: switches to the unit timer */
+    pos += 320u;
+    unit_event(pos, 234u, 10u, EQEP_STS_FIMF | EQEP_STS_QDF);
+    hal_encoder_read(&s);
+    assert_false(f28335_qep_state()->use_capture);
+    assert_int_equal(s.mech_speed_q16, q16(16.0));
+    /* back to 13.5: stays on the unit timer */
+    pos += 270u;
+    unit_event(pos, 278u, 10u, EQEP_STS_FIMF | EQEP_STS_QDF);
+    hal_encoder_read(&s);
+    assert_false(f28335_qep_state()->use_capture);
+    /* 10 rev/s: back to capture */
+    pos += 200u;
+    unit_event(pos, 375u, 10u, EQEP_STS_FIMF | EQEP_STS_QDF);
+    hal_encoder_read(&s);
+    assert_true(f28335_qep_state()->use_capture);
+    assert_near_i32(s.mech_speed_q16, q16(10.0), 700);
+}
+
+static void test_health(void **state)
+{
+    hal_encoder_sample_t s;
+    (void)state;
+    R.eqep1.QEPSTS = 0u; /* no index yet */
+    hal_encoder_read(&s);
+    assert_false(s.healthy);
+    R.eqep1.QEPSTS = EQEP_STS_FIMF;
+    hal_encoder_read(&s);
+    assert_true(s.healthy);
+    /* watchdog at standstill: still healthy */
+    R.eqep1.QFLG = EQEP_WTO;
+    hal_encoder_read(&s);
+    assert_true(s.healthy);
+    /* position counter error: latched unhealthy */
+    R.eqep1.QFLG = EQEP_PCE;
+    hal_encoder_read(&s);
+    assert_false(s.healthy);
+    R.eqep1.QFLG = 0u;
+    hal_encoder_read(&s);
+    assert_false(s.healthy);
+}
+
+static void test_loss_of_edges_at_speed(void **state)
+{
+    hal_encoder_sample_t s;
+    (void)state;
+    unit_event(0u, 100u, 10u, EQEP_STS_FIMF | EQEP_STS_QDF);
+    hal_encoder_read(&s);
+    unit_event(1000u, 75u, 10u, EQEP_STS_FIMF | EQEP_STS_QDF);
+    hal_encoder_read(&s);
+    assert_true(s.healthy);
+    R.eqep1.QFLG = EQEP_WTO; /* no edge for 10 ms at 50 rev/s */
+    hal_encoder_read(&s);
+    assert_false(s.healthy);
+    assert_int_equal(s.mech_speed_q16, 0);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test_setup(test_init_registers, setup),
+        cmocka_unit_test_setup(test_angle, setup),
+        cmocka_unit_test_setup(test_high_speed_unit_timer, setup),
+        cmocka_unit_test_setup(test_low_speed_capture, setup),
+        cmocka_unit_test_setup(test_switch_with_hysteresis, setup),
+        cmocka_unit_test_setup(test_health, setup),
+        cmocka_unit_test_setup(test_loss_of_edges_at_speed, setup),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

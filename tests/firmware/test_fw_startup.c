@@ -1,0 +1,211 @@
+/*
+ * The F28335 firmware (start-up, control ISR, background loop) on the host:
+ * the real drive application and control core over the register-level HAL
+ * running against RAM register frames.
+ */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include <cmocka.h>
+
+#include "fw.h"
+
+#define R (f28335_host_regs)
+
+extern uint16_t fw_host_ramfuncs_load[4];
+extern uint16_t fw_host_ramfuncs_run[4];
+
+static int setup(void **state)
+{
+    (void)state;
+    f28335_host_regs_reset();
+    R.gpiodata.GPADAT = (uint32_t)1u << F28335_PWM_TRIP_GPIO; /* TZ1 inactive */
+    return 0;
+}
+
+/* One end of conversion: zero current on every phase, 540 V DC link. */
+static void adc_sequence_done(void)
+{
+    int i;
+    for (i = 0; i < 6; i++) {
+        R.adc.ADCRESULT[i] = (uint16_t)(2048u << 4);
+    }
+    R.adc.ADCRESULT[6] = (uint16_t)(2765u << 4);
+    R.adc.ADCST = ADC_ST_INT_SEQ1;
+}
+
+static void isr_periods(int n)
+{
+    int i;
+    for (i = 0; i < n; i++) {
+        adc_sequence_done();
+        fw_adc_isr();
+    }
+}
+
+/* Send a request over the emulated SCI-A and return the decoded reply. */
+static sxl_rx_t transact(uint16_t cmd, const uint16_t *payload, uint16_t len, sxl_frame_t *reply)
+{
+    uint16_t frame[SXL_MAX_FRAME];
+    uint16_t tx[256];
+    sxl_decoder_t dec;
+    uint16_t n = sxl_encode(cmd, payload, len, frame, (uint16_t)SXL_MAX_FRAME);
+    uint16_t i;
+    int pass;
+    sxl_rx_t r = SXL_RX_NONE;
+    assert_true(n > 0u);
+    f28335_host_sci_rx_inject(frame, n);
+    for (pass = 0; pass < 8; pass++) {
+        fw_background_step();
+    }
+    n = f28335_host_sci_tx_take(tx, 256u);
+    sxl_decoder_init(&dec);
+    for (i = 0u; i < n; i++) {
+        const sxl_rx_t x = sxl_decoder_push(&dec, tx[i], reply);
+        if (x != SXL_RX_NONE) {
+            r = x;
+        }
+    }
+    return r;
+}
+
+static void test_startup_configures_everything(void **state)
+{
+    int i;
+    (void)state;
+    assert_true(fw_startup());
+    /* vectors: SEQ1INT -> control ISR, everything else -> unexpected */
+    assert_ptr_equal(R.pievect.vector[PIE_VECTOR_INDEX(1u, 1u)], fw_adc_isr);
+    assert_ptr_equal(R.pievect.vector[PIE_VECTOR_INDEX(1u, 7u)], fw_unexpected_isr);
+    assert_ptr_equal(R.pievect.vector[13], fw_unexpected_isr);
+    assert_int_equal(R.piectrl.group[0].IER, 0x0001u);
+    assert_int_equal(f28335_host_core.ier, CPU_IER_INT1);
+    assert_int_equal(f28335_host_core.intm, 0u);
+    assert_int_equal(f28335_host_core.eallow, 0u);
+    /* clocks, flash, watchdog on at the end */
+    assert_int_equal(R.sysctrl.PLLCR, 10u);
+    assert_int_equal(R.flash.FBANKWAIT, 0x0505u);
+    assert_int_equal(R.sysctrl.WDCR, WDCR_ENABLE_DIV64);
+    for (i = 0; i < 4; i++) {
+        assert_int_equal(fw_host_ramfuncs_run[i], fw_host_ramfuncs_load[i]);
+    }
+    /* peripherals */
+    assert_int_equal(R.epwm[0].TBPRD, 7500u);
+    assert_int_equal(R.epwm[5].DBFED, 300u);
+    assert_int_equal(R.epwm[2].TZFRC & EPWM_TZ_OST, EPWM_TZ_OST);
+    assert_int_equal(R.adc.ADCMAXCONV, 6u);
+    assert_int_equal(R.eqep1.QPOSMAX, 4u * HAL_BOARD_ENCODER_LINES - 1u);
+    assert_int_equal(R.scia.SCILBAUD, 40u);
+    /* drive calibrating with PWM off */
+    assert_int_equal(fw_drive.state, DRIVE_STATE_CALIBRATE);
+}
+
+static void test_isr_calibrates_then_runs_on_serial_command(void **state)
+{
+    sxl_frame_t rep;
+    int i;
+    (void)state;
+    assert_true(fw_startup());
+    R.eqep1.QEPSTS = EQEP_STS_FIMF; /* index seen */
+    isr_periods(DRIVE_CALIBRATION_SAMPLES);
+    assert_int_equal(fw_drive.state, DRIVE_STATE_READY);
+    assert_int_equal(fw_drive.isr_count, (uint32_t)DRIVE_CALIBRATION_SAMPLES);
+    assert_int_equal(R.piectrl.PIEACK, 0x0001u); /* group 1 acknowledged */
+    assert_int_equal(R.adc.ADCTRL2 & ADC_CTRL2_RST_SEQ1, ADC_CTRL2_RST_SEQ1);
+
+    assert_int_equal(transact(SXL_CMD_RUN, NULL, 0u, &rep), SXL_RX_FRAME);
+    assert_int_equal(rep.cmd, SXL_CMD_RUN | SXL_REPLY);
+    assert_int_equal(rep.payload[0], SXL_OK);
+    for (i = 0; i < 6; i++) {
+        R.epwm[i].TZCLR = 0u;
+        R.epwm[i].CMPA = 0xFFFFu;
+    }
+    isr_periods(1);
+    assert_int_equal(fw_drive.state, DRIVE_STATE_RUN);
+    for (i = 0; i < 6; i++) {
+        assert_int_equal(R.epwm[i].TZCLR & EPWM_TZ_OST, EPWM_TZ_OST); /* outputs released */
+        assert_true(R.epwm[i].CMPA <= 7501u);                         /* a duty was written */
+    }
+    isr_periods(20);
+    assert_int_equal(fw_drive.state, DRIVE_STATE_RUN);
+
+    /* status over the link */
+    assert_int_equal(transact(SXL_CMD_GET_STATUS, NULL, 0u, &rep), SXL_RX_FRAME);
+    assert_int_equal(rep.payload[0], SXL_OK);
+    assert_int_equal(rep.payload[1 + SXL_ST_STATE], DRIVE_STATE_RUN);
+    assert_int_equal(rep.payload[1 + SXL_ST_FAULT], DRIVE_FAULT_NONE);
+    assert_int_equal(sxl_get_u32(&rep.payload[1 + SXL_ST_ISR_COUNT]),
+                     (uint32_t)DRIVE_CALIBRATION_SAMPLES + 21u);
+
+    /* stop */
+    assert_int_equal(transact(SXL_CMD_STOP, NULL, 0u, &rep), SXL_RX_FRAME);
+    isr_periods(1);
+    assert_int_equal(fw_drive.state, DRIVE_STATE_READY);
+}
+
+static void test_overrun_is_a_fault(void **state)
+{
+    (void)state;
+    assert_true(fw_startup());
+    R.eqep1.QEPSTS = EQEP_STS_FIMF;
+    isr_periods(DRIVE_CALIBRATION_SAMPLES);
+    assert_int_equal(fw_drive.state, DRIVE_STATE_READY);
+    f28335_host_cycles_per_read = FW_ISR_BUDGET_CYCLES + 1000u; /* a slow ISR */
+    R.epwm[1].TZFRC = 0u;
+    isr_periods(1);
+    assert_int_equal(fw_drive.state, DRIVE_STATE_FAULT);
+    assert_int_equal(fw_drive.fault, DRIVE_FAULT_OVERRUN);
+    assert_int_equal(fw_drive.isr_cycles_max, FW_ISR_BUDGET_CYCLES + 1000u);
+    assert_int_equal(R.epwm[1].TZFRC & EPWM_TZ_OST, EPWM_TZ_OST);
+}
+
+static void test_malformed_frames_counted(void **state)
+{
+    uint16_t bad[8];
+    sxl_frame_t rep;
+    uint16_t n;
+    int pass;
+    (void)state;
+    assert_true(fw_startup());
+    n = sxl_encode(SXL_CMD_PING, NULL, 0u, bad, 8u);
+    bad[n - 1u] ^= 0x55u; /* CRC error: dropped, no reply */
+    f28335_host_sci_rx_inject(bad, n);
+    for (pass = 0; pass < 4; pass++) {
+        fw_background_step();
+    }
+    assert_int_equal(f28335_host_sci_tx_take(bad, 8u), 0u);
+    assert_int_equal(transact(SXL_CMD_GET_STATUS, NULL, 0u, &rep), SXL_RX_FRAME);
+    assert_int_equal(sxl_get_u16(&rep.payload[1 + SXL_ST_RX_ERRORS]), 1u);
+    assert_int_equal(transact(SXL_CMD_PING, NULL, 0u, &rep), SXL_RX_FRAME);
+    assert_int_equal(rep.payload[1], SXL_VERSION);
+}
+
+static void test_unexpected_interrupt_and_startup_failure(void **state)
+{
+    (void)state;
+    assert_true(fw_startup());
+    R.epwm[0].TZFRC = 0u;
+    fw_unexpected_isr();
+    assert_int_equal(fw_state.unexpected_isr, 1u);
+    assert_int_equal(R.epwm[0].TZFRC & EPWM_TZ_OST, EPWM_TZ_OST);
+
+    f28335_host_regs_reset();
+    R.sysctrl.PLLSTS = PLLSTS_MCLKSTS; /* oscillator missing: limp mode */
+    assert_false(fw_startup());
+    assert_int_equal(fw_drive.state, DRIVE_STATE_FAULT);
+    assert_int_equal(fw_drive.fault, DRIVE_FAULT_STARTUP);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test_setup(test_startup_configures_everything, setup),
+        cmocka_unit_test_setup(test_isr_calibrates_then_runs_on_serial_command, setup),
+        cmocka_unit_test_setup(test_overrun_is_a_fault, setup),
+        cmocka_unit_test_setup(test_malformed_frames_counted, setup),
+        cmocka_unit_test_setup(test_unexpected_interrupt_and_startup_failure, setup),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

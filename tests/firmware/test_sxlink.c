@@ -1,0 +1,192 @@
+/* Serial protocol: CRC, encoder, decoder incl. malformed frames. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include <cmocka.h>
+
+#include "sxlink.h"
+
+static sxl_rx_t push_all(sxl_decoder_t *d, const uint16_t *b, uint16_t n, sxl_frame_t *f,
+                         int *frames)
+{
+    sxl_rx_t last = SXL_RX_NONE;
+    uint16_t i;
+    *frames = 0;
+    for (i = 0u; i < n; i++) {
+        const sxl_rx_t r = sxl_decoder_push(d, b[i], f);
+        if (r == SXL_RX_FRAME) {
+            (*frames)++;
+        }
+        if (r != SXL_RX_NONE) {
+            last = r;
+        }
+    }
+    return last;
+}
+
+static void test_crc_check_value(void **state)
+{
+    /* CRC-16/CCITT-FALSE check value of "123456789" */
+    const uint16_t s[9] = {'1', '2', '3', '4', '5', '6', '7', '8', '9'};
+    (void)state;
+    assert_int_equal(sxl_crc16(s, 9u, 0xFFFFu), 0x29B1u);
+    assert_int_equal(sxl_crc16(s, 0u, 0xFFFFu), 0xFFFFu);
+}
+
+static void test_encode_layout(void **state)
+{
+    const uint16_t payload[4] = {0x98u, 0x3Au, 0x00u, 0x00u};
+    uint16_t out[SXL_MAX_FRAME];
+    const uint16_t n = sxl_encode(SXL_CMD_SET_SPEED, payload, 4u, out, (uint16_t)SXL_MAX_FRAME);
+    (void)state;
+    assert_int_equal(n, 9u);
+    assert_int_equal(out[0], 0xA5u);
+    assert_int_equal(out[1], 5u); /* CMD + 4 payload bytes */
+    assert_int_equal(out[2], SXL_CMD_SET_SPEED);
+    assert_int_equal(out[3], 0x98u);
+    assert_int_equal(((uint32_t)out[7] << 8) | out[8], sxl_crc16(&out[1], 6u, 0xFFFFu));
+    /* bad requests */
+    assert_int_equal(sxl_encode(0x100u, NULL, 0u, out, 10u), 0u);
+    assert_int_equal(sxl_encode(1u, payload, 4u, out, 8u), 0u); /* no room */
+    {
+        uint16_t big[SXL_MAX_PAYLOAD + 1u] = {0};
+        assert_int_equal(sxl_encode(1u, big, (uint16_t)(SXL_MAX_PAYLOAD + 1u), out, 200u), 0u);
+        big[0] = 0x100u; /* not a byte */
+        assert_int_equal(sxl_encode(1u, big, 1u, out, (uint16_t)SXL_MAX_FRAME), 0u);
+    }
+}
+
+static void test_round_trip_all_lengths(void **state)
+{
+    uint16_t payload[SXL_MAX_PAYLOAD];
+    uint16_t out[SXL_MAX_FRAME];
+    sxl_decoder_t d;
+    sxl_frame_t f;
+    uint16_t len;
+    (void)state;
+    sxl_decoder_init(&d);
+    for (len = 0u; len <= SXL_MAX_PAYLOAD; len++) {
+        uint16_t i;
+        int frames;
+        uint16_t n;
+        for (i = 0u; i < len; i++) {
+            payload[i] = (uint16_t)((i * 37u + len) & 0xFFu);
+        }
+        n = sxl_encode(0x42u, payload, len, out, (uint16_t)SXL_MAX_FRAME);
+        assert_int_equal(n, len + 5u);
+        assert_int_equal(push_all(&d, out, n, &f, &frames), SXL_RX_FRAME);
+        assert_int_equal(frames, 1);
+        assert_int_equal(f.cmd, 0x42u);
+        assert_int_equal(f.len, len);
+        for (i = 0u; i < len; i++) {
+            assert_int_equal(f.payload[i], payload[i]);
+        }
+    }
+    assert_int_equal(d.errors, 0u);
+}
+
+static void test_noise_before_frame_and_back_to_back(void **state)
+{
+    uint16_t buf[3 + 2u * SXL_MAX_FRAME];
+    sxl_decoder_t d;
+    sxl_frame_t f;
+    int frames;
+    uint16_t n = 0u;
+    (void)state;
+    buf[n++] = 0x00u;
+    buf[n++] = 0x13u;
+    buf[n++] = 0xFFu;
+    n = (uint16_t)(n + sxl_encode(SXL_CMD_PING, NULL, 0u, &buf[n], (uint16_t)SXL_MAX_FRAME));
+    n = (uint16_t)(n + sxl_encode(SXL_CMD_RUN, NULL, 0u, &buf[n], (uint16_t)SXL_MAX_FRAME));
+    sxl_decoder_init(&d);
+    assert_int_equal(push_all(&d, buf, n, &f, &frames), SXL_RX_FRAME);
+    assert_int_equal(frames, 2);
+    assert_int_equal(f.cmd, SXL_CMD_RUN);
+}
+
+static void test_crc_error_and_recovery(void **state)
+{
+    uint16_t out[SXL_MAX_FRAME];
+    sxl_decoder_t d;
+    sxl_frame_t f;
+    int frames;
+    const uint16_t payload[2] = {1u, 2u};
+    uint16_t n = sxl_encode(0x10u, payload, 2u, out, (uint16_t)SXL_MAX_FRAME);
+    (void)state;
+    sxl_decoder_init(&d);
+    out[4] ^= 0x01u; /* corrupt a payload bit */
+    assert_int_equal(push_all(&d, out, n, &f, &frames), SXL_RX_ERR_CRC);
+    assert_int_equal(frames, 0);
+    assert_int_equal(d.errors, 1u);
+    out[4] ^= 0x01u;
+    out[n - 1u] ^= 0x80u; /* corrupt the CRC itself */
+    assert_int_equal(push_all(&d, out, n, &f, &frames), SXL_RX_ERR_CRC);
+    out[n - 1u] ^= 0x80u;
+    assert_int_equal(push_all(&d, out, n, &f, &frames), SXL_RX_FRAME); /* next good frame decodes */
+    assert_int_equal(d.errors, 2u);
+}
+
+static void test_bad_length_and_bytes(void **state)
+{
+    sxl_decoder_t d;
+    sxl_frame_t f;
+    int frames;
+    const uint16_t zero_len[2] = {0xA5u, 0x00u};
+    const uint16_t long_len[2] = {0xA5u, (uint16_t)(SXL_MAX_PAYLOAD + 2u)};
+    (void)state;
+    sxl_decoder_init(&d);
+    assert_int_equal(push_all(&d, zero_len, 2u, &f, &frames), SXL_RX_ERR_LENGTH);
+    assert_int_equal(push_all(&d, long_len, 2u, &f, &frames), SXL_RX_ERR_LENGTH);
+    assert_int_equal(sxl_decoder_push(&d, 0x1A5u, &f), SXL_RX_ERR_BYTE);
+    assert_int_equal(d.errors, 3u);
+    /* truncated frame, then reset by the caller (gap), then a good one */
+    {
+        uint16_t out[SXL_MAX_FRAME];
+        const uint16_t n = sxl_encode(SXL_CMD_STOP, NULL, 0u, out, (uint16_t)SXL_MAX_FRAME);
+        assert_true(sxl_decoder_idle(&d));
+        assert_int_equal(push_all(&d, out, (uint16_t)(n - 2u), &f, &frames), SXL_RX_NONE);
+        assert_false(sxl_decoder_idle(&d));
+        sxl_decoder_reset(&d);
+        assert_true(sxl_decoder_idle(&d));
+        assert_int_equal(push_all(&d, out, n, &f, &frames), SXL_RX_FRAME);
+        assert_int_equal(f.cmd, SXL_CMD_STOP);
+    }
+}
+
+static void test_fields(void **state)
+{
+    uint16_t b[4];
+    (void)state;
+    sxl_put_i32(b, -15000);
+    assert_int_equal(sxl_get_i32(b), -15000);
+    assert_int_equal(b[0], 0x68u); /* little-endian: 0xFFFFC568 */
+    assert_int_equal(b[3], 0xFFu);
+    sxl_put_i32(b, INT32_MIN);
+    assert_int_equal(sxl_get_i32(b), INT32_MIN);
+    sxl_put_i32(b, INT32_MAX);
+    assert_int_equal(sxl_get_i32(b), INT32_MAX);
+    sxl_put_u32(b, 0xDEADBEEFu);
+    assert_int_equal(sxl_get_u32(b), 0xDEADBEEFu);
+    sxl_put_u16(b, 0xBEEFu);
+    assert_int_equal(b[0], 0xEFu);
+    assert_int_equal(sxl_get_u16(b), 0xBEEFu);
+    for (int i = 0; i < 4; i++) {
+        assert_true(b[i] <= 0xFFu); /* bytes stay within 0..255 */
+    }
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_crc_check_value),
+        cmocka_unit_test(test_encode_layout),
+        cmocka_unit_test(test_round_trip_all_lengths),
+        cmocka_unit_test(test_noise_before_frame_and_back_to_back),
+        cmocka_unit_test(test_crc_error_and_recovery),
+        cmocka_unit_test(test_bad_length_and_bytes),
+        cmocka_unit_test(test_fields),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
