@@ -2,7 +2,7 @@
 # Installs the Debian packages the build, the tests and the report need (idempotent).
 # Runs apt-get directly as root, through sudo otherwise.
 set -euo pipefail
-packages=(cmake gcc make libcmocka-dev clang-format cppcheck gcc-arm-none-eabi
+packages=(cmake gcc make libcmocka-dev clang-format cppcheck gcc-arm-none-eabi clang libclang-rt-14-dev
           libnewlib-arm-none-eabi python3 python3-matplotlib python3-numpy valgrind)
 missing=()
 for p in "${packages[@]}"; do
