@@ -57,6 +57,7 @@ typedef struct {
     float l_xy_h; /* x-y (leakage) inductance */
     float pm_flux_wb;
     int16_t pole_pairs;
+    float inertia_kg_m2; /* used by the protection's stopped-encoder check */
     /* control */
     float sample_time_s;
     ctl_controller_t controller;

@@ -15,6 +15,7 @@ void ctl_params_default(ctl_params_t *p)
     p->l_xy_h = 0.010f;
     p->pm_flux_wb = 0.225f;
     p->pole_pairs = 3;
+    p->inertia_kg_m2 = 0.01f;
     p->sample_time_s = 1.0e-4f;
     p->controller = CTL_CONTROLLER_DDC;
     p->lambda_nm_per_wb = 100.0f;
@@ -56,6 +57,9 @@ static bool ctl_apply_params(ctl_t *c, const ctl_params_t *p)
         return false;
     }
     if (!(p->lambda_nm_per_wb >= 0.0f && p->lambda_nm_per_wb <= 2000.0f)) {
+        return false;
+    }
+    if (!(p->inertia_kg_m2 > 0.0f && p->inertia_kg_m2 < 1000.0f)) {
         return false;
     }
     if (!(p->torque_limit_nm > 0.0f && p->torque_limit_nm < 500.0f)) {

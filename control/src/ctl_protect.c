@@ -110,14 +110,16 @@ static uint16_t check_encoder(ctl_protect_t *p, const ctl_protect_input_t *in)
 {
     const ctl_protect_limits_t *l = &p->limits;
     uint16_t f = 0u;
-    if (!in->encoder_healthy) {
-        f |= CTL_FAULT_ENCODER;
-    }
     if (!in->running) {
+        /* at standstill the index may not have been seen yet: the drive refuses to start
+         * instead (an unhealthy encoder only faults while the drive runs) */
         p->have_last = false;
         p->expected_speed = CTL_Q(0.0);
         p->expected_angle = CTL_Q(0.0);
-        return f;
+        return 0u;
+    }
+    if (!in->encoder_healthy) {
+        f |= CTL_FAULT_ENCODER;
     }
     if (p->have_last) {
         const ctl_q step = turn_difference(in->theta_e, p->last_theta);
