@@ -27,6 +27,32 @@
 #include "ctl_speed_pi.h"
 
 #define CTL_PHASES 6
+
+/* Stage boundaries of ctl_step reported to an optional hook (execution-time profiling).
+ * CTL_PROFILE=0 compiles the calls away; otherwise an unset hook costs one test per stage. */
+#ifndef CTL_PROFILE
+#define CTL_PROFILE 1
+#endif
+
+typedef enum {
+    CTL_STAGE_TRANSFORMS = 0, /* VSD, Park, speed loop, flux reference done */
+    CTL_STAGE_PREDICT = 1,    /* k+1 prediction and the k+2 free response done */
+    CTL_STAGE_TABLE = 2,      /* sectors and lookup tables done (immediate for MPTC) */
+    CTL_STAGE_SEARCH = 3      /* search and command done */
+} ctl_stage_t;
+
+typedef void (*ctl_stage_hook_t)(int16_t stage);
+
+#if CTL_PROFILE
+#define CTL_STAGE_MARK(hook, stage)                                                                \
+    do {                                                                                           \
+        if ((hook) != 0) {                                                                         \
+            (hook)((int16_t)(stage));                                                              \
+        }                                                                                          \
+    } while (0)
+#else
+#define CTL_STAGE_MARK(hook, stage) ((void)0)
+#endif
 #define CTL_DUTY_LEVELS_MAX 11 /* = CTL_DDC_LEVELS_MAX */
 
 typedef enum {
@@ -120,7 +146,8 @@ typedef struct {
     int16_t applied_vector; /* command in force during the current period */
     ctl_q applied_duty;
     ctl_diag_t diag;
-    bool initialised; /* false: parameters were never valid, every command is all-off */
+    bool initialised;            /* false: parameters were never valid, every command is all-off */
+    ctl_stage_hook_t stage_hook; /* 0: none */
 } ctl_t;
 
 /* Paper's machine and controller with the brief's assumed values. */
@@ -147,5 +174,8 @@ void ctl_set_torque_ref(ctl_t *c, ctl_q torque_pu);
 void ctl_step(ctl_t *c, const ctl_meas_t *m, ctl_cmd_t *cmd);
 
 const ctl_diag_t *ctl_diag(const ctl_t *c);
+
+/* Stage boundaries of every following ctl_step go to hook (0 removes it). */
+void ctl_set_stage_hook(ctl_t *c, ctl_stage_hook_t hook);
 
 #endif /* CTL_H */

@@ -32,6 +32,7 @@ typedef struct {
     const ctl_q *levels; /* duty levels, 1 first, 0 last */
     int16_t n_levels;    /* 2..CTL_DDC_LEVELS_MAX */
     bool torque_guard;   /* improvement: flux weighting limited to one duty step of torque */
+    void (*stage_hook)(int16_t stage); /* profiling: told when the table stage ends (0: none) */
 } ctl_ddc_config_t;
 
 void ctl_ddc_select(const ctl_horizon_t *h, const ctl_ddc_flux_t *flux, const ctl_ddc_config_t *cfg,

@@ -129,6 +129,7 @@ bool ctl_init(ctl_t *c, const ctl_params_t *p)
     c->speed_ref = CTL_Q(0.0);
     c->torque_ref_direct = CTL_Q(0.0);
     c->speed_pi.integ = CTL_Q(0.0);
+    c->stage_hook = 0;
     ctl_reset(c);
     if (!ctl_apply_params(c, p)) {
         return false;
@@ -149,6 +150,7 @@ void ctl_set_loop_mode(ctl_t *c, ctl_loop_mode_t mode) { c->loop_mode = mode; }
 void ctl_set_speed_ref(ctl_t *c, ctl_q omega_e_pu) { c->speed_ref = omega_e_pu; }
 void ctl_set_torque_ref(ctl_t *c, ctl_q torque_pu) { c->torque_ref_direct = torque_pu; }
 const ctl_diag_t *ctl_diag(const ctl_t *c) { return &c->diag; }
+void ctl_set_stage_hook(ctl_t *c, ctl_stage_hook_t hook) { c->stage_hook = hook; }
 
 static void command_off(ctl_cmd_t *cmd)
 {
@@ -231,6 +233,7 @@ void ctl_step(ctl_t *c, const ctl_meas_t *m, ctl_cmd_t *cmd)
         torque_ref = ctl_clamp(c->torque_ref_direct, -c->torque_limit_pu, c->torque_limit_pu);
     }
     flux_ref = ctl_flux_ref_run(&c->flux_ref, torque_ref);
+    CTL_STAGE_MARK(c->stage_hook, CTL_STAGE_TRANSFORMS);
 
     /* Delay compensation: k -> k+1 under the command already in force (period average). */
     applied = &ctl_vector_vsd[c->applied_vector];
@@ -269,6 +272,7 @@ void ctl_step(ctl_t *c, const ctl_meas_t *m, ctl_cmd_t *cmd)
     h.flux_ref = flux_ref;
     h.lambda = c->lambda_pu;
     ctl_horizon_prepare(&h);
+    CTL_STAGE_MARK(c->stage_hook, CTL_STAGE_PREDICT);
 
     if (c->params.controller == CTL_CONTROLLER_DDC) {
         ctl_ddc_flux_t f;
@@ -283,10 +287,17 @@ void ctl_step(ctl_t *c, const ctl_meas_t *m, ctl_cmd_t *cmd)
         cfg.levels = c->duty_level;
         cfg.n_levels = c->params.duty_levels;
         cfg.torque_guard = c->params.ddc_torque_guard;
+#if CTL_PROFILE
+        cfg.stage_hook = c->stage_hook;
+#else
+        cfg.stage_hook = 0;
+#endif
         ctl_ddc_select(&h, &f, &cfg, &choice);
     } else if (c->params.controller == CTL_CONTROLLER_MPTC49) {
+        CTL_STAGE_MARK(c->stage_hook, CTL_STAGE_TABLE);
         ctl_mptc_select(&h, ctl_mptc49_vectors, CTL_MPTC49_CANDIDATES, c->applied_vector, &choice);
     } else {
+        CTL_STAGE_MARK(c->stage_hook, CTL_STAGE_TABLE);
         ctl_mptc_select(&h, ctl_mptc13_vectors, CTL_MPTC13_CANDIDATES, c->applied_vector, &choice);
     }
 
@@ -309,4 +320,5 @@ void ctl_step(ctl_t *c, const ctl_meas_t *m, ctl_cmd_t *cmd)
     c->diag.xy_sector = choice.xy_sector;
     c->diag.candidates = choice.candidates;
     c->diag.braking = choice.braking;
+    CTL_STAGE_MARK(c->stage_hook, CTL_STAGE_SEARCH);
 }

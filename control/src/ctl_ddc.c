@@ -79,6 +79,9 @@ void ctl_ddc_select(const ctl_horizon_t *h, const ctl_ddc_flux_t *flux, const ct
         const int16_t lower_flux = (flux->psi_mag_sq >= ctl_mul(h->flux_ref, h->flux_ref)) ? 1 : 0;
         vector = ctl_ddc_table2_flux[sector][torque_half][lower_flux][xy_sector];
     }
+    if (cfg->stage_hook != 0) {
+        cfg->stage_hook(2); /* CTL_STAGE_TABLE */
+    }
     duty_search(h, cfg, vector, &zero, out);
     out->candidates = cfg->n_levels;
     out->flux_sector = sector;

@@ -2,7 +2,9 @@
 
 #include "ctl_pu.h"
 #include "hal_board.h"
+#include "hal_cycles.h"
 #include "hal_pwm.h"
+#include "profile.h"
 
 static void drive_enter_fault(drive_t *d, drive_fault_t fault)
 {
@@ -39,6 +41,9 @@ void drive_init(drive_t *d, const ctl_params_t *p)
     d->vdc_pu_per_count = ctl_from_float((float)(HAL_BOARD_VDC_V_PER_COUNT / CTL_BASE_VOLTAGE_V));
     d->omega_pu_per_rev_s =
         ctl_from_float((float)(CTL_TWO_PI / CTL_BASE_OMEGA_RAD_S) * (float)p->pole_pairs);
+    d->isr_latency_cycles = 0u;
+    prof_init((uint32_t)((float)hal_cycles_per_second() * p->sample_time_s + 0.5f),
+              hal_cycles_per_second());
     hal_pwm_force_off();
     if (!ctl_init(&d->ctl, p)) {
         drive_enter_fault(d, DRIVE_FAULT_PARAMS);
@@ -109,6 +114,7 @@ static void drive_run_step(drive_t *d)
 {
     uint16_t duty[HAL_PWM_LEGS];
     int16_t i;
+    prof_mark(PROF_ADC);
     ctl_step(&d->ctl, &d->meas, &d->cmd);
     if (!d->cmd.enable) {
         hal_pwm_force_off();
@@ -118,9 +124,19 @@ static void drive_run_step(drive_t *d)
         duty[i] = drive_duty_to_hal(d->cmd.leg_duty[i]);
     }
     hal_pwm_write(duty);
+    prof_mark(PROF_PWM);
 }
 
+static void drive_control_step(drive_t *d);
+
 void drive_control_isr(drive_t *d)
+{
+    prof_begin(d->isr_latency_cycles);
+    drive_control_step(d);
+    prof_end();
+}
+
+static void drive_control_step(drive_t *d)
 {
     const bool fresh = hal_adc_read(&d->adc);
     hal_encoder_read(&d->encoder);
@@ -220,7 +236,11 @@ void drive_trip(drive_t *d, drive_fault_t fault)
     }
 }
 
-void drive_report_overrun(drive_t *d) { drive_trip(d, DRIVE_FAULT_OVERRUN); }
+void drive_report_overrun(drive_t *d)
+{
+    prof_count_overrun();
+    drive_trip(d, DRIVE_FAULT_OVERRUN);
+}
 void drive_request_stop(drive_t *d) { d->stop_requested = true; }
 void drive_request_clear_fault(drive_t *d) { d->clear_requested = true; }
 

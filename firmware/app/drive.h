@@ -77,6 +77,9 @@ typedef struct {
     /* ISR timing, filled by the platform's ISR wrapper (0 where unused) */
     uint32_t isr_cycles_last;
     uint32_t isr_cycles_max;
+    /* period start to ISR entry, set by the platform before each drive_control_isr call
+     * (cycles; 0 where it cannot be measured); goes into the profile (profile.h) */
+    uint32_t isr_latency_cycles;
 } drive_t;
 
 /* Configure the controller; HAL peripherals must be initialised already. */

@@ -2,6 +2,7 @@
 
 #include "ctl_pu.h"
 #include "hal_pwm.h"
+#include "profile.h"
 
 /* x rounded to the nearest integer and saturated to int32. */
 static int32_t float_to_i32(float x)
@@ -51,6 +52,23 @@ void drive_link_status(const drive_t *d, uint16_t rx_errors, uint16_t *out)
     sxl_put_u16(&out[SXL_ST_RX_ERRORS], rx_errors);
 }
 
+void drive_link_profile(uint16_t stage, uint16_t *out)
+{
+    const prof_t *p = &drive_profile;
+    const prof_stat_t *st = &p->stage[stage % (uint16_t)PROF_STAGES];
+    out[SXL_PF_STAGE] = (uint16_t)(stage & 0xFFu);
+    sxl_put_u32(&out[SXL_PF_LAST], st->last);
+    sxl_put_u32(&out[SXL_PF_MIN], st->min);
+    sxl_put_u32(&out[SXL_PF_MAX], st->max);
+    sxl_put_u32(&out[SXL_PF_MEAN], prof_mean(st));
+    sxl_put_u32(&out[SXL_PF_PERIOD], p->period_cycles);
+    sxl_put_u32(&out[SXL_PF_READ_COST], p->read_cost);
+    sxl_put_u16(&out[SXL_PF_CYCLES_PER_US], (uint16_t)p->cycles_per_us);
+    sxl_put_u16(&out[SXL_PF_LOAD_LAST], p->load_permille_last);
+    sxl_put_u16(&out[SXL_PF_LOAD_MAX], p->load_permille_max);
+    sxl_put_u32(&out[SXL_PF_OVERRUNS], p->overruns);
+}
+
 static uint16_t handle_set_controller(drive_t *d, const sxl_frame_t *req)
 {
     ctl_params_t p;
@@ -90,6 +108,16 @@ void drive_link_handle(drive_t *d, const sxl_frame_t *req, sxl_frame_t *reply, u
         }
         drive_link_status(d, rx_errors, &reply->payload[1]);
         reply->len = (uint16_t)(1u + SXL_ST_SIZE);
+        break;
+    case SXL_CMD_GET_PROFILE:
+        if (req->len != 1u) {
+            result = SXL_ERR_LENGTH;
+        } else if (req->payload[0] >= (uint16_t)PROF_STAGES) {
+            result = SXL_ERR_VALUE;
+        } else {
+            drive_link_profile(req->payload[0], &reply->payload[1]);
+            reply->len = (uint16_t)(1u + SXL_PF_SIZE);
+        }
         break;
     case SXL_CMD_SET_SPEED: {
         int32_t v;

@@ -20,6 +20,9 @@
  * rx_errors: malformed frames seen by the receiver, reported in the status. */
 void drive_link_handle(drive_t *d, const sxl_frame_t *req, sxl_frame_t *reply, uint16_t rx_errors);
 
+/* Profile payload of one stage (SXL_PF_*); out must hold SXL_PF_SIZE bytes. */
+void drive_link_profile(uint16_t stage, uint16_t *out);
+
 /* Status payload as sent in the reply to SXL_CMD_GET_STATUS (after the
  * result byte); out must hold SXL_ST_SIZE bytes. */
 void drive_link_status(const drive_t *d, uint16_t rx_errors, uint16_t *out);

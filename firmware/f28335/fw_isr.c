@@ -18,6 +18,8 @@ F28335_INTERRUPT void fw_adc_isr(void)
     const uint32_t t0 = hal_cycles_now();
     uint32_t dt;
 
+    /* period start (counter zero, ADC start) to here: conversion plus interrupt entry */
+    fw_drive.isr_latency_cycles = f28335_pwm_time_base();
     drive_control_isr(&fw_drive);
 
     dt = (uint32_t)(hal_cycles_now() - t0);

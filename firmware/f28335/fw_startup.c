@@ -11,6 +11,7 @@
 #include <stdint.h>
 
 #include "fw.h"
+#include "profile.h"
 #include "hal_adc.h"
 #include "hal_cycles.h"
 #include "hal_encoder.h"
@@ -83,6 +84,7 @@ bool fw_startup(void)
     sxl_decoder_init(&fw_state.rx);
 
     drive_init(&fw_drive, &p);
+    ctl_set_stage_hook(&fw_drive.ctl, prof_ctl_stage); /* stage timing (profile.h) */
     if (!fw_state.clock_ok || !hal_ok) {
         /* Never run on a limp-mode clock or a half-configured inverter; the
          * link stays up to report it. */

@@ -25,8 +25,9 @@
  * a result byte. */
 #define SXL_CMD_PING 0x01u
 #define SXL_CMD_GET_STATUS 0x02u
-#define SXL_CMD_SET_SPEED 0x10u  /* int32 speed reference, 0.1 r/min */
-#define SXL_CMD_SET_TORQUE 0x11u /* int32 torque reference, mN*m */
+#define SXL_CMD_GET_PROFILE 0x03u /* uint8 stage (0..7) -> SXL_PF_* reply */
+#define SXL_CMD_SET_SPEED 0x10u   /* int32 speed reference, 0.1 r/min */
+#define SXL_CMD_SET_TORQUE 0x11u  /* int32 torque reference, mN*m */
 #define SXL_CMD_RUN 0x12u
 #define SXL_CMD_STOP 0x13u
 #define SXL_CMD_CLEAR_FAULT 0x14u
@@ -59,6 +60,22 @@
 #define SXL_ST_ISR_MAX 28u    /* uint32 longest ISR, CPU cycles */
 #define SXL_ST_RX_ERRORS 32u  /* uint16 malformed frames received */
 #define SXL_ST_SIZE 34u
+/* Profile payload (reply to SXL_CMD_GET_PROFILE, after the result byte); cycles of the
+ * ISR's counter, see firmware/app/profile.h. */
+#define SXL_PF_STAGE 0u          /* uint8 stage echoed */
+#define SXL_PF_LAST 1u           /* uint32 */
+#define SXL_PF_MIN 5u            /* uint32 */
+#define SXL_PF_MAX 9u            /* uint32 */
+#define SXL_PF_MEAN 13u          /* uint32 running mean */
+#define SXL_PF_PERIOD 17u        /* uint32 control period, cycles */
+#define SXL_PF_READ_COST 21u     /* uint32 subtracted measurement cost, cycles */
+#define SXL_PF_CYCLES_PER_US 25u /* uint16 */
+#define SXL_PF_LOAD_LAST 27u     /* uint16 per mille of the period */
+#define SXL_PF_LOAD_MAX 29u      /* uint16 per mille */
+#define SXL_PF_OVERRUNS 31u      /* uint32 */
+#define SXL_PF_SIZE 35u
+#define SXL_PF_STAGES 8u
+
 #define SXL_FLAG_ENCODER_OK 0x01u
 #define SXL_FLAG_PWM_OFF 0x02u
 #define SXL_FLAG_PARAMS_PENDING 0x04u

@@ -60,7 +60,7 @@ static int usage(const char *why)
 {
     return fail(EXIT_USAGE,
                 "%s (usage: sixphase-link [-d DEVICE] [-b BAUD] [-t MS] [-n] "
-                "ping|status|run|stop|clear|speed RPM|torque NM|controller ddc|mptc49|mptc13 "
+                "ping|status|profile|run|stop|clear|speed RPM|torque NM|controller ddc|mptc49|mptc13 "
                 "LAMBDA|decode HEX...)",
                 why);
 }
@@ -228,6 +228,8 @@ static const char *name_of(const char *const *names, size_t n, uint16_t v)
     return (v < n) ? names[v] : "?";
 }
 
+static int print_profile_row(const sxl_frame_t *r, int first);
+
 static int print_reply(const sxl_frame_t *r)
 {
     const uint16_t result = r->payload[0];
@@ -237,6 +239,8 @@ static int print_reply(const sxl_frame_t *r)
                     name_of(result_names, sizeof result_names / sizeof result_names[0], result));
     }
     switch (r->cmd & 0x7Fu) {
+    case SXL_CMD_GET_PROFILE:
+        return print_profile_row(r, 1);
     case SXL_CMD_PING:
         if (r->len < 2u) {
             return fail(EXIT_IO, "short ping reply");
@@ -269,6 +273,51 @@ static int print_reply(const sxl_frame_t *r)
         printf("ok\n");
         return 0;
     }
+}
+
+static const char *const stage_names[SXL_PF_STAGES] = {"latency (period start to ISR)",
+                                                       "ADC read and scaling",
+                                                       "transforms and references",
+                                                       "prediction to k+1",
+                                                       "sector and table lookup",
+                                                       "candidate search",
+                                                       "PWM write",
+                                                       "ISR total"};
+
+/* One stage's profile reply as a table row; the first call also prints the header. */
+static int print_profile_row(const sxl_frame_t *r, int first)
+{
+    const uint16_t *pf = &r->payload[1];
+    double cpu;
+    if (r->payload[0] != SXL_OK) {
+        return fail(
+            EXIT_IO, "drive answered: %s",
+            name_of(result_names, sizeof result_names / sizeof result_names[0], r->payload[0]));
+    }
+    if (r->len < 1u + SXL_PF_SIZE || pf[SXL_PF_STAGE] >= SXL_PF_STAGES) {
+        return fail(EXIT_IO, "short or malformed profile reply (%u bytes)", (unsigned)r->len);
+    }
+    cpu = (double)sxl_get_u16(&pf[SXL_PF_CYCLES_PER_US]);
+    if (cpu <= 0.0) {
+        cpu = 1.0;
+    }
+    if (first) {
+        printf("period %lu cycles, %.1f cycles/us, measurement cost %lu cycles (subtracted), "
+               "CPU load %.1f %% (max %.1f %%), overruns %lu\n",
+               (unsigned long)sxl_get_u32(&pf[SXL_PF_PERIOD]), cpu,
+               (unsigned long)sxl_get_u32(&pf[SXL_PF_READ_COST]),
+               (double)sxl_get_u16(&pf[SXL_PF_LOAD_LAST]) / 10.0,
+               (double)sxl_get_u16(&pf[SXL_PF_LOAD_MAX]) / 10.0,
+               (unsigned long)sxl_get_u32(&pf[SXL_PF_OVERRUNS]));
+        printf("%-30s %10s %10s %10s %10s %9s %9s\n", "stage", "last", "min", "max", "mean",
+               "mean us", "max us");
+    }
+    printf("%-30s %10lu %10lu %10lu %10lu %9.2f %9.2f\n", stage_names[pf[SXL_PF_STAGE]],
+           (unsigned long)sxl_get_u32(&pf[SXL_PF_LAST]),
+           (unsigned long)sxl_get_u32(&pf[SXL_PF_MIN]), (unsigned long)sxl_get_u32(&pf[SXL_PF_MAX]),
+           (unsigned long)sxl_get_u32(&pf[SXL_PF_MEAN]),
+           (double)sxl_get_u32(&pf[SXL_PF_MEAN]) / cpu, (double)sxl_get_u32(&pf[SXL_PF_MAX]) / cpu);
+    return 0;
 }
 
 static int cmd_decode(int argc, char **argv)
@@ -401,7 +450,7 @@ int main(int argc, char **argv)
         }
         if (strcmp(opt, "-h") == 0 || strcmp(opt, "--help") == 0) {
             printf("usage: sixphase-link [-d DEVICE] [-b BAUD] [-t MS] [-n] COMMAND [ARGS]\n"
-                   "commands: ping status run stop clear speed RPM torque NM\n"
+                   "commands: ping status profile run stop clear speed RPM torque NM\n"
                    "          controller ddc|mptc49|mptc13 LAMBDA decode HEXBYTE...\n");
             return 0;
         }
@@ -428,6 +477,37 @@ int main(int argc, char **argv)
     }
     if (strcmp(argv[i], "decode") == 0) {
         return cmd_decode(argc - i - 1, &argv[i + 1]);
+    }
+    if (strcmp(argv[i], "profile") == 0) {
+        uint16_t stage;
+        if (argc - i != 1) {
+            return usage("this command takes no arguments");
+        }
+        if (o.print_only) {
+            payload[0] = 0u;
+            flen = sxl_encode(SXL_CMD_GET_PROFILE, payload, 1u, frame, (uint16_t)SXL_MAX_FRAME);
+            for (stage = 0u; stage < flen; stage++) {
+                printf("%02X%s", (unsigned)frame[stage], (stage + 1u < flen) ? " " : "\n");
+            }
+            return 0;
+        }
+        rc = open_port(&o, &fd);
+        if (rc != 0) {
+            return rc;
+        }
+        for (stage = 0u; stage < SXL_PF_STAGES && rc == 0; stage++) {
+            payload[0] = stage;
+            flen = sxl_encode(SXL_CMD_GET_PROFILE, payload, 1u, frame, (uint16_t)SXL_MAX_FRAME);
+            rc = write_all(fd, frame, flen);
+            if (rc == 0) {
+                rc = read_reply(fd, SXL_CMD_GET_PROFILE, o.timeout_ms, &reply);
+            }
+            if (rc == 0) {
+                rc = print_profile_row(&reply, stage == 0u);
+            }
+        }
+        close(fd);
+        return rc;
     }
     rc = build_request(argc - i, &argv[i], &cmd, payload, &plen);
     if (rc != 0) {

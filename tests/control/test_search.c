@@ -93,8 +93,8 @@ static void test_mptc_zero_vector_follows_state_in_force(void **state)
 
 static const ctl_q levels6[6] = {CTL_Q(1.0), CTL_Q(0.8), CTL_Q(0.6),
                                  CTL_Q(0.4), CTL_Q(0.2), CTL_Q(0.0)};
-static const ctl_ddc_config_t paper_flux_error = {0, levels6, 6, false};
-static const ctl_ddc_config_t paper_xy_table = {1, levels6, 6, false};
+static const ctl_ddc_config_t paper_flux_error = {0, levels6, 6, false, 0};
+static const ctl_ddc_config_t paper_xy_table = {1, levels6, 6, false, 0};
 
 /* Flux at k+1 in sector I (angle 0), x-y flux in x-y sector 0, |psi| below the reference:
  * table 1 row 0 candidates; the duty whose torque meets Tref is chosen. */
@@ -201,7 +201,7 @@ static void test_ddc_zero_duty(void **state)
  * give up torque for flux; the guard keeps the torque error within one duty step. */
 static void test_torque_guard(void **state)
 {
-    static const ctl_ddc_config_t guarded = {0, levels6, 6, true};
+    static const ctl_ddc_config_t guarded = {0, levels6, 6, true, 0};
     ctl_horizon_t h = horizon();
     ctl_choice_t paper;
     ctl_choice_t guard;

@@ -7,6 +7,8 @@
 
 #include "mock_hal_ctl.h"
 
+#include "hal_cycles.h"
+
 mock_record_t mock_rec;
 hal_adc_sample_t mock_adc;
 hal_encoder_sample_t mock_encoder;
@@ -31,6 +33,16 @@ void mock_reset(void)
 }
 
 /* ---- HAL ---- */
+/* cycle counter: advances by 10 on every reading */
+static uint32_t mock_cycles;
+void hal_cycles_init(void) { mock_cycles = 0u; }
+uint32_t hal_cycles_now(void)
+{
+    mock_cycles += 10u;
+    return mock_cycles;
+}
+uint32_t hal_cycles_per_second(void) { return 150000000u; }
+
 bool hal_adc_init(void) { return true; }
 
 bool hal_adc_read(hal_adc_sample_t *s)

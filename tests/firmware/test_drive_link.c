@@ -8,6 +8,7 @@
 
 #include "ctl_pu.h"
 #include "drive_link.h"
+#include "profile.h"
 #include "mock_hal_ctl.h"
 
 static drive_t d;
@@ -161,6 +162,31 @@ static void test_set_controller(void **state)
     assert_int_equal(mock_rec.request_params, 1u);
 }
 
+/* Stage profile over the link: after calibration periods the ISR total has been timed on the
+ * mocked counter; bad stage numbers and lengths are refused. */
+static void test_profile(void **state)
+{
+    (void)state;
+    calibrate();
+    req.len = 1u;
+    req.payload[0] = PROF_TOTAL;
+    assert_int_equal(send(SXL_CMD_GET_PROFILE), SXL_OK);
+    assert_int_equal(rep.len, 1u + SXL_PF_SIZE);
+    assert_int_equal(rep.payload[1 + SXL_PF_STAGE], PROF_TOTAL);
+    /* the mocked counter advances 10 per reading and nothing else reads it while
+     * calibrating: the ISR total is exactly the subtracted reading cost */
+    assert_int_equal(sxl_get_u32(&rep.payload[1 + SXL_PF_READ_COST]), 10u);
+    assert_int_equal(sxl_get_u32(&rep.payload[1 + SXL_PF_MAX]), 0u);
+    assert_int_equal(sxl_get_u32(&rep.payload[1 + SXL_PF_MIN]), 0u);
+    assert_int_equal(sxl_get_u32(&rep.payload[1 + SXL_PF_PERIOD]), 15000u); /* 100 us */
+    assert_int_equal(sxl_get_u16(&rep.payload[1 + SXL_PF_CYCLES_PER_US]), 150u);
+    assert_int_equal(sxl_get_u32(&rep.payload[1 + SXL_PF_OVERRUNS]), 0u);
+    req.payload[0] = PROF_STAGES;
+    assert_int_equal(send(SXL_CMD_GET_PROFILE), SXL_ERR_VALUE);
+    req.len = 0u;
+    assert_int_equal(send(SXL_CMD_GET_PROFILE), SXL_ERR_LENGTH);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -169,6 +195,7 @@ int main(void)
         cmocka_unit_test_setup(test_speed_and_torque, setup),
         cmocka_unit_test_setup(test_run_stop_clear, setup),
         cmocka_unit_test_setup(test_set_controller, setup),
+        cmocka_unit_test_setup(test_profile, setup),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -53,6 +53,10 @@ uint16_t f28335_pwm_deadband_for(uint32_t dead_time_ns);
  * prd - round(duty * prd / 32768) in between, limited to 1..prd. */
 uint16_t f28335_pwm_cmpa_for(uint16_t duty_q15, uint16_t prd);
 uint16_t f28335_pwm_period(void);
+/* ePWM1 time-base counter: in up-down mode the counter rises from 0 at the period start
+ * (ADC start of conversion), so in the first half period it is the time since then, in
+ * SYSCLKOUT cycles (TBCLK = SYSCLKOUT). */
+uint16_t f28335_pwm_time_base(void);
 
 /* ---- ADC helpers (f28335_adc.c) ---- */
 

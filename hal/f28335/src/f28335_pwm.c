@@ -209,3 +209,6 @@ bool hal_pwm_hw_trip_seen(void)
     }
     return !pwm_sw_forced && hal_pwm_is_off();
 }
+
+F28335_RAMFUNC(f28335_pwm_time_base)
+uint16_t f28335_pwm_time_base(void) { return F28335_EPWM(0)->TBCTR; }
