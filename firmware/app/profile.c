@@ -7,6 +7,19 @@ prof_t drive_profile;
 
 uint32_t prof_mean(const prof_stat_t *s) { return (s->mean_x256 + 128u) >> 8; }
 
+void prof_ctl_stage(int16_t ctl_stage)
+{
+#if PROFILE_ENABLE
+    if (ctl_stage >= 0 && ctl_stage <= (int16_t)CTL_STAGE_SEARCH) {
+        prof_mark((prof_stage_t)((int16_t)PROF_TRANSFORMS + ctl_stage));
+    }
+#else
+    (void)ctl_stage;
+#endif
+}
+
+#if PROFILE_ENABLE
+
 static void prof_record(prof_stat_t *s, uint32_t cycles)
 {
     s->last = cycles;
@@ -29,19 +42,6 @@ static void prof_record(prof_stat_t *s, uint32_t cycles)
         s->count++;
     }
 }
-
-void prof_ctl_stage(int16_t ctl_stage)
-{
-#if PROFILE_ENABLE
-    if (ctl_stage >= 0 && ctl_stage <= (int16_t)CTL_STAGE_SEARCH) {
-        prof_mark((prof_stage_t)((int16_t)PROF_TRANSFORMS + ctl_stage));
-    }
-#else
-    (void)ctl_stage;
-#endif
-}
-
-#if PROFILE_ENABLE
 
 void prof_init(uint32_t period_cycles, uint32_t cycles_per_second)
 {
