@@ -90,8 +90,9 @@ typedef struct {
     float lambda_nm_per_wb; /* flux weight of the cost */
     int16_t duty_levels;    /* DDC: levels k/(n-1), k = 0..n-1; paper: 6 */
     ctl_ddc_direction_t ddc_direction;
-    /* improvement over the paper (docs/improvements.md); false = the paper's method */
-    bool ddc_torque_guard; /* flux weighting limited to one duty step of torque */
+    /* improvement over the paper (docs/improvements.md), on by default; false = the paper */
+    bool ddc_torque_guard; /* flux weighting moves the duty at most one level from the
+                            * level that best meets the torque reference */
     ctl_flux_ref_mode_t flux_ref_mode;
     float flux_ref_wb; /* used when flux_ref_mode is constant */
     /* speed loop */

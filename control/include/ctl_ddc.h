@@ -31,7 +31,7 @@ typedef struct {
     int16_t direction;   /* 0 flux-error reading, 1 x-y-table reading (ctl_ddc_direction_t) */
     const ctl_q *levels; /* duty levels, 1 first, 0 last */
     int16_t n_levels;    /* 2..CTL_DDC_LEVELS_MAX */
-    bool torque_guard;   /* improvement: flux weighting limited to one duty step of torque */
+    bool torque_guard;   /* improvement: flux weighting moves the duty at most one level */
     void (*stage_hook)(int16_t stage); /* profiling: told when the table stage ends (0: none) */
 } ctl_ddc_config_t;
 

@@ -25,18 +25,21 @@ static void duty_search(const ctl_horizon_t *h, const ctl_ddc_config_t *cfg, int
                                                        &torque[k], &flux_mag[k]);
     }
     if (cfg->torque_guard) {
-        /* Improvement: flux weighting may only arbitrate among duties whose torque error is
-         * within one duty step's torque change of the best one, so a large lambda cannot
-         * trade torque for flux beyond the resolution of the duty set. */
-        ctl_q best = CTL_Q_MAX;
-        ctl_q band;
+        /* Improvement: flux weighting may move the duty at most one level away from the level
+         * that best meets the torque reference, so a large lambda cannot trade torque for flux
+         * beyond the resolution of the duty set. (A band in torque units would put the
+         * neighbour on the far side exactly on its edge, torque being nearly linear in duty.) */
+        int16_t best = 0;
+        ctl_q best_err = CTL_Q_MAX;
         for (k = 0; k < cfg->n_levels; k++) {
-            best = ctl_min(best, ctl_abs(ctl_sub(torque[k], h->torque_ref)));
+            const ctl_q err = ctl_abs(ctl_sub(torque[k], h->torque_ref));
+            if (err < best_err) {
+                best_err = err;
+                best = k;
+            }
         }
-        band = ctl_div(ctl_abs(ctl_sub(torque[0], torque[cfg->n_levels - 1])),
-                       ctl_from_float((float)(cfg->n_levels - 1)));
         for (k = 0; k < cfg->n_levels; k++) {
-            if (ctl_abs(ctl_sub(torque[k], h->torque_ref)) > ctl_add(best, band)) {
+            if (k < best - 1 || k > best + 1) {
                 cost[k] = CTL_Q_MAX;
             }
         }

@@ -198,7 +198,8 @@ static void test_ddc_zero_duty(void **state)
 
 /* The heavy-flux-weighting trap and the torque guard: with a flux reference met by the zero
  * vector and a torque reference met by full duty, a large lambda makes the paper's search
- * give up torque for flux; the guard keeps the torque error within one duty step. */
+ * give up torque for flux; the guard keeps the duty within one level of the torque-best one
+ * (full duty here), so the torque error stays within one duty step. */
 static void test_torque_guard(void **state)
 {
     static const ctl_ddc_config_t guarded = {0, levels6, 6, true, 0};
