@@ -1,0 +1,144 @@
+/* Simulator HAL: see hal_sim.h. */
+#define _POSIX_C_SOURCE 199309L /* clock_gettime */
+
+#include "hal_sim.h"
+
+#include <string.h>
+#include <time.h>
+
+#include "hal_board.h"
+#include "hal_cycles.h"
+
+hal_sim_bus_t hal_sim_bus;
+
+void hal_sim_reset(void)
+{
+    memset(&hal_sim_bus, 0, sizeof hal_sim_bus);
+    hal_sim_bus.forced_off = true;
+}
+
+static uint16_t hal_sim_clamp_counts(double counts)
+{
+    if (!(counts == counts) || counts <= 0.0) { /* NaN or below range */
+        return 0u;
+    }
+    if (counts >= (double)HAL_ADC_FULL_SCALE) {
+        return (uint16_t)HAL_ADC_FULL_SCALE;
+    }
+    return (uint16_t)(counts + 0.5);
+}
+
+uint16_t hal_sim_current_to_counts(double amps)
+{
+    return hal_sim_clamp_counts(HAL_BOARD_CURRENT_ZERO_COUNTS +
+                                amps / HAL_BOARD_CURRENT_A_PER_COUNT);
+}
+
+uint16_t hal_sim_vdc_to_counts(double volts)
+{
+    return hal_sim_clamp_counts(volts / HAL_BOARD_VDC_V_PER_COUNT);
+}
+
+void hal_sim_post_adc(const hal_adc_sample_t *s)
+{
+    hal_sim_bus.adc = *s;
+    hal_sim_bus.adc_fresh = true;
+}
+
+void hal_sim_post_encoder(const hal_encoder_sample_t *s) { hal_sim_bus.encoder = *s; }
+
+double hal_sim_duty_fraction(int leg)
+{
+    if (leg < 0 || leg >= HAL_PWM_LEGS) {
+        return 0.0;
+    }
+    return (double)hal_sim_bus.duty[leg] / (double)HAL_PWM_DUTY_ONE;
+}
+
+/* ---- hal_pwm.h ---- */
+
+bool hal_pwm_init(uint32_t carrier_hz, uint32_t dead_time_ns)
+{
+    int i;
+    if (carrier_hz == 0u) {
+        return false;
+    }
+    hal_sim_bus.carrier_hz = carrier_hz;
+    hal_sim_bus.dead_time_ns = dead_time_ns;
+    for (i = 0; i < HAL_PWM_LEGS; i++) {
+        hal_sim_bus.duty[i] = 0u;
+    }
+    hal_sim_bus.writes = 0u;
+    hal_sim_bus.forced_off = true;
+    hal_sim_bus.hw_trip = false;
+    hal_sim_bus.pwm_initialised = true;
+    return true;
+}
+
+void hal_pwm_write(const uint16_t duty[HAL_PWM_LEGS])
+{
+    int i;
+    for (i = 0; i < HAL_PWM_LEGS; i++) {
+        hal_sim_bus.duty[i] = (duty[i] > HAL_PWM_DUTY_ONE) ? (uint16_t)HAL_PWM_DUTY_ONE : duty[i];
+    }
+    hal_sim_bus.writes++;
+}
+
+void hal_pwm_force_off(void) { hal_sim_bus.forced_off = true; }
+
+void hal_pwm_enable(void)
+{
+    if (!hal_sim_bus.hw_trip) {
+        hal_sim_bus.forced_off = false;
+    }
+}
+
+bool hal_pwm_is_off(void) { return hal_sim_bus.forced_off; }
+
+bool hal_pwm_hw_trip_seen(void) { return hal_sim_bus.hw_trip; }
+
+/* ---- hal_adc.h ---- */
+
+bool hal_adc_init(void)
+{
+    hal_sim_bus.adc_fresh = false;
+    hal_sim_bus.adc_initialised = true;
+    return true;
+}
+
+bool hal_adc_read(hal_adc_sample_t *s)
+{
+    const bool fresh = hal_sim_bus.adc_fresh;
+    *s = hal_sim_bus.adc;
+    hal_sim_bus.adc_fresh = false;
+    return fresh;
+}
+
+/* ---- hal_encoder.h ---- */
+
+bool hal_encoder_init(uint32_t lines, uint16_t pole_pairs, uint32_t elec_offset)
+{
+    if (lines == 0u || pole_pairs == 0u) {
+        return false;
+    }
+    hal_sim_bus.encoder_lines = lines;
+    hal_sim_bus.encoder_pole_pairs = pole_pairs;
+    hal_sim_bus.encoder_elec_offset = elec_offset;
+    hal_sim_bus.encoder_initialised = true;
+    return true;
+}
+
+void hal_encoder_read(hal_encoder_sample_t *s) { *s = hal_sim_bus.encoder; }
+
+/* ---- hal_cycles.h: host monotonic clock in nanoseconds ---- */
+
+void hal_cycles_init(void) {}
+
+uint32_t hal_cycles_now(void)
+{
+    struct timespec ts;
+    (void)clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (uint32_t)((uint64_t)ts.tv_sec * 1000000000u + (uint64_t)ts.tv_nsec);
+}
+
+uint32_t hal_cycles_per_second(void) { return 1000000000u; }

@@ -1,0 +1,60 @@
+/*
+ * Simulator implementation of the HAL (hal_pwm.h, hal_adc.h, hal_encoder.h,
+ * hal_cycles.h). The peripherals are a "bus" the host plant fills (ADC counts,
+ * encoder angle and speed) and reads (duties, forced-off state); the drive
+ * application calls the ordinary HAL functions and cannot tell the difference.
+ *
+ * One bus per process (the simulator parallelises by fork, not threads).
+ */
+#ifndef HAL_SIM_H
+#define HAL_SIM_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "hal_adc.h"
+#include "hal_encoder.h"
+#include "hal_pwm.h"
+
+typedef struct {
+    /* PWM, written by the application */
+    uint32_t carrier_hz;
+    uint32_t dead_time_ns;
+    uint16_t duty[HAL_PWM_LEGS]; /* shadow registers: loaded at the next period start */
+    uint32_t writes;             /* hal_pwm_write calls since init */
+    bool forced_off;             /* latched by force_off / trip, cleared by enable */
+    bool hw_trip;                /* simulated trip-zone input */
+    bool pwm_initialised;
+    /* ADC, written by the plant at each period start */
+    hal_adc_sample_t adc;
+    bool adc_fresh; /* a new sequence completed and has not been read */
+    bool adc_initialised;
+    /* encoder, written by the plant at each period start */
+    hal_encoder_sample_t encoder;
+    uint32_t encoder_lines;
+    uint16_t encoder_pole_pairs;
+    uint32_t encoder_elec_offset;
+    bool encoder_initialised;
+} hal_sim_bus_t;
+
+extern hal_sim_bus_t hal_sim_bus;
+
+/* Clear the bus to its power-on state (outputs forced off, no samples). */
+void hal_sim_reset(void);
+
+/* Physical quantity to 12-bit ADC counts with the board scaling of hal_board.h:
+ * round to nearest, clamp to 0..4095. Offset (counts) and gain error are the
+ * caller's (the plant's) business and are applied before this. */
+uint16_t hal_sim_current_to_counts(double amps);
+uint16_t hal_sim_vdc_to_counts(double volts);
+
+/* Publish a completed conversion sequence (sets the fresh flag). */
+void hal_sim_post_adc(const hal_adc_sample_t *s);
+
+/* Publish the encoder reading of this period. */
+void hal_sim_post_encoder(const hal_encoder_sample_t *s);
+
+/* Duty of one leg as a fraction of the period, from the shadow registers. */
+double hal_sim_duty_fraction(int leg);
+
+#endif /* HAL_SIM_H */

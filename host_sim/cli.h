@@ -1,0 +1,26 @@
+/*
+ * Command-line parsing of `sixphase-sim run` (and the options `reproduce`
+ * shares). No side effects: on a bad argument it returns non-zero with a
+ * one-line message naming the bad value.
+ */
+#ifndef SIM_CLI_H
+#define SIM_CLI_H
+
+#include <stddef.h>
+#include <stdio.h>
+
+#include "sim.h"
+
+typedef struct {
+    sim_config_t cfg;
+    int quiet;
+    int jobs; /* reproduce: parallel workers */
+} sim_cli_t;
+
+/* argv[0] is the first option (after the sub-command). 0 on success. */
+int sim_cli_parse_run(int argc, char **argv, sim_cli_t *out, char *err, size_t err_len);
+int sim_cli_parse_reproduce(int argc, char **argv, sim_cli_t *out, char *err, size_t err_len);
+
+void sim_cli_usage(FILE *f);
+
+#endif /* SIM_CLI_H */

@@ -1,0 +1,47 @@
+/* sixphase-sim: host plant simulator front end (issue 3). */
+#include <stdio.h>
+#include <string.h>
+
+#include "cli.h"
+#include "reproduce.h"
+#include "sim.h"
+
+int main(int argc, char **argv)
+{
+    char err[256];
+    sim_cli_t cli;
+    sim_result_t res;
+    err[0] = '\0';
+    if (argc < 2) {
+        sim_cli_usage(stderr);
+        return 2;
+    }
+    if (strcmp(argv[1], "help") == 0 || strcmp(argv[1], "--help") == 0 ||
+        strcmp(argv[1], "-h") == 0) {
+        sim_cli_usage(stdout);
+        return 0;
+    }
+    if (strcmp(argv[1], "run") == 0) {
+        if (sim_cli_parse_run(argc - 2, argv + 2, &cli, err, sizeof err) != 0) {
+            fprintf(stderr, "sixphase-sim: %s\n", err);
+            return 2;
+        }
+        if (sim_run(&cli.cfg, &res, err, sizeof err) != 0) {
+            fprintf(stderr, "sixphase-sim: %s\n", err);
+            return 1;
+        }
+        if (!cli.quiet) {
+            sim_print_metrics_json(stdout, &cli.cfg, &res);
+        }
+        return 0;
+    }
+    if (strcmp(argv[1], "reproduce") == 0) {
+        if (sim_cli_parse_reproduce(argc - 2, argv + 2, &cli, err, sizeof err) != 0) {
+            fprintf(stderr, "sixphase-sim: %s\n", err);
+            return 2;
+        }
+        return sim_reproduce(cli.cfg.out_dir, cli.jobs, cli.quiet);
+    }
+    fprintf(stderr, "sixphase-sim: unknown command '%s' (expected run or reproduce)\n", argv[1]);
+    return 2;
+}

@@ -1,0 +1,51 @@
+/*
+ * Metric functions (brief §7) on sampled signals. Pure functions, no I/O.
+ */
+#ifndef SIM_METRICS_H
+#define SIM_METRICS_H
+
+#include <stddef.h>
+
+double metrics_mean(const double *x, size_t n);
+/* Population standard deviation (divide by n). 0 for n < 2. */
+double metrics_std(const double *x, size_t n);
+double metrics_peak_to_peak(const double *x, size_t n);
+/* RMS of the magnitude of a 2-D signal, sqrt(mean(a^2 + b^2)). */
+double metrics_rms2(const double *a, const double *b, size_t n);
+
+typedef struct {
+    double fundamental_rms; /* Q1 */
+    double total_rms_ac;    /* Q: RMS without DC */
+    double thd;             /* sqrt(Q^2 - Q1^2) / Q1, all frequencies in the samples */
+    double thd_h50;         /* sqrt(sum_{h=2..50} Q_h^2) / Q1 (power-analyser view) */
+} metrics_thd_t;
+
+/* THD of x sampled uniformly over a window that holds an integer number of
+ * fundamental periods; theta is the fundamental's phase (rad, unwrapped or
+ * not) at each sample, so slight speed variations do not smear the
+ * fundamental. Harmonic h is the projection on cos(h theta), sin(h theta).
+ * Returns -1 if n < 8 or the fundamental is zero, else 0. */
+int metrics_thd(const double *x, const double *theta, size_t n, metrics_thd_t *out);
+
+/* Index range [*first, n) covering the largest whole number of fundamental
+ * periods of an unwrapped phase that fits in the last `max_samples` samples
+ * (theta must be monotonic over that range). Returns that number of periods
+ * (0: not even one). */
+int metrics_whole_periods(const double *theta_unwrapped, size_t n, size_t max_samples,
+                          size_t *first);
+
+/* Leg transitions of a switching-state sequence (6 bits per entry) averaged
+ * over the six legs, divided by 2 and by the window length: average
+ * switching frequency. */
+double metrics_switching_freq(const unsigned *states, size_t n, double window_s);
+
+/* Transient end: first time t[i] >= t_from after which |x - final| stays
+ * within tol_abs until the end. Negative if it never settles. */
+double metrics_settle_time(const double *t, const double *x, size_t n, double t_from,
+                           double final_value, double tol_abs);
+
+/* First time t[i] >= t_from at which x reaches level (from below if
+ * level > x at t_from, else from above). Negative if never. */
+double metrics_first_reach(const double *t, const double *x, size_t n, double t_from, double level);
+
+#endif /* SIM_METRICS_H */

@@ -1,0 +1,332 @@
+/* Host plant: six-phase PMSM in VSD coordinates. See plant.h. */
+#include "plant.h"
+
+#include <math.h>
+#include <stddef.h>
+
+#define PLANT_PI 3.14159265358979323846
+
+const double plant_phase_angle_rad[PLANT_PHASES] = {0.0,
+                                                    2.0 * PLANT_PI / 3.0,
+                                                    4.0 * PLANT_PI / 3.0,
+                                                    PLANT_PI / 6.0,
+                                                    5.0 * PLANT_PI / 6.0,
+                                                    3.0 * PLANT_PI / 2.0};
+
+void plant_params_default(plant_params_t *p)
+{
+    p->r_ohm = 2.0;
+    p->ld_h = 0.035;
+    p->lq_h = 0.055;
+    p->lxy_h = 0.010;
+    p->psi_f_wb = 0.225;
+    p->psi5_wb = 0.006;
+    p->psi7_wb = 0.002;
+    p->pole_pairs = 3;
+    p->j_kgm2 = 0.01;
+    p->b_nms = 0.001;
+    p->vdc_v = 540.0;
+    p->dead_time_s = 2e-6;
+    p->max_step_s = 50e-6;
+    p->dead_time_on = true;
+    p->harmonics_on = true;
+    p->adc_offset_on = true;
+    p->adc_offset_counts = 20.0;
+    p->adc_gain_on = true;
+    p->adc_gain_error = 0.005;
+    p->adc_noise_on = true;
+    p->adc_noise_counts = 1.0;
+    p->encoder_quant_on = true;
+    p->encoder_lines = 2500u;
+}
+
+const char *plant_params_check(const plant_params_t *p)
+{
+    if (!(p->r_ohm >= 0.0 && p->r_ohm < 1e3)) {
+        return "resistance must be in [0, 1000) ohm";
+    }
+    if (!(p->ld_h > 1e-6 && p->ld_h < 10.0) || !(p->lq_h > 1e-6 && p->lq_h < 10.0)) {
+        return "L_d and L_q must be in (1e-6, 10) H";
+    }
+    if (!(p->lxy_h > 1e-6 && p->lxy_h < 10.0)) {
+        return "L_xy must be in (1e-6, 10) H";
+    }
+    if (!(p->psi_f_wb >= 0.0 && p->psi_f_wb < 10.0) || !(fabs(p->psi5_wb) < 1.0) ||
+        !(fabs(p->psi7_wb) < 1.0)) {
+        return "PM flux values out of range";
+    }
+    if (p->pole_pairs < 1 || p->pole_pairs > 64) {
+        return "pole pairs must be in 1..64";
+    }
+    if (!(p->j_kgm2 > 0.0 && p->j_kgm2 < 1e3) || !(p->b_nms >= 0.0 && p->b_nms < 1e3)) {
+        return "inertia must be positive and friction non-negative";
+    }
+    if (!(p->vdc_v > 0.0 && p->vdc_v < 2000.0)) {
+        return "Vdc must be in (0, 2000) V";
+    }
+    if (!(p->dead_time_s >= 0.0 && p->dead_time_s < 50e-6)) {
+        return "dead time must be in [0, 50) us";
+    }
+    if (!(p->max_step_s > 1e-9 && p->max_step_s <= 1e-3)) {
+        return "plant step must be in (1 ns, 1 ms]";
+    }
+    if (p->encoder_lines < 1u || p->encoder_lines > 1000000u) {
+        return "encoder lines must be in 1..1e6";
+    }
+    return "";
+}
+
+void plant_vector_voltage(unsigned state, double vdc, double u[4])
+{
+    double v[PLANT_PHASES];
+    int k;
+    const double s1 = (double)(((state >> 5) & 1u) + ((state >> 4) & 1u) + ((state >> 3) & 1u));
+    const double s2 = (double)(((state >> 2) & 1u) + ((state >> 1) & 1u) + (state & 1u));
+    for (k = 0; k < PLANT_PHASES; k++) {
+        const double sk = (double)((state >> (5 - k)) & 1u);
+        v[k] = vdc * (sk - ((k < 3) ? s1 : s2) / 3.0);
+    }
+    u[0] = u[1] = u[2] = u[3] = 0.0;
+    for (k = 0; k < PLANT_PHASES; k++) {
+        const double th = plant_phase_angle_rad[k];
+        u[0] += v[k] * cos(th);
+        u[1] += v[k] * sin(th);
+        u[2] += v[k] * cos(5.0 * th);
+        u[3] += v[k] * sin(5.0 * th);
+    }
+    for (k = 0; k < 4; k++) {
+        u[k] /= 3.0;
+    }
+}
+
+void plant_sync_angle(const plant_params_t *p, plant_state_t *s)
+{
+    const double th = (double)p->pole_pairs * s->theta_m;
+    s->cos_e = cos(th);
+    s->sin_e = sin(th);
+}
+
+void plant_phase_currents(const plant_params_t *p, const plant_state_t *s, double i[PLANT_PHASES])
+{
+    const double c = s->cos_e;
+    const double sn = s->sin_e;
+    (void)p;
+    const double ia = s->i_d * c - s->i_q * sn;
+    const double ib = s->i_d * sn + s->i_q * c;
+    /* i_k = alpha cos th_k + beta sin th_k + x cos 5th_k + y sin 5th_k, angles exact:
+     * th  = 0, 120, 240, 30, 150, 270 deg;  5th = 0, 240, 120, 150, 30, 270 deg */
+    const double h = 0.86602540378443864676; /* sqrt(3)/2 */
+    i[0] = ia + s->i_x;
+    i[1] = -0.5 * ia + h * ib - 0.5 * s->i_x - h * s->i_y;
+    i[2] = -0.5 * ia - h * ib - 0.5 * s->i_x + h * s->i_y;
+    i[3] = h * ia + 0.5 * ib - h * s->i_x + 0.5 * s->i_y;
+    i[4] = -h * ia + 0.5 * ib + h * s->i_x + 0.5 * s->i_y;
+    i[5] = -ib - s->i_y;
+}
+
+/* d psi_pm,xy / d theta_e given cos/sin of theta_e. */
+static void plant_xy_emf_shape(const plant_params_t *p, double c, double s, double *gx, double *gy)
+{
+    /* z = e^{j th}; z^5 and z^7 by complex products */
+    const double c2 = c * c - s * s, s2 = 2.0 * c * s;
+    const double c4 = c2 * c2 - s2 * s2, s4 = 2.0 * c2 * s2;
+    const double c5 = c4 * c - s4 * s, s5 = c4 * s + s4 * c;
+    const double c7 = c5 * c2 - s5 * s2, s7 = c5 * s2 + s5 * c2;
+    *gx = -5.0 * p->psi5_wb * s5 - 7.0 * p->psi7_wb * s7;
+    *gy = 5.0 * p->psi5_wb * c5 - 7.0 * p->psi7_wb * c7;
+}
+
+double plant_torque(const plant_params_t *p, const plant_state_t *s)
+{
+    const double pn3 = 3.0 * (double)p->pole_pairs;
+    double te = pn3 * ((p->ld_h - p->lq_h) * s->i_d * s->i_q + p->psi_f_wb * s->i_q);
+    if (p->harmonics_on) {
+        double gx, gy;
+        plant_xy_emf_shape(p, s->cos_e, s->sin_e, &gx, &gy);
+        te += pn3 * (gx * s->i_x + gy * s->i_y);
+    }
+    return te;
+}
+
+void plant_outputs(const plant_params_t *p, const plant_state_t *s, plant_out_t *o)
+{
+    const double two_pi = 2.0 * PLANT_PI;
+    const double th = (double)p->pole_pairs * s->theta_m;
+    plant_phase_currents(p, s, o->i_phase);
+    o->i_alpha = s->i_d * s->cos_e - s->i_q * s->sin_e;
+    o->i_beta = s->i_d * s->sin_e + s->i_q * s->cos_e;
+    o->psi_d = p->ld_h * s->i_d + p->psi_f_wb;
+    o->psi_q = p->lq_h * s->i_q;
+    o->psi_s = sqrt(o->psi_d * o->psi_d + o->psi_q * o->psi_q);
+    o->torque_nm = plant_torque(p, s);
+    o->theta_e = th - two_pi * floor(th / two_pi);
+}
+
+/* cos and sin of a small angle (|d| < 0.35: Taylor to 10th/11th order, error < 1e-13). */
+static inline void plant_small_rot(double d, double *c, double *s)
+{
+    if (fabs(d) < 0.35) {
+        const double d2 = d * d;
+        *c = 1.0 + d2 * (-1.0 / 2.0 +
+                         d2 * (1.0 / 24.0 + d2 * (-1.0 / 720.0 +
+                                                  d2 * (1.0 / 40320.0 + d2 * (-1.0 / 3628800.0)))));
+        *s = d * (1.0 + d2 * (-1.0 / 6.0 +
+                              d2 * (1.0 / 120.0 +
+                                    d2 * (-1.0 / 5040.0 +
+                                          d2 * (1.0 / 362880.0 + d2 * (-1.0 / 39916800.0))))));
+    } else {
+        *c = cos(d);
+        *s = sin(d);
+    }
+}
+
+/* Coefficients computed once per interval (no divisions in the derivative). */
+typedef struct {
+    double pn, r, ld, lq, psi_f, inv_ld, inv_lq, inv_lxy, inv_j, b, five_psi5, seven_psi7;
+    double t3pn;
+    bool harm;
+} plant_coef_t;
+
+static void plant_coef(const plant_params_t *p, plant_coef_t *k)
+{
+    k->pn = (double)p->pole_pairs;
+    k->r = p->r_ohm;
+    k->ld = p->ld_h;
+    k->lq = p->lq_h;
+    k->psi_f = p->psi_f_wb;
+    k->inv_ld = 1.0 / p->ld_h;
+    k->inv_lq = 1.0 / p->lq_h;
+    k->inv_lxy = 1.0 / p->lxy_h;
+    k->inv_j = 1.0 / p->j_kgm2;
+    k->b = p->b_nms;
+    k->five_psi5 = 5.0 * p->psi5_wb;
+    k->seven_psi7 = 7.0 * p->psi7_wb;
+    k->t3pn = 3.0 * k->pn;
+    k->harm = p->harmonics_on;
+}
+
+typedef struct {
+    double did, diq, dix, diy, dw; /* derivatives */
+    double te;
+} plant_deriv_t;
+
+static inline void plant_deriv(const plant_coef_t *p, const double y[5], double c, double s,
+                               const double u[4], double t_load, bool lock_mech, plant_deriv_t *k)
+{
+    const double we = p->pn * y[4];
+    const double ud = u[0] * c + u[1] * s;
+    const double uq = -u[0] * s + u[1] * c;
+    double ex = 0.0, ey = 0.0;
+    k->did = (ud - p->r * y[0] + we * p->lq * y[1]) * p->inv_ld;
+    k->diq = (uq - p->r * y[1] - we * (p->ld * y[0] + p->psi_f)) * p->inv_lq;
+    k->te = p->t3pn * ((p->ld - p->lq) * y[0] * y[1] + p->psi_f * y[1]);
+    if (p->harm) {
+        const double c2 = c * c - s * s, s2 = 2.0 * c * s;
+        const double c4 = c2 * c2 - s2 * s2, s4 = 2.0 * c2 * s2;
+        const double c5 = c4 * c - s4 * s, s5 = c4 * s + s4 * c;
+        const double c7 = c5 * c2 - s5 * s2, s7 = c5 * s2 + s5 * c2;
+        const double gx = -p->five_psi5 * s5 - p->seven_psi7 * s7;
+        const double gy = p->five_psi5 * c5 - p->seven_psi7 * c7;
+        ex = we * gx;
+        ey = we * gy;
+        k->te += p->t3pn * (gx * y[2] + gy * y[3]);
+    }
+    k->dix = (u[2] - p->r * y[2] - ex) * p->inv_lxy;
+    k->diy = (u[3] - p->r * y[3] - ey) * p->inv_lxy;
+    k->dw = lock_mech ? 0.0 : (k->te - t_load - p->b * y[4]) * p->inv_j;
+}
+
+static double plant_rk4(const plant_coef_t *kc, plant_state_t *s, const double u[4], double t_load,
+                        bool lock_mech, double h)
+{
+    const double pn = kc->pn;
+    const double y0[5] = {s->i_d, s->i_q, s->i_x, s->i_y, s->omega_m};
+    double y[5];
+    double c0, s0, cr, sr, c, sn;
+    plant_deriv_t k1, k2, k3, k4;
+    c0 = s->cos_e;
+    s0 = s->sin_e;
+
+    plant_deriv(kc, y0, c0, s0, u, t_load, lock_mech, &k1);
+
+    y[0] = y0[0] + 0.5 * h * k1.did;
+    y[1] = y0[1] + 0.5 * h * k1.diq;
+    y[2] = y0[2] + 0.5 * h * k1.dix;
+    y[3] = y0[3] + 0.5 * h * k1.diy;
+    y[4] = y0[4] + 0.5 * h * k1.dw;
+    plant_small_rot(pn * 0.5 * h * y0[4], &cr, &sr); /* theta_m stage increments */
+    c = c0 * cr - s0 * sr;
+    sn = s0 * cr + c0 * sr;
+    plant_deriv(kc, y, c, sn, u, t_load, lock_mech, &k2);
+    const double w2 = y[4];
+
+    y[0] = y0[0] + 0.5 * h * k2.did;
+    y[1] = y0[1] + 0.5 * h * k2.diq;
+    y[2] = y0[2] + 0.5 * h * k2.dix;
+    y[3] = y0[3] + 0.5 * h * k2.diy;
+    y[4] = y0[4] + 0.5 * h * k2.dw;
+    plant_small_rot(pn * 0.5 * h * w2, &cr, &sr);
+    c = c0 * cr - s0 * sr;
+    sn = s0 * cr + c0 * sr;
+    plant_deriv(kc, y, c, sn, u, t_load, lock_mech, &k3);
+    const double w3 = y[4];
+
+    y[0] = y0[0] + h * k3.did;
+    y[1] = y0[1] + h * k3.diq;
+    y[2] = y0[2] + h * k3.dix;
+    y[3] = y0[3] + h * k3.diy;
+    y[4] = y0[4] + h * k3.dw;
+    plant_small_rot(pn * h * w3, &cr, &sr);
+    c = c0 * cr - s0 * sr;
+    sn = s0 * cr + c0 * sr;
+    plant_deriv(kc, y, c, sn, u, t_load, lock_mech, &k4);
+    const double w4 = y[4];
+
+    s->i_d = y0[0] + h / 6.0 * (k1.did + 2.0 * k2.did + 2.0 * k3.did + k4.did);
+    s->i_q = y0[1] + h / 6.0 * (k1.diq + 2.0 * k2.diq + 2.0 * k3.diq + k4.diq);
+    s->i_x = y0[2] + h / 6.0 * (k1.dix + 2.0 * k2.dix + 2.0 * k3.dix + k4.dix);
+    s->i_y = y0[3] + h / 6.0 * (k1.diy + 2.0 * k2.diy + 2.0 * k3.diy + k4.diy);
+    s->omega_m = y0[4] + h / 6.0 * (k1.dw + 2.0 * k2.dw + 2.0 * k3.dw + k4.dw);
+    {
+        const double dth = h / 6.0 * (y0[4] + 2.0 * w2 + 2.0 * w3 + w4);
+        s->theta_m += dth;
+        plant_small_rot(pn * dth, &cr, &sr);
+        s->cos_e = c0 * cr - s0 * sr;
+        s->sin_e = s0 * cr + c0 * sr;
+    }
+    return h / 6.0 * (k1.te + 2.0 * k2.te + 2.0 * k3.te + k4.te);
+}
+
+double plant_rk4_step(const plant_params_t *p, plant_state_t *s, const double u[4], double t_load,
+                      bool lock_mech, double h)
+{
+    plant_coef_t kc;
+    plant_coef(p, &kc);
+    return plant_rk4(&kc, s, u, t_load, lock_mech, h);
+}
+
+double plant_integrate(const plant_params_t *p, plant_state_t *s, const double u[4], double t_load,
+                       bool lock_mech, double h)
+{
+    plant_sync_angle(p, s);
+    return plant_integrate_nosync(p, s, u, t_load, lock_mech, h);
+}
+
+double plant_integrate_nosync(const plant_params_t *p, plant_state_t *s, const double u[4],
+                              double t_load, bool lock_mech, double h)
+{
+    double n, hs, te_int = 0.0;
+    long i, steps;
+    plant_coef_t kc;
+    if (!(h > 0.0)) {
+        return 0.0;
+    }
+    n = ceil(h / p->max_step_s - 1e-9);
+    steps = (n < 1.0) ? 1L : (long)n;
+    hs = h / (double)steps;
+    plant_coef(p, &kc);
+    for (i = 0; i < steps; i++) {
+        te_int += plant_rk4(&kc, s, u, t_load, lock_mech, hs);
+    }
+    return te_int;
+}

@@ -1,0 +1,107 @@
+/*
+ * Bridge between the simulator and one build of the control core + drive
+ * application. Compiled twice: SIM_BRIDGE_FLOAT=0 against ctl_fixed /
+ * drive_fixed, SIM_BRIDGE_FLOAT=1 against ctl_float / drive_float. In the
+ * float build every global symbol of (bridge + ctl_float + drive_float) gets
+ * the prefix "simflt_" at build time, so both live in one binary.
+ */
+#include <stddef.h>
+
+#include "ctl.h"
+#include "ctl_pu.h"
+#include "drive.h"
+#include "sim_ctl.h"
+
+#if SIM_BRIDGE_FLOAT
+#define SIM_BRIDGE_OPS sim_ctl_ops_float
+#define SIM_BRIDGE_ARITH "float"
+#else
+#define SIM_BRIDGE_OPS sim_ctl_ops_fixed
+#define SIM_BRIDGE_ARITH "fixed"
+#endif
+
+static drive_t bridge_drive;
+
+static int bridge_init(const sim_ctl_config_t *cfg)
+{
+    ctl_params_t p;
+    ctl_params_default(&p);
+    p.resistance_ohm = (float)cfg->r_ohm;
+    p.ld_h = (float)cfg->ld_h;
+    p.lq_h = (float)cfg->lq_h;
+    p.l_xy_h = (float)cfg->lxy_h;
+    p.pm_flux_wb = (float)cfg->psi_f_wb;
+    p.pole_pairs = (int16_t)cfg->pole_pairs;
+    if (cfg->j_kgm2 > 0.0) {
+        p.inertia_kg_m2 = (float)cfg->j_kgm2;
+    }
+    p.sample_time_s = (float)cfg->ts_s;
+    p.controller = (ctl_controller_t)cfg->controller;
+    p.lambda_nm_per_wb = (float)cfg->lambda;
+    if (cfg->duty_levels > 0) {
+        p.duty_levels = (int16_t)cfg->duty_levels;
+    }
+    if (cfg->ddc_direction >= 0) {
+        p.ddc_direction = (ctl_ddc_direction_t)cfg->ddc_direction;
+    }
+    if (cfg->ddc_torque_guard >= 0) {
+        p.ddc_torque_guard = (cfg->ddc_torque_guard != 0);
+    }
+    if (cfg->flux_ref_mode >= 0) {
+        p.flux_ref_mode = (ctl_flux_ref_mode_t)cfg->flux_ref_mode;
+    }
+    if (cfg->flux_ref_wb > 0.0) {
+        p.flux_ref_wb = (float)cfg->flux_ref_wb;
+    }
+    if (cfg->speed_kp > 0.0) {
+        p.speed_kp_nm_per_rad_s = (float)cfg->speed_kp;
+    }
+    if (cfg->speed_ki > 0.0) {
+        p.speed_ki_nm_per_rad = (float)cfg->speed_ki;
+    }
+    if (cfg->torque_limit_nm > 0.0) {
+        p.torque_limit_nm = (float)cfg->torque_limit_nm;
+    }
+    if (!ctl_params_valid(&p)) {
+        return 1;
+    }
+    drive_init(&bridge_drive, &p);
+    return (bridge_drive.state == DRIVE_STATE_FAULT) ? 2 : 0;
+}
+
+static void bridge_isr(void) { drive_control_isr(&bridge_drive); }
+static void bridge_request_run(void) { drive_request_run(&bridge_drive); }
+static void bridge_set_speed_rpm(double rpm) { drive_set_speed_ref_rpm(&bridge_drive, (float)rpm); }
+static void bridge_set_torque_nm(double nm) { drive_set_torque_ref_nm(&bridge_drive, (float)nm); }
+
+static double q2d(ctl_q v) { return (double)ctl_to_float(v); }
+
+static void bridge_status(sim_ctl_status_t *st)
+{
+    const ctl_t *c = &bridge_drive.ctl;
+    const ctl_diag_t *dg = &c->diag;
+    st->state = (int)bridge_drive.state;
+    st->fault = (int)bridge_drive.fault;
+    st->torque_ref_nm = q2d(dg->torque_ref) * CTL_BASE_TORQUE_NM;
+    st->flux_ref_wb = q2d(dg->flux_ref) * CTL_BASE_FLUX_WB;
+    st->torque_est_nm = q2d(dg->torque_est) * CTL_BASE_TORQUE_NM;
+    st->flux_est_wb = q2d(dg->flux_est) * CTL_BASE_FLUX_WB;
+    st->vector = (int)bridge_drive.cmd.vector;
+    st->duty = q2d(bridge_drive.cmd.duty);
+    st->enable = bridge_drive.cmd.enable ? 1 : 0;
+    st->candidates = (int)dg->candidates;
+    st->braking = dg->braking ? 1 : 0;
+    st->p_lambda = (double)c->params.lambda_nm_per_wb;
+    st->p_speed_kp = (double)c->params.speed_kp_nm_per_rad_s;
+    st->p_speed_ki = (double)c->params.speed_ki_nm_per_rad;
+    st->p_torque_limit = (double)c->params.torque_limit_nm;
+    st->p_flux_ref_wb = (double)c->params.flux_ref_wb;
+    st->p_duty_levels = (int)c->params.duty_levels;
+    st->p_ddc_direction = (int)c->params.ddc_direction;
+    st->p_flux_ref_mode = (int)c->params.flux_ref_mode;
+    st->p_ddc_torque_guard = c->params.ddc_torque_guard ? 1 : 0;
+}
+
+const sim_ctl_ops_t SIM_BRIDGE_OPS = {
+    SIM_BRIDGE_ARITH,     bridge_init,          bridge_isr,   bridge_request_run,
+    bridge_set_speed_rpm, bridge_set_torque_nm, bridge_status};

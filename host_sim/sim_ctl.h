@@ -1,0 +1,61 @@
+/*
+ * The simulator's view of one controller build (fixed or float): a table of
+ * functions with double-only arguments, implemented by
+ * sim_controller_bridge.c compiled once per arithmetic. Each bridge owns a
+ * static drive_t and runs the firmware's drive_control_isr against the
+ * simulator HAL.
+ */
+#ifndef SIM_CTL_H
+#define SIM_CTL_H
+
+typedef struct {
+    int controller;       /* 0 ddc, 1 mptc49, 2 mptc13 (ctl_controller_t) */
+    double lambda;        /* N*m/Wb */
+    double ts_s;          /* control period */
+    int duty_levels;      /* <= 0: core default */
+    int ddc_direction;    /* < 0: core default; 0 flux-error, 1 xy-table */
+    int flux_ref_mode;    /* < 0: core default; 0 constant, 1 MTPA */
+    int ddc_torque_guard; /* < 0: core default (on); 0 off (paper), 1 on (docs/improvements.md) */
+    double flux_ref_wb;   /* <= 0: core default */
+    /* machine as the controller knows it */
+    double r_ohm, ld_h, lq_h, lxy_h, psi_f_wb;
+    int pole_pairs;
+    double j_kgm2;
+    /* speed loop; <= 0: core default */
+    double speed_kp, speed_ki, torque_limit_nm;
+} sim_ctl_config_t;
+
+typedef struct {
+    int state; /* drive_state_t */
+    int fault; /* drive_fault_t */
+    double torque_ref_nm, flux_ref_wb;
+    double torque_est_nm, flux_est_wb;
+    int vector;  /* commanded active state (S_A = bit 5) */
+    double duty; /* commanded duty of that state */
+    int enable;
+    int candidates;
+    int braking;
+    /* effective core parameters (after defaults) */
+    double p_lambda, p_speed_kp, p_speed_ki, p_torque_limit, p_flux_ref_wb;
+    int p_duty_levels, p_ddc_direction, p_flux_ref_mode, p_ddc_torque_guard;
+} sim_ctl_status_t;
+
+typedef struct {
+    const char *arith; /* "fixed" or "float" */
+    /* 0 on success; non-zero when the core refused the parameters */
+    int (*init)(const sim_ctl_config_t *cfg);
+    void (*isr)(void);
+    void (*request_run)(void);
+    void (*set_speed_rpm)(double rpm);
+    void (*set_torque_nm)(double nm);
+    void (*status)(sim_ctl_status_t *st);
+} sim_ctl_ops_t;
+
+/* Defined by the two builds of the bridge. The float build's symbols are all
+ * prefixed with "simflt_" at build time, so the simulator refers to its table
+ * as simflt_sim_ctl_ops_float; sim_ctl_ops_float is the name inside the bridge. */
+extern const sim_ctl_ops_t sim_ctl_ops_fixed;
+extern const sim_ctl_ops_t sim_ctl_ops_float;
+extern const sim_ctl_ops_t simflt_sim_ctl_ops_float;
+
+#endif /* SIM_CTL_H */

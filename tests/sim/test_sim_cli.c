@@ -1,0 +1,199 @@
+/* CLI: every bad argument is rejected with a one-line message naming the bad
+ * value, a non-zero exit and nothing written; good arguments parse. */
+#define _POSIX_C_SOURCE 200809L
+
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cmocka.h>
+
+#include "cli.h"
+
+#ifndef SIXPHASE_SIM_EXE
+#error "SIXPHASE_SIM_EXE must name the sixphase-sim executable"
+#endif
+
+static int parse(const char *const *args, int n, sim_cli_t *o, char *err, size_t len)
+{
+    return sim_cli_parse_run(n, (char **)(uintptr_t)args, o, err, len);
+}
+
+static void test_good_arguments(void **state)
+{
+    static const char *const a[] = {"--controller",
+                                    "mptc13",
+                                    "--scenario",
+                                    "reversal",
+                                    "--lambda",
+                                    "20",
+                                    "--fs",
+                                    "7500",
+                                    "--speed",
+                                    "600",
+                                    "--load",
+                                    "1.5",
+                                    "--duration",
+                                    "0.3",
+                                    "--arith",
+                                    "float",
+                                    "--seed",
+                                    "42",
+                                    "--out",
+                                    "/tmp/x",
+                                    "--ddc-direction",
+                                    "xy-table",
+                                    "--duty-levels",
+                                    "11",
+                                    "--lxy",
+                                    "0.005",
+                                    "--no-dead-time",
+                                    "--trip-current",
+                                    "20",
+                                    "--quiet"};
+    sim_cli_t o;
+    char err[256] = "";
+    (void)state;
+    assert_int_equal(parse(a, (int)(sizeof a / sizeof a[0]), &o, err, sizeof err), 0);
+    assert_int_equal(o.cfg.controller, 2);
+    assert_int_equal((int)o.cfg.scenario, (int)SIM_SCEN_REVERSAL);
+    assert_true(o.cfg.lambda == 20.0 && o.cfg.fs_hz == 7500.0 && o.cfg.speed_rpm == 600.0);
+    assert_true(o.cfg.load_nm == 1.5 && o.cfg.duration_s == 0.3);
+    assert_int_equal(o.cfg.arith, 1);
+    assert_true(o.cfg.seed == 42u);
+    assert_string_equal(o.cfg.out_dir, "/tmp/x");
+    assert_int_equal(o.cfg.ddc_direction, 1);
+    assert_int_equal(o.cfg.duty_levels, 11);
+    assert_true(o.cfg.plant.lxy_h == 0.005);
+    assert_false(o.cfg.plant.dead_time_on);
+    assert_true(o.cfg.trip_current_a == 20.0);
+    assert_int_equal(o.quiet, 1);
+}
+
+typedef struct {
+    const char *args[6];
+    int n;
+    const char *must_contain;
+} bad_case_t;
+
+static const bad_case_t bad_cases[] = {
+    {{"--controller", "foc", "--scenario", "steady"}, 4, "'foc'"},
+    {{"--controller", "ddc", "--scenario", "cruise"}, 4, "'cruise'"},
+    {{"--controller", "ddc", "--scenario", "steady", "--lambda", "abc"}, 6, "'abc'"},
+    {{"--controller", "ddc", "--scenario", "steady", "--lambda", "-1"}, 6, "'-1'"},
+    {{"--controller", "ddc", "--scenario", "steady", "--lambda", "nan"}, 6, "'nan'"},
+    {{"--controller", "ddc", "--scenario", "steady", "--fs", "10"}, 6, "'10'"},
+    {{"--controller", "ddc", "--scenario", "steady", "--fs", "10k"}, 6, "'10k'"},
+    {{"--controller", "ddc", "--scenario", "steady", "--arith", "double"}, 6, "'double'"},
+    {{"--controller", "ddc", "--scenario", "steady", "--seed", "-3"}, 6, "'-3'"},
+    {{"--controller", "ddc", "--scenario", "steady", "--duration", "0"}, 6, "'0'"},
+    {{"--controller", "ddc", "--scenario", "steady", "--speed", "1e9"}, 6, "'1e9'"},
+    {{"--controller", "ddc", "--scenario", "steady", "--duty-levels", "20"}, 6, "'20'"},
+    {{"--controller", "ddc", "--scenario", "steady", "--lxy", "0"}, 6, "'0'"},
+    {{"--controller", "ddc", "--scenario", "steady", "--trip-current", "-5"}, 6, "'-5'"},
+    {{"--controller", "ddc", "--scenario", "steady", "--frobnicate", "1"}, 6, "'--frobnicate'"},
+    {{"--controller", "ddc", "--scenario", "steady", "--lambda"}, 5, "(missing)"},
+    {{"--scenario", "steady"}, 2, "--controller"},
+    {{"--controller", "ddc"}, 2, "--scenario"},
+};
+
+static void test_bad_arguments_rejected(void **state)
+{
+    size_t i;
+    (void)state;
+    for (i = 0; i < sizeof bad_cases / sizeof bad_cases[0]; i++) {
+        sim_cli_t o;
+        char err[256] = "";
+        const int rc = parse(bad_cases[i].args, bad_cases[i].n, &o, err, sizeof err);
+        print_message("case %u: %s\n", (unsigned)i, err);
+        assert_int_not_equal(rc, 0);
+        assert_non_null(strstr(err, bad_cases[i].must_contain));
+        assert_null(strchr(err, '\n'));
+    }
+}
+
+/* Run the executable; return exit status, capture stderr. */
+static int run_exe(const char *const *args, char *err_out, size_t len)
+{
+    int pipefd[2];
+    pid_t pid;
+    int status = 0;
+    size_t got = 0;
+    assert_int_equal(pipe(pipefd), 0);
+    pid = fork();
+    assert_true(pid >= 0);
+    if (pid == 0) {
+        (void)dup2(pipefd[1], 2);
+        (void)close(pipefd[0]);
+        (void)freopen("/dev/null", "w", stdout);
+        execv(SIXPHASE_SIM_EXE, (char **)(uintptr_t)args);
+        _exit(127);
+    }
+    (void)close(pipefd[1]);
+    for (;;) {
+        const ssize_t r = read(pipefd[0], err_out + got, len - 1 - got);
+        if (r <= 0) {
+            break;
+        }
+        got += (size_t)r;
+        if (got + 1 >= len) {
+            break;
+        }
+    }
+    err_out[got] = '\0';
+    (void)close(pipefd[0]);
+    (void)waitpid(pid, &status, 0);
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+static void test_executable_writes_nothing_on_bad_argument(void **state)
+{
+    char tmpl[] = "/tmp/sixphase-cli-XXXXXX";
+    char out[600], err[1024];
+    struct stat st;
+    const char *dir = mkdtemp(tmpl);
+    (void)state;
+    assert_non_null(dir);
+    (void)snprintf(out, sizeof out, "%s/run", dir);
+    {
+        const char *const a[] = {
+            SIXPHASE_SIM_EXE, "run",  "--controller", "ddc", "--scenario", "steady",
+            "--lambda",       "lots", "--out",        out,   NULL};
+        const int rc = run_exe(a, err, sizeof err);
+        print_message("exit %d, stderr: %s", rc, err);
+        assert_int_not_equal(rc, 0);
+        assert_non_null(strstr(err, "'lots'"));
+        assert_non_null(strchr(err, '\n'));
+        assert_true(strchr(err, '\n')[1] == '\0'); /* exactly one line */
+        assert_int_not_equal(stat(out, &st), 0);   /* nothing written */
+    }
+    {
+        const char *const a[] = {SIXPHASE_SIM_EXE, "simulate", NULL};
+        assert_int_not_equal(run_exe(a, err, sizeof err), 0);
+        assert_non_null(strstr(err, "'simulate'"));
+    }
+    {
+        const char *const a[] = {SIXPHASE_SIM_EXE, "reproduce", "--jobs", "0", "--out", out, NULL};
+        assert_int_not_equal(run_exe(a, err, sizeof err), 0);
+        assert_non_null(strstr(err, "'0'"));
+        assert_int_not_equal(stat(out, &st), 0);
+    }
+    (void)rmdir(dir);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_good_arguments),
+        cmocka_unit_test(test_bad_arguments_rejected),
+        cmocka_unit_test(test_executable_writes_nothing_on_bad_argument),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

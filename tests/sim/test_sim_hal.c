@@ -1,0 +1,97 @@
+/* Simulator HAL: board scaling of the ADC counts, shadow-loaded duties,
+ * force-off latch and trip input, fresh-sample flag. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include <cmocka.h>
+
+#include "hal_board.h"
+#include "hal_cycles.h"
+#include "hal_sim.h"
+
+static void test_adc_scaling_and_clamping(void **state)
+{
+    (void)state;
+    assert_int_equal(hal_sim_current_to_counts(0.0), 2048);
+    /* 9.765625 mA per count */
+    assert_int_equal(hal_sim_current_to_counts(1.0), 2048 + 102);
+    assert_int_equal(hal_sim_current_to_counts(-1.0), 2048 - 102);
+    assert_int_equal(hal_sim_current_to_counts(19.99), 4095);
+    assert_int_equal(hal_sim_current_to_counts(25.0), 4095);
+    assert_int_equal(hal_sim_current_to_counts(-25.0), 0);
+    assert_int_equal(hal_sim_vdc_to_counts(540.0), 2765); /* 540 / 0.1953125 = 2764.8 */
+    assert_int_equal(hal_sim_vdc_to_counts(1000.0), 4095);
+    assert_int_equal(hal_sim_vdc_to_counts(-5.0), 0);
+    assert_int_equal(hal_sim_current_to_counts(1e300), 4095);
+}
+
+static void test_adc_fresh_flag(void **state)
+{
+    hal_adc_sample_t in = {{1, 2, 3, 4, 5, 6}, 7}, out;
+    (void)state;
+    hal_sim_reset();
+    assert_true(hal_adc_init());
+    assert_false(hal_adc_read(&out));
+    hal_sim_post_adc(&in);
+    assert_true(hal_adc_read(&out));
+    assert_int_equal(out.phase[5], 6);
+    assert_int_equal(out.vdc, 7);
+    assert_false(hal_adc_read(&out)); /* consumed */
+}
+
+static void test_pwm_shadow_and_force_off(void **state)
+{
+    const uint16_t d[6] = {0, 16384, 32768, 40000, 1, 32767};
+    (void)state;
+    hal_sim_reset();
+    assert_false(hal_pwm_init(0u, 2000u));
+    assert_true(hal_pwm_init(10000u, 2000u));
+    assert_true(hal_pwm_is_off()); /* outputs forced off after init */
+    hal_pwm_write(d);
+    assert_true(hal_sim_duty_fraction(1) == 0.5);
+    assert_true(hal_sim_duty_fraction(2) == 1.0);
+    assert_true(hal_sim_duty_fraction(3) == 1.0); /* clamped */
+    assert_true(hal_sim_duty_fraction(-1) == 0.0 && hal_sim_duty_fraction(6) == 0.0);
+    hal_pwm_enable();
+    assert_false(hal_pwm_is_off());
+    hal_pwm_force_off();
+    assert_true(hal_pwm_is_off());
+    hal_pwm_enable();
+    assert_false(hal_pwm_is_off());
+    /* a hardware trip keeps the outputs off until it clears */
+    hal_sim_bus.hw_trip = true;
+    hal_sim_bus.forced_off = true;
+    assert_true(hal_pwm_hw_trip_seen());
+    hal_pwm_enable();
+    assert_true(hal_pwm_is_off());
+}
+
+static void test_encoder_and_cycles(void **state)
+{
+    hal_encoder_sample_t e = {0x40000000u, 65536, true}, out;
+    uint32_t c0, c1;
+    (void)state;
+    hal_sim_reset();
+    assert_false(hal_encoder_init(0u, 3u, 0u));
+    assert_true(hal_encoder_init(HAL_BOARD_ENCODER_LINES, 3u, 0u));
+    hal_sim_post_encoder(&e);
+    hal_encoder_read(&out);
+    assert_true(out.elec_angle == 0x40000000u && out.mech_speed_q16 == 65536 && out.healthy);
+    hal_cycles_init();
+    c0 = hal_cycles_now();
+    c1 = hal_cycles_now();
+    assert_true((uint32_t)(c1 - c0) < hal_cycles_per_second());
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_adc_scaling_and_clamping),
+        cmocka_unit_test(test_adc_fresh_flag),
+        cmocka_unit_test(test_pwm_shadow_and_force_off),
+        cmocka_unit_test(test_encoder_and_cycles),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
