@@ -58,11 +58,12 @@ static int fail(int code, const char *fmt, ...)
 
 static int usage(const char *why)
 {
-    return fail(EXIT_USAGE,
-                "%s (usage: sixphase-link [-d DEVICE] [-b BAUD] [-t MS] [-n] "
-                "ping|status|profile|run|stop|clear|speed RPM|torque NM|controller ddc|mptc49|mptc13 "
-                "LAMBDA|decode HEX...)",
-                why);
+    return fail(
+        EXIT_USAGE,
+        "%s (usage: sixphase-link [-d DEVICE] [-b BAUD] [-t MS] [-n] "
+        "ping|status|profile|run|stop|clear|speed RPM|torque NM|controller ddc|mptc49|mptc13 "
+        "LAMBDA|decode HEX...)",
+        why);
 }
 
 static int parse_long(const char *s, long lo, long hi, long *out)
