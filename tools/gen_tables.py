@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Generate control/src/ctl_tables.c: constant tables of the control core.
 
-Run from the repository root:  python3 tools/gen_tables.py
+Run from the repository root:
+  python3 tools/gen_tables.py | clang-format --assume-filename=control/src/ctl_tables.c > control/src/ctl_tables.c
 The tests (tests/control) recompute every table from its defining formula,
 so a hand edit or a stale generator output fails the build's tests.
 """
