@@ -109,6 +109,25 @@ def freestanding_sizes(root, work):
     return {s[0]: (int(s[1]), int(s[2]), int(s[3])) for s in sizes}
 
 
+def stack_depth(root, work):
+    """Worst-case stack of the ISR path on a 32-bit Arm build (-fcallgraph-info=su)."""
+    out_dir = os.path.join(work, "stack")
+    os.makedirs(out_dir, exist_ok=True)
+    srcs = [os.path.join(root, "control", "src", f)
+            for f in sorted(os.listdir(os.path.join(root, "control", "src"))) if f.endswith(".c")]
+    srcs += [os.path.join(root, "firmware", "app", f) for f in ("drive.c", "profile.c")]
+    cis = []
+    for src in srcs:
+        obj = os.path.join(out_dir, os.path.basename(src)[:-2] + ".o")
+        run(["arm-none-eabi-gcc", "-std=c99", "-ffreestanding", "-mcpu=cortex-m4", "-mthumb", "-O2",
+             "-fcallgraph-info=su", "-I", os.path.join(root, "control", "include"),
+             "-I", os.path.join(root, "hal", "include"), "-I", os.path.join(root, "firmware", "app"),
+             "-c", src, "-o", obj], cwd=out_dir)
+        cis.append(obj[:-2] + ".ci")
+    return run([sys.executable, os.path.join(root, "tools", "stack_depth.py"), "drive_control_isr"]
+               + cis).strip().splitlines()
+
+
 def machine():
     cpu = "unknown CPU"
     try:
@@ -142,6 +161,7 @@ def main():
     points, ns = wall_times(a.bench, traces)
     counts, profiles = instruction_counts(a.bench, traces, work)
     sizes = freestanding_sizes(root, work)
+    stack = stack_depth(root, work)
     ops = {"fixed": op_counts(a.opcount_fixed, traces), "float": op_counts(a.opcount_float, traces)}
     per_step = {c: counts[c] / points for c in CONFIGS}
 
@@ -242,6 +262,18 @@ def main():
         if k in sizes:
             t, d, b = sizes[k]
             w("| %s | %d bytes | %d | %d |" % (k, t, d, b))
+    w("")
+    w("## Stack depth of the ISR path")
+    w("")
+    w("From `drive_control_isr` through the drive, the control core and the profiler, on the")
+    w("same freestanding Arm build compiled with `-fcallgraph-info=su` (tools/stack_depth.py;")
+    w("no recursion and no variable-size frames anywhere, so the depth is bounded). The")
+    w("deepest path is a period in which a queued parameter set is applied (MTPA table")
+    w("rebuilt); the C28x counts 16-bit words, so the figure there differs but the path is the")
+    w("same.")
+    w("")
+    for line in stack:
+        w("- " + line)
     w("")
     os.makedirs(os.path.dirname(os.path.abspath(a.out)), exist_ok=True)
     with open(a.out, "w") as f:
