@@ -13,6 +13,8 @@
 
 #include <cmocka.h>
 
+#include "test_support.h"
+
 #include <float.h>
 #include <math.h>
 
@@ -44,33 +46,9 @@ static ctl_q dq(double x)
 }
 #endif
 
-static uint32_t rng_state = 0x12345678u;
-
-static uint32_t rng_u32(void)
-{
-    /* xorshift32: deterministic, reproducible sequence. */
-    uint32_t x = rng_state;
-    x ^= x << 13;
-    x ^= x >> 17;
-    x ^= x << 5;
-    rng_state = x;
-    return x;
-}
-
-/* Uniform in [lo, hi). */
-static double rng_range(double lo, double hi)
-{
-    return lo + (hi - lo) * ((double)rng_u32() * (1.0 / 4294967296.0));
-}
-
-static void expect_close(double got, double want, double tol, const char *what, double input)
-{
-    if (!(fabs(got - want) <= tol)) {
-        print_error("%s(%.12g): got %.12g, want %.12g, |err| %.3g > tol %.3g\n", what, input, got,
-                    want, fabs(got - want), tol);
-        fail();
-    }
-}
+static test_rng_t rng = {0x12345678u};
+static uint32_t rng_u32(void) { return test_rng_u32(&rng); }
+static double rng_range(double lo, double hi) { return test_rng_range(&rng, lo, hi); }
 
 static void expect_i32(int32_t got, int32_t want, const char *what)
 {

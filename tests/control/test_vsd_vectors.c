@@ -12,6 +12,8 @@
 
 #include <cmocka.h>
 
+#include "test_support.h"
+
 #include <math.h>
 
 #include "ctl_q.h"
@@ -40,31 +42,8 @@ static ctl_q dq(double x) { return (ctl_q)floor(x * 16777216.0 + 0.5); }
 /* One Q24 LSB: the constant tables are exact to half of it in both arithmetics. */
 #define TABLE_TOL (1.0 / 16777216.0)
 
-static uint32_t rng_state = 0x2545F491u;
-
-static uint32_t rng_u32(void)
-{
-    uint32_t x = rng_state;
-    x ^= x << 13;
-    x ^= x >> 17;
-    x ^= x << 5;
-    rng_state = x;
-    return x;
-}
-
-static double rng_range(double lo, double hi)
-{
-    return lo + (hi - lo) * ((double)rng_u32() * (1.0 / 4294967296.0));
-}
-
-static void expect_close(double got, double want, double tol, const char *what, double input)
-{
-    if (!(fabs(got - want) <= tol)) {
-        print_error("%s (%.10g): got %.12g, want %.12g, |err| %.3g > tol %.3g\n", what, input, got,
-                    want, fabs(got - want), tol);
-        fail();
-    }
-}
+static test_rng_t rng = {0x2545F491u};
+static double rng_range(double lo, double hi) { return test_rng_range(&rng, lo, hi); }
 
 /* Amplitude-invariant VSD of six phase quantities, in double. */
 typedef struct {

@@ -37,21 +37,32 @@
  * default (on: the product's DDC, the robustness group), 1 on */
 static int guard_on = 0;
 
-static void run_case(int controller, int arith, sim_scenario_t scen, double lambda, sim_result_t *r)
+static void case_config(int controller, int arith, sim_scenario_t scen, double lambda,
+                        sim_config_t *c)
 {
-    sim_config_t c;
+    sim_config_default(c);
+    c->ddc_torque_guard = guard_on;
+    c->controller = controller;
+    c->arith = arith;
+    c->scenario = scen;
+    c->lambda = lambda;
+    c->out_dir = NULL;
+}
+
+static void run_config(const sim_config_t *c, sim_result_t *r)
+{
     char err[200] = "";
-    sim_config_default(&c);
-    c.ddc_torque_guard = guard_on;
-    c.controller = controller;
-    c.arith = arith;
-    c.scenario = scen;
-    c.lambda = lambda;
-    c.out_dir = NULL;
-    if (sim_run(&c, r, err, sizeof err) != 0) {
+    if (sim_run(c, r, err, sizeof err) != 0) {
         print_error("sim_run failed: %s\n", err);
         fail();
     }
+}
+
+static void run_case(int controller, int arith, sim_scenario_t scen, double lambda, sim_result_t *r)
+{
+    sim_config_t c;
+    case_config(controller, arith, scen, lambda, &c);
+    run_config(&c, r);
     print_message(
         "%-7s %-5s %-9s lambda %5.0f: speed %7.1f r/min, Te %.3f N m, THD %6.1f %% (h50 %5.1f %%), "
         "ripple %.3f N m, xy %.2f A, f_sw %.0f Hz, transient %.1f ms, %.0fx real time\n",
@@ -65,19 +76,10 @@ static void run_case(int controller, int arith, sim_scenario_t scen, double lamb
 static void run_case_ideal(int controller, sim_scenario_t scen, double lambda, sim_result_t *r)
 {
     sim_config_t c;
-    char err[200] = "";
-    sim_config_default(&c);
-    c.ddc_torque_guard = guard_on;
-    c.controller = controller;
-    c.scenario = scen;
-    c.lambda = lambda;
-    c.out_dir = NULL;
+    case_config(controller, 0, scen, lambda, &c);
     c.plant.dead_time_on = c.plant.harmonics_on = c.plant.adc_offset_on = false;
     c.plant.adc_gain_on = c.plant.adc_noise_on = c.plant.encoder_quant_on = false;
-    if (sim_run(&c, r, err, sizeof err) != 0) {
-        print_error("sim_run failed: %s\n", err);
-        fail();
-    }
+    run_config(&c, r);
 }
 
 /* Side by side at lambda 200: the paper's duty search falls into the heavy-flux-weighting trap
