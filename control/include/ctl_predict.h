@@ -70,19 +70,15 @@ static inline ctl_q ctl_flux_d(const ctl_model_t *m, ctl_q id)
 }
 static inline ctl_q ctl_flux_q(const ctl_model_t *m, ctl_q iq) { return ctl_mul(m->lq, iq); }
 
-/* Te = Pn (psi_d i_q - psi_q i_d), per unit (torque base is per pole pair). */
-static inline ctl_q ctl_torque(const ctl_model_t *m, ctl_q id, ctl_q iq)
-{
-    const ctl_q t = ctl_sub(ctl_mul(ctl_flux_d(m, id), iq), ctl_mul(ctl_flux_q(m, iq), id));
-    return ctl_mul_int(t, m->pole_pairs);
-}
-
-/* |psi_s| from rotor-frame currents. */
-static inline ctl_q ctl_flux_magnitude(const ctl_model_t *m, ctl_q id, ctl_q iq)
+/* Te = Pn (psi_d i_q - psi_q i_d), per unit (torque base is per pole pair), and |psi_s|,
+ * from rotor-frame currents; both from the same psi_d, psi_q. */
+static inline void ctl_torque_flux(const ctl_model_t *m, ctl_q id, ctl_q iq, ctl_q *torque,
+                                   ctl_q *flux)
 {
     const ctl_q pd = ctl_flux_d(m, id);
     const ctl_q pq = ctl_flux_q(m, iq);
-    return ctl_sqrt(ctl_add(ctl_mul(pd, pd), ctl_mul(pq, pq)));
+    *torque = ctl_mul_int(ctl_sub(ctl_mul(pd, iq), ctl_mul(pq, id)), m->pole_pairs);
+    *flux = ctl_sqrt(ctl_add(ctl_mul(pd, pd), ctl_mul(pq, pq)));
 }
 
 #endif /* CTL_PREDICT_H */

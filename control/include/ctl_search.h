@@ -73,10 +73,7 @@ static inline void ctl_horizon_forced(const ctl_horizon_t *h, const ctl_vsd_t *v
 static inline ctl_q ctl_horizon_cost(const ctl_horizon_t *h, ctl_q id2, ctl_q iq2, ctl_q *torque,
                                      ctl_q *flux)
 {
-    const ctl_q psi_d = ctl_flux_d(h->model, id2);
-    const ctl_q psi_q = ctl_flux_q(h->model, iq2);
-    *torque = ctl_mul_int(ctl_sub(ctl_mul(psi_d, iq2), ctl_mul(psi_q, id2)), h->model->pole_pairs);
-    *flux = ctl_sqrt(ctl_add(ctl_mul(psi_d, psi_d), ctl_mul(psi_q, psi_q)));
+    ctl_torque_flux(h->model, id2, iq2, torque, flux);
     return ctl_add(ctl_abs(ctl_sub(*torque, h->torque_ref)),
                    ctl_mul(h->lambda, ctl_abs(ctl_sub(*flux, h->flux_ref))));
 }

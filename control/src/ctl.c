@@ -293,12 +293,12 @@ void ctl_step(ctl_t *c, const ctl_meas_t *m, ctl_cmd_t *cmd)
         cfg.stage_hook = 0;
 #endif
         ctl_ddc_select(&h, &f, &cfg, &choice);
-    } else if (c->params.controller == CTL_CONTROLLER_MPTC49) {
-        CTL_STAGE_MARK(c->stage_hook, CTL_STAGE_TABLE);
-        ctl_mptc_select(&h, ctl_mptc49_vectors, CTL_MPTC49_CANDIDATES, c->applied_vector, &choice);
     } else {
-        CTL_STAGE_MARK(c->stage_hook, CTL_STAGE_TABLE);
-        ctl_mptc_select(&h, ctl_mptc13_vectors, CTL_MPTC13_CANDIDATES, c->applied_vector, &choice);
+        const bool all = c->params.controller == CTL_CONTROLLER_MPTC49;
+        CTL_STAGE_MARK(c->stage_hook, CTL_STAGE_TABLE); /* no tables: the stage is empty */
+        ctl_mptc_select(&h, all ? ctl_mptc49_vectors : ctl_mptc13_vectors,
+                        all ? CTL_MPTC49_CANDIDATES : CTL_MPTC13_CANDIDATES, c->applied_vector,
+                        &choice);
     }
 
     command_from_choice(choice.vector, choice.duty, c->applied_vector, cmd);
@@ -309,8 +309,7 @@ void ctl_step(ctl_t *c, const ctl_meas_t *m, ctl_cmd_t *cmd)
     c->diag.i_q = iq;
     c->diag.i_x = i_vsd.x;
     c->diag.i_y = i_vsd.y;
-    c->diag.torque_est = ctl_torque(&c->model, id, iq);
-    c->diag.flux_est = ctl_flux_magnitude(&c->model, id, iq);
+    ctl_torque_flux(&c->model, id, iq, &c->diag.torque_est, &c->diag.flux_est);
     c->diag.torque_ref = torque_ref;
     c->diag.flux_ref = flux_ref;
     c->diag.torque_pred = choice.torque;

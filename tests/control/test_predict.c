@@ -137,16 +137,13 @@ static void test_torque_and_flux_match_formula(void **state)
     const double iq = 3.2;
     const double te = 3.0 * 3.0 * ((LD_H * id + PSI_F) * iq - LQ_H * iq * id);
     const double psi = hypot(LD_H * id + PSI_F, LQ_H * iq);
+    ctl_q torque;
+    ctl_q flux;
     (void)state;
     assert_true(ctl_model_init(&m, 2.0f, 0.035f, 0.055f, 0.01f, 0.225f, 3, 1e-4f));
-    assert_near((double)ctl_to_float(
-                    ctl_torque(&m, pu(id, CTL_BASE_CURRENT_A), pu(iq, CTL_BASE_CURRENT_A))) *
-                    CTL_BASE_TORQUE_NM,
-                te, 1e-3);
-    assert_near((double)ctl_to_float(ctl_flux_magnitude(&m, pu(id, CTL_BASE_CURRENT_A),
-                                                        pu(iq, CTL_BASE_CURRENT_A))) *
-                    CTL_BASE_FLUX_WB,
-                psi, 1e-5);
+    ctl_torque_flux(&m, pu(id, CTL_BASE_CURRENT_A), pu(iq, CTL_BASE_CURRENT_A), &torque, &flux);
+    assert_near((double)ctl_to_float(torque) * CTL_BASE_TORQUE_NM, te, 1e-3);
+    assert_near((double)ctl_to_float(flux) * CTL_BASE_FLUX_WB, psi, 1e-5);
 }
 
 int main(void)

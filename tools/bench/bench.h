@@ -32,4 +32,8 @@ int16_t flt_bench_setup(int16_t controller);
 uint32_t bench_run(int32_t reps);
 uint32_t flt_bench_run(int32_t reps);
 
+/* One step at prepared point i (i < the prepared count) after bench_setup; for tools that
+ * look at single steps (ctl-opcount). Returns a word of the command. */
+uint32_t bench_step(size_t i);
+
 #endif /* BENCH_H */

@@ -39,20 +39,26 @@ int16_t bench_setup(int16_t controller)
     return 0;
 }
 
-uint32_t bench_run(int32_t reps)
+/* One control step at prepared point i; a word of its command for the checksum. */
+static uint32_t step_at(size_t i)
 {
     ctl_cmd_t cmd;
+    ctl_set_torque_ref(&controller_state, torque_ref[i]);
+    ctl_step(&controller_state, &meas[i], &cmd);
+    return (uint32_t)(uint16_t)cmd.vector + (uint32_t)ctl_to_qn(cmd.duty, 8);
+}
+
+uint32_t bench_step(size_t i) { return (i < count) ? step_at(i) : 0u; }
+
+uint32_t bench_run(int32_t reps)
+{
     uint32_t checksum = 0u;
     int32_t r;
     size_t i;
     for (r = 0; r < reps; r++) {
         ctl_reset(&controller_state);
         for (i = 0; i < count; i++) {
-            ctl_set_torque_ref(&controller_state, torque_ref[i]);
-            ctl_step(&controller_state, &meas[i], &cmd);
-            const uint32_t vector = (uint32_t)(uint16_t)cmd.vector;
-            const uint32_t duty = (uint32_t)ctl_to_qn(cmd.duty, 8);
-            checksum = checksum * 31u + vector + duty;
+            checksum = checksum * 31u + step_at(i);
         }
     }
     return checksum;

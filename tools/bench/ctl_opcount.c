@@ -8,13 +8,11 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "ctl.h"
-#include "ctl_pu.h"
+#include "bench.h"
+#include "ctl_q.h"
 #include "trace_csv.h"
 
 static bench_point_t points[BENCH_MAX_POINTS];
-
-static ctl_q pu(double si, double base) { return ctl_from_float((float)(si / base)); }
 
 int main(int argc, char **argv)
 {
@@ -40,32 +38,19 @@ int main(int argc, char **argv)
         fprintf(stderr, "ctl-opcount: no operating points (usage: ctl-opcount TRACE.csv...)\n");
         return 2;
     }
+    n = bench_prepare(points, n);
     for (controller = 0; controller < 3; controller++) {
-        ctl_params_t p;
-        ctl_t c;
         double sum[CTL_OP_KINDS] = {0};
         uint32_t max[CTL_OP_KINDS] = {0};
         size_t i;
         int16_t k;
-        ctl_params_default(&p);
-        p.controller = (ctl_controller_t)controller;
-        if (!ctl_init(&c, &p)) {
+        if (bench_setup(controller) != 0) {
             fprintf(stderr, "ctl-opcount: controller %s did not initialise\n", names[controller]);
             return 1;
         }
-        ctl_set_loop_mode(&c, CTL_LOOP_TORQUE);
         for (i = 0; i < n; i++) {
-            ctl_meas_t m;
-            ctl_cmd_t cmd;
-            for (k = 0; k < 6; k++) {
-                m.i_phase[k] = pu(points[i].i_phase[k], CTL_BASE_CURRENT_A);
-            }
-            m.vdc = pu(points[i].vdc, CTL_BASE_VOLTAGE_V);
-            m.theta_e = ctl_wrap_turn(pu(points[i].theta_e, CTL_TWO_PI));
-            m.omega_e = pu(points[i].omega_e, CTL_BASE_OMEGA_RAD_S);
-            ctl_set_torque_ref(&c, pu(points[i].torque_ref, CTL_BASE_TORQUE_NM));
             memset(ctl_op_counts, 0, sizeof ctl_op_counts);
-            ctl_step(&c, &m, &cmd);
+            (void)bench_step(i);
             for (k = 0; k < CTL_OP_KINDS; k++) {
                 sum[k] += (double)ctl_op_counts[k];
                 if (ctl_op_counts[k] > max[k]) {
