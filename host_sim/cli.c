@@ -22,7 +22,9 @@ void sim_cli_usage(FILE *f)
         "[--lxy H] [--vdc V] [--dead-time S]\n"
         "                   [--psi5 WB] [--psi7 WB] [--plant-step S] [--fine-rate HZ]\n"
         "                   [--no-dead-time] [--no-harmonics] [--no-adc-offset] [--no-adc-gain]\n"
-        "                   [--no-adc-noise] [--no-encoder-quant] [--ideal] [--no-fine] [--quiet]\n"
+        "                   [--no-adc-noise] [--no-encoder-quant] [--ideal] [--no-fine] "
+        "[--no-protect]\n"
+        "                   [--quiet]\n"
         "  sixphase-sim reproduce --out DIR [--jobs N] [--quiet]\n");
 }
 
@@ -139,6 +141,10 @@ static int cli_parse(int argc, char **argv, sim_cli_t *o, char *err, size_t len,
             }
             if (strcmp(a, "--paper-ddc") == 0) { /* the paper's duty search: no torque guard */
                 c->ddc_torque_guard = 0;
+                continue;
+            }
+            if (strcmp(a, "--no-protect") == 0) {
+                c->protect = false;
                 continue;
             }
             if (strcmp(a, "--no-fine") == 0) {

@@ -108,6 +108,7 @@ void sim_config_default(sim_config_t *c)
     c->ddc_direction = -1;
     c->flux_ref_mode = -1;
     c->ddc_torque_guard = -1;
+    c->protect = true;
     plant_params_default(&c->plant);
     c->out_dir = NULL;
     c->write_trace = true;
@@ -602,6 +603,7 @@ void sim_print_metrics_json(FILE *f, const sim_config_t *c, const sim_result_t *
     json_num(f, "hw_trip_time_s", (r->trip_time_s >= 0.0) ? r->trip_time_s : (double)NAN, true);
     json_num(f, "trip_current_a", (c->trip_current_a > 0.0) ? c->trip_current_a : (double)NAN,
              true);
+    fprintf(f, "  \"software_protection\": %s,\n", c->protect ? "true" : "false");
     fprintf(f,
             "  \"controller_params\": {\"lambda_nm_per_wb\": %.6g, \"speed_kp_nm_per_rad_s\": "
             "%.6g, \"speed_ki_nm_per_rad\": %.6g, \"torque_limit_nm\": %.6g, "
@@ -745,6 +747,7 @@ int sim_run(const sim_config_t *c, sim_result_t *r, char *err, size_t err_len)
     cc.psi_f_wb = p->psi_f_wb;
     cc.pole_pairs = p->pole_pairs;
     cc.torque_limit_nm = pl.torque_limit;
+    cc.protect = c->protect ? 1 : 0;
     if (ops->init(&cc) != 0) {
         sim_err(err, err_len, "control core rejected the parameters");
         goto done;

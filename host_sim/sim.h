@@ -35,6 +35,9 @@ typedef struct {
     int ddc_torque_guard;   /* < 0: core default (on); 0: the paper's method */
     double torque_limit_nm; /* <= 0: scenario default (rated 7 N*m; 1.2x rated with rated load) */
     double trip_current_a;  /* > 0: simulated hardware over-current comparator (trip zone) */
+    bool protect;           /* the firmware's software protection at its default limits; false:
+                             * thresholds out of reach (comparing controllers that overload the
+                             * drive, e.g. MPTC-49 peaks near 30 A) */
     double fine_rate_hz;    /* plant sampling for the metrics in the analysis window */
     plant_params_t plant;
     const char *out_dir; /* NULL: write nothing */

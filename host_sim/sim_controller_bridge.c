@@ -22,6 +22,23 @@
 
 static drive_t bridge_drive;
 
+/* Thresholds no measurement can reach: the simulator's way of watching a controller
+ * that would trip the drive (the firmware itself has no such setting). */
+static void bridge_protect_out_of_reach(ctl_protect_limits_t *l)
+{
+    l->overcurrent = CTL_Q_MAX;
+    l->dc_overvoltage = CTL_Q_MAX;
+    l->dc_undervoltage = CTL_Q_MIN;
+    l->overspeed = CTL_Q_MAX;
+    l->current_sum = CTL_Q_MAX;
+    l->adc_rail_low = -1;
+    l->adc_rail_high = INT16_MAX;
+    l->stuck_min_current = CTL_Q_MAX;
+    l->encoder_torque = CTL_Q_MAX;
+    l->encoder_jump = CTL_Q_MAX;
+    l->open_phase_min_mean = CTL_Q_MAX;
+}
+
 static int bridge_init(const sim_ctl_config_t *cfg)
 {
     ctl_params_t p;
@@ -66,6 +83,11 @@ static int bridge_init(const sim_ctl_config_t *cfg)
         return 1;
     }
     drive_init(&bridge_drive, &p);
+    if (!cfg->protect) {
+        ctl_protect_limits_t l = bridge_drive.protect.limits;
+        bridge_protect_out_of_reach(&l);
+        drive_set_protect_limits(&bridge_drive, &l);
+    }
     return (bridge_drive.state == DRIVE_STATE_FAULT) ? 2 : 0;
 }
 

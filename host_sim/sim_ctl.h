@@ -23,6 +23,7 @@ typedef struct {
     double j_kgm2;
     /* speed loop; <= 0: core default */
     double speed_kp, speed_ki, torque_limit_nm;
+    int protect; /* 1: ctl_protect_default limits; 0: every threshold out of reach */
 } sim_ctl_config_t;
 
 typedef struct {

@@ -8,6 +8,10 @@
  * clears resets its counter. Several faults in one period are all latched and go
  * into one record (its mask has every bit); a full log keeps the oldest records
  * (the root cause) and counts what it had to drop.
+ *
+ * The log is a single-producer single-consumer ring: the control ISR only advances
+ * log_write, the background reader only advances log_read (16-bit stores, atomic on
+ * C28x), so a record is read while the ISR may append without a critical section.
  */
 #ifndef CTL_PROTECT_H
 #define CTL_PROTECT_H
@@ -31,7 +35,9 @@ typedef enum {
     CTL_FAULT_OPEN_PHASE = 0x0400,      /* one phase carries no current while others do */
     CTL_FAULT_HW_TRIP = 0x0800,         /* hardware over-current trip zone */
     CTL_FAULT_PARAMS = 0x1000,          /* controller parameters unusable */
-    CTL_FAULT_MEASUREMENT = 0x2000      /* a measurement is not a number (float build) */
+    CTL_FAULT_MEASUREMENT = 0x2000,     /* a measurement is not a number (float build) */
+    CTL_FAULT_ADC_MISSING = 0x4000,     /* no new conversion in a control period */
+    CTL_FAULT_PLATFORM = 0x8000         /* a peripheral failed to initialise */
 } ctl_fault_t;
 
 #define CTL_PROTECT_LOG_SIZE 8
@@ -115,9 +121,9 @@ typedef struct {
     int16_t open_count;
     /* log */
     ctl_fault_record_t log[CTL_PROTECT_LOG_SIZE];
-    int16_t log_head;
-    int16_t log_count;
-    uint16_t log_dropped;
+    volatile uint16_t log_write; /* records appended (ISR side), modulo 2^16 */
+    volatile uint16_t log_read;  /* records read (background side), modulo 2^16 */
+    volatile uint16_t log_dropped;
 } ctl_protect_t;
 
 /* Limits for the reference drive: 15 A, 720 V / 350 V, 2000 r/min, ... in SI, converted. */
@@ -137,7 +143,10 @@ void ctl_protect_raise(ctl_protect_t *p, uint16_t faults, const ctl_protect_inpu
 /* Clear the latch if no fault condition is active; true on success. The log is kept. */
 bool ctl_protect_clear(ctl_protect_t *p);
 
-/* Oldest unread record; false when the log is empty. */
+/* Oldest unread record; false when the log is empty. Background side. */
 bool ctl_protect_read_record(ctl_protect_t *p, ctl_fault_record_t *r);
+
+/* Records waiting to be read. */
+uint16_t ctl_protect_log_pending(const ctl_protect_t *p);
 
 #endif /* CTL_PROTECT_H */

@@ -65,8 +65,8 @@ void ctl_protect_init(ctl_protect_t *p, const ctl_protect_limits_t *l)
     p->latched = 0u;
     p->active = 0u;
     p->period = 0u;
-    p->log_head = 0;
-    p->log_count = 0;
+    p->log_write = 0u;
+    p->log_read = 0u;
     p->log_dropped = 0u;
     reset_filters(p);
 }
@@ -215,14 +215,14 @@ static uint16_t check_open_phase(ctl_protect_t *p, const ctl_protect_input_t *in
 static void record(ctl_protect_t *p, uint16_t faults, const ctl_protect_input_t *in,
                    ctl_q torque_ref, int16_t vector, ctl_q duty)
 {
+    const uint16_t w = p->log_write;
     ctl_fault_record_t *r;
     int16_t k;
-    if (p->log_count >= CTL_PROTECT_LOG_SIZE) {
+    if ((uint16_t)(w - p->log_read) >= (uint16_t)CTL_PROTECT_LOG_SIZE) {
         p->log_dropped++; /* keep the oldest: the first fault is the root cause */
         return;
     }
-    r = &p->log[(p->log_head + p->log_count) % CTL_PROTECT_LOG_SIZE];
-    p->log_count++;
+    r = &p->log[w % (uint16_t)CTL_PROTECT_LOG_SIZE];
     r->faults = faults;
     r->period = p->period;
     for (k = 0; k < 6; k++) {
@@ -235,6 +235,7 @@ static void record(ctl_protect_t *p, uint16_t faults, const ctl_protect_input_t 
     r->torque_ref = torque_ref;
     r->vector = vector;
     r->duty = duty;
+    p->log_write = (uint16_t)(w + 1u); /* publish only once the record is complete */
 }
 
 uint16_t ctl_protect_check(ctl_protect_t *p, const ctl_protect_input_t *in, ctl_q torque_ref,
@@ -310,11 +311,16 @@ bool ctl_protect_clear(ctl_protect_t *p)
 
 bool ctl_protect_read_record(ctl_protect_t *p, ctl_fault_record_t *r)
 {
-    if (p->log_count == 0) {
+    const uint16_t rd = p->log_read;
+    if (rd == p->log_write) {
         return false;
     }
-    *r = p->log[p->log_head];
-    p->log_head = (int16_t)((p->log_head + 1) % CTL_PROTECT_LOG_SIZE);
-    p->log_count--;
+    *r = p->log[rd % (uint16_t)CTL_PROTECT_LOG_SIZE];
+    p->log_read = (uint16_t)(rd + 1u); /* frees the slot only after the copy */
     return true;
+}
+
+uint16_t ctl_protect_log_pending(const ctl_protect_t *p)
+{
+    return (uint16_t)(p->log_write - p->log_read);
 }

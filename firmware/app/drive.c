@@ -6,13 +6,93 @@
 #include "hal_pwm.h"
 #include "profile.h"
 
-static void drive_enter_fault(drive_t *d, drive_fault_t fault)
+/* Severity order: the first bit present names the drive fault. */
+static const struct {
+    uint16_t bit;
+    drive_fault_t code;
+} drive_fault_map[] = {
+    {CTL_FAULT_HW_TRIP, DRIVE_FAULT_HW_TRIP},
+    {CTL_FAULT_OVERCURRENT, DRIVE_FAULT_OVERCURRENT},
+    {CTL_FAULT_DC_OVERVOLTAGE, DRIVE_FAULT_DC_OVERVOLTAGE},
+    {CTL_FAULT_MEASUREMENT, DRIVE_FAULT_MEASUREMENT},
+    {CTL_FAULT_ADC_RAIL, DRIVE_FAULT_ADC_RAIL},
+    {CTL_FAULT_ADC_MISSING, DRIVE_FAULT_ADC_MISSING},
+    {CTL_FAULT_ADC_STUCK, DRIVE_FAULT_ADC_STUCK},
+    {CTL_FAULT_CURRENT_SUM, DRIVE_FAULT_CURRENT_SUM},
+    {CTL_FAULT_OPEN_PHASE, DRIVE_FAULT_OPEN_PHASE},
+    {CTL_FAULT_ENCODER, DRIVE_FAULT_ENCODER},
+    {CTL_FAULT_OVERSPEED, DRIVE_FAULT_OVERSPEED},
+    {CTL_FAULT_DC_UNDERVOLTAGE, DRIVE_FAULT_DC_UNDERVOLTAGE},
+    {CTL_FAULT_OVERRUN, DRIVE_FAULT_OVERRUN},
+    {CTL_FAULT_ADC_OFFSET, DRIVE_FAULT_ADC_OFFSET},
+    {CTL_FAULT_PARAMS, DRIVE_FAULT_PARAMS},
+    {CTL_FAULT_PLATFORM, DRIVE_FAULT_STARTUP},
+};
+
+#define DRIVE_FAULT_MAP_LEN ((int16_t)(sizeof drive_fault_map / sizeof drive_fault_map[0]))
+
+drive_fault_t drive_fault_from_mask(uint16_t faults)
+{
+    int16_t i;
+    for (i = 0; i < DRIVE_FAULT_MAP_LEN; i++) {
+        if ((faults & drive_fault_map[i].bit) != 0u) {
+            return drive_fault_map[i].code;
+        }
+    }
+    return DRIVE_FAULT_NONE;
+}
+
+uint16_t drive_fault_to_mask(drive_fault_t fault)
+{
+    int16_t i;
+    for (i = 0; i < DRIVE_FAULT_MAP_LEN; i++) {
+        if (drive_fault_map[i].code == fault) {
+            return drive_fault_map[i].bit;
+        }
+    }
+    return 0u;
+}
+
+/* Outputs off first, then the bookkeeping; the first code since the last clear stays. */
+static void drive_latch_fault(drive_t *d, drive_fault_t fault)
 {
     hal_pwm_force_off();
-    d->fault = fault;
-    d->state = DRIVE_STATE_FAULT;
+    if (d->state != DRIVE_STATE_FAULT) {
+        d->fault = fault;
+        d->state = DRIVE_STATE_FAULT;
+    }
     d->run_requested = false;
     d->clear_requested = false;
+}
+
+/* A fault found outside the protection's periodic check: logged there too. */
+static void drive_enter_fault(drive_t *d, drive_fault_t fault)
+{
+    ctl_protect_raise(&d->protect, drive_fault_to_mask(fault), &d->protect_in);
+    drive_latch_fault(d, fault);
+}
+
+static void drive_init_protection(drive_t *d, const ctl_params_t *p)
+{
+    ctl_protect_limits_t l;
+    int16_t i;
+    /* sane scaling even for a parameter set ctl_init is about to reject */
+    const bool usable = p->sample_time_s > 1e-6f && p->sample_time_s < 1e-2f;
+    ctl_protect_default(&l, usable ? p->sample_time_s : 1e-4f, p->pole_pairs, p->inertia_kg_m2);
+    ctl_protect_init(&d->protect, &l);
+    for (i = 0; i < HAL_ADC_PHASES; i++) {
+        d->protect_in.i_phase[i] = CTL_Q(0.0);
+        d->protect_in.raw_phase[i] = (int16_t)HAL_BOARD_CURRENT_ZERO_COUNTS;
+    }
+    d->protect_in.vdc = CTL_Q(0.0);
+    d->protect_in.theta_e = CTL_Q(0.0);
+    d->protect_in.omega_e = CTL_Q(0.0);
+    d->protect_in.torque_est = CTL_Q(0.0);
+    d->protect_in.raw_vdc = 0;
+    d->protect_in.encoder_healthy = false;
+    d->protect_in.overrun = false;
+    d->protect_in.hw_trip = false;
+    d->protect_in.running = false;
 }
 
 void drive_init(drive_t *d, const ctl_params_t *p)
@@ -45,6 +125,7 @@ void drive_init(drive_t *d, const ctl_params_t *p)
     prof_init((uint32_t)((float)hal_cycles_per_second() * p->sample_time_s + 0.5f),
               hal_cycles_per_second());
     hal_pwm_force_off();
+    drive_init_protection(d, p);
     if (!ctl_init(&d->ctl, p)) {
         drive_enter_fault(d, DRIVE_FAULT_PARAMS);
         return;
@@ -136,20 +217,73 @@ void drive_control_isr(drive_t *d)
     prof_end();
 }
 
+/* Protection inputs of this period: the scaled and raw measurements, the torque the
+ * controller estimated last period (the record keeps the command in force). */
+static uint16_t drive_protect(drive_t *d, bool running)
+{
+    ctl_protect_input_t *in = &d->protect_in;
+    int16_t i;
+    for (i = 0; i < HAL_ADC_PHASES; i++) {
+        in->i_phase[i] = d->meas.i_phase[i];
+        in->raw_phase[i] = (int16_t)d->adc.phase[i];
+    }
+    in->vdc = d->meas.vdc;
+    in->raw_vdc = (int16_t)d->adc.vdc;
+    in->theta_e = d->meas.theta_e;
+    in->omega_e = d->meas.omega_e;
+    in->torque_est = running ? d->ctl.diag.torque_est : CTL_Q(0.0);
+    in->encoder_healthy = d->encoder.healthy;
+    in->overrun = false; /* reported by the platform after the ISR (drive_report_overrun) */
+    in->hw_trip = hal_pwm_hw_trip_seen();
+    in->running = running;
+    return ctl_protect_check(&d->protect, in, d->ctl.diag.torque_ref, d->ctl.applied_vector,
+                             d->ctl.applied_duty);
+}
+
+/* Healthy enough to leave FAULT: no protection condition active, the causes that
+ * need a look at the hardware re-checked. */
+static bool drive_may_clear(drive_t *d)
+{
+    const uint16_t latched = d->protect.latched;
+    if (d->fault == DRIVE_FAULT_PARAMS || d->fault == DRIVE_FAULT_STARTUP ||
+        (latched & (CTL_FAULT_PARAMS | CTL_FAULT_PLATFORM)) != 0u) {
+        return false;
+    }
+    if (hal_pwm_hw_trip_seen()) {
+        return false;
+    }
+    if ((latched & CTL_FAULT_ENCODER) != 0u && !d->encoder.healthy) {
+        return false;
+    }
+    return ctl_protect_clear(&d->protect);
+}
+
 static void drive_control_step(drive_t *d)
 {
     const bool fresh = hal_adc_read(&d->adc);
+    uint16_t faults = 0u;
     hal_encoder_read(&d->encoder);
     d->isr_count++;
-
-    if (hal_pwm_hw_trip_seen() && d->state != DRIVE_STATE_FAULT) {
-        drive_enter_fault(d, DRIVE_FAULT_HW_TRIP);
+    if (d->state == DRIVE_STATE_INIT) {
+        hal_pwm_force_off();
+        return;
     }
+    drive_scale_measurements(d);
+
     if (!fresh && (d->state == DRIVE_STATE_RUN || d->state == DRIVE_STATE_CALIBRATE)) {
         drive_enter_fault(d, DRIVE_FAULT_ADC_MISSING);
+    } else if (fresh) {
+        /* stale words would fake a stuck converter: check fresh conversions only */
+        faults = drive_protect(d, d->state == DRIVE_STATE_RUN);
+    } else {
+        /* nothing new to check; hardware trip is a pin, not a conversion */
+        if (hal_pwm_hw_trip_seen()) {
+            faults = CTL_FAULT_HW_TRIP;
+            ctl_protect_raise(&d->protect, faults, &d->protect_in);
+        }
     }
-    if (d->state == DRIVE_STATE_RUN && !d->encoder.healthy) {
-        drive_enter_fault(d, DRIVE_FAULT_ENCODER);
+    if (faults != 0u) {
+        drive_latch_fault(d, drive_fault_from_mask(faults));
     }
     if (d->run_requested && d->state != DRIVE_STATE_READY) {
         d->run_requested = false; /* refused, not deferred */
@@ -174,7 +308,6 @@ static void drive_control_step(drive_t *d)
             d->run_requested = false;
             d->stop_requested = false;
             ctl_reset(&d->ctl);
-            drive_scale_measurements(d);
             d->state = DRIVE_STATE_RUN;
             hal_pwm_enable();
             drive_run_step(d);
@@ -187,18 +320,13 @@ static void drive_control_step(drive_t *d)
             d->state = DRIVE_STATE_READY;
             break;
         }
-        drive_scale_measurements(d);
         drive_run_step(d);
         break;
     case DRIVE_STATE_FAULT:
         hal_pwm_force_off();
         if (d->clear_requested) {
             d->clear_requested = false;
-            /* healthy: parameters usable, no trip input active, encoder fine
-             * if that was the cause */
-            if (d->fault != DRIVE_FAULT_PARAMS && d->fault != DRIVE_FAULT_STARTUP &&
-                !hal_pwm_hw_trip_seen() &&
-                (d->fault != DRIVE_FAULT_ENCODER || d->encoder.healthy)) {
+            if (drive_may_clear(d)) {
                 d->fault = DRIVE_FAULT_NONE;
                 if (d->calibrated) {
                     d->state = DRIVE_STATE_READY;
@@ -227,14 +355,16 @@ bool drive_request_params(drive_t *d, const ctl_params_t *p)
     return true;
 }
 
-void drive_trip(drive_t *d, drive_fault_t fault)
+void drive_trip(drive_t *d, drive_fault_t fault) { drive_enter_fault(d, fault); }
+
+void drive_set_protect_limits(drive_t *d, const ctl_protect_limits_t *l) { d->protect.limits = *l; }
+
+bool drive_read_fault_record(drive_t *d, ctl_fault_record_t *r)
 {
-    if (d->state != DRIVE_STATE_FAULT) {
-        drive_enter_fault(d, fault);
-    } else {
-        hal_pwm_force_off(); /* first fault code kept */
-    }
+    return ctl_protect_read_record(&d->protect, r);
 }
+
+uint16_t drive_faults_latched(const drive_t *d) { return d->protect.latched; }
 
 void drive_report_overrun(drive_t *d)
 {

@@ -4,6 +4,11 @@
  * the ADC interrupt; the simulator calls it through the simulated HAL, so
  * the simulated loop is the firmware's loop.
  *
+ * Protection (ctl_protect) runs every period in every state after INIT, before the
+ * control step: a fault forces the PWM off in that same period, before any new
+ * command reaches the compare registers, latches a code and appends a record to
+ * the fault log, which survives a clear until it is read.
+ *
  * States: INIT -> CALIBRATE (PWM off, ADC offsets averaged) -> READY
  *         READY -> RUN on a run command; RUN -> READY on stop;
  *         any -> FAULT (PWM forced off, latched) ; FAULT -> READY on a clear
@@ -21,6 +26,7 @@
 #include <stdint.h>
 
 #include "ctl.h"
+#include "ctl_protect.h"
 #include "hal_adc.h"
 #include "hal_encoder.h"
 
@@ -43,14 +49,27 @@ typedef enum {
     DRIVE_FAULT_ADC_MISSING = 3, /* ISR ran without a new conversion */
     DRIVE_FAULT_HW_TRIP = 4,     /* hardware over-current trip zone fired */
     DRIVE_FAULT_OVERRUN = 5,     /* control ISR did not finish within its period */
-    DRIVE_FAULT_ENCODER = 6,     /* encoder unhealthy while running */
-    DRIVE_FAULT_STARTUP = 7      /* a peripheral failed to initialise (not clearable) */
+    DRIVE_FAULT_ENCODER = 6,     /* encoder unhealthy, stopped under torque, or angle jump */
+    DRIVE_FAULT_STARTUP = 7,     /* a peripheral failed to initialise (not clearable) */
+    DRIVE_FAULT_OVERCURRENT = 8, /* software phase over-current */
+    DRIVE_FAULT_DC_OVERVOLTAGE = 9,
+    DRIVE_FAULT_DC_UNDERVOLTAGE = 10, /* while running */
+    DRIVE_FAULT_OVERSPEED = 11,
+    DRIVE_FAULT_ADC_RAIL = 12,    /* a conversion at the rail */
+    DRIVE_FAULT_ADC_STUCK = 13,   /* a current channel frozen while current flows */
+    DRIVE_FAULT_CURRENT_SUM = 14, /* a three-phase set does not sum to zero */
+    DRIVE_FAULT_OPEN_PHASE = 15,  /* one phase carries no current while the others do */
+    DRIVE_FAULT_MEASUREMENT = 16  /* a scaled measurement is not a number (float build) */
 } drive_fault_t;
+
+#define DRIVE_FAULT_COUNT 17
 
 typedef struct {
     ctl_t ctl;
+    ctl_protect_t protect;
+    ctl_protect_input_t protect_in; /* this period's protection inputs (also the record) */
     drive_state_t state;
-    drive_fault_t fault;
+    drive_fault_t fault; /* first fault since the last clear; protect.latched has them all */
     bool run_requested;
     bool stop_requested;
     bool clear_requested;
@@ -99,6 +118,23 @@ void drive_set_torque_ref_nm(drive_t *d, float torque_nm);
  * start of a step). False, and nothing queued, if the set is invalid.
  * Background side only. */
 bool drive_request_params(drive_t *d, const ctl_params_t *p);
+
+/* Replace the protection thresholds (ctl_protect_default's are set by drive_init).
+ * Call before the control ISR is enabled: the limits are not double-buffered. */
+void drive_set_protect_limits(drive_t *d, const ctl_protect_limits_t *l);
+
+/* Oldest unread fault record; false when none. Background side (lock-free with the ISR). */
+bool drive_read_fault_record(drive_t *d, ctl_fault_record_t *r);
+
+/* Faults latched since the last clear (ctl_fault_t bits). */
+uint16_t drive_faults_latched(const drive_t *d);
+
+/* The drive code for a set of ctl_fault_t bits: the most severe one (hardware trip,
+ * over-current and over-voltage first). DRIVE_FAULT_NONE for 0. */
+drive_fault_t drive_fault_from_mask(uint16_t faults);
+
+/* The ctl_fault_t bit recorded for a drive code (0 for none). */
+uint16_t drive_fault_to_mask(drive_fault_t fault);
 
 /* The platform detected that the control ISR overran its period: fault. */
 void drive_report_overrun(drive_t *d);

@@ -206,10 +206,10 @@ static void test_records_and_latch(void **state)
     f = ctl_protect_check(&prot, &in, CTL_Q(0.3), 044, CTL_Q(0.6));
     assert_int_equal(f & (CTL_FAULT_OVERCURRENT | CTL_FAULT_OVERRUN | CTL_FAULT_HW_TRIP),
                      CTL_FAULT_OVERCURRENT | CTL_FAULT_OVERRUN | CTL_FAULT_HW_TRIP);
-    assert_int_equal(prot.log_count, 1);
+    assert_int_equal(ctl_protect_log_pending(&prot), 1);
     /* the same faults again: latched already, no new record */
     (void)ctl_protect_check(&prot, &in, CTL_Q(0.3), 044, CTL_Q(0.6));
-    assert_int_equal(prot.log_count, 1);
+    assert_int_equal(ctl_protect_log_pending(&prot), 1);
     /* while a condition is active the latch cannot be cleared */
     assert_false(ctl_protect_clear(&prot));
     in = healthy(1);
@@ -225,7 +225,7 @@ static void test_records_and_latch(void **state)
         (void)ctl_protect_check(&prot, &in, CTL_Q(0.3), 044, CTL_Q(0.6));
         assert_true(ctl_protect_clear(&prot));
     }
-    assert_int_equal(prot.log_count, CTL_PROTECT_LOG_SIZE);
+    assert_int_equal(ctl_protect_log_pending(&prot), CTL_PROTECT_LOG_SIZE);
     assert_int_equal(prot.log_dropped, 4);
     assert_true(ctl_protect_read_record(&prot, &r));
     assert_int_equal(r.faults & CTL_FAULT_OVERCURRENT, CTL_FAULT_OVERCURRENT);

@@ -318,6 +318,105 @@ static void test_references(void **state)
     assert_int_equal(mock_rec.torque_ref, 0);
 }
 
+/* 1700 counts from mid scale is 16.6 A: over the 15 A software limit, inside the sensors */
+#define OVER_LIMIT_COUNTS 1700
+
+static void start_running(void)
+{
+    calibrate();
+    mock_cmd.enable = true;
+    drive_request_run(&d);
+    run_isr(2);
+    assert_int_equal(d.state, DRIVE_STATE_RUN);
+}
+
+static void test_overcurrent_forces_off_before_any_write(void **state)
+{
+    ctl_fault_record_t r;
+    uint32_t writes;
+    (void)state;
+    start_running();
+    writes = mock_rec.write;
+    /* A and B opposite: the set still sums to zero, only the magnitude is wrong */
+    mock_adc.phase[0] = (uint16_t)(2048 + OVER_LIMIT_COUNTS);
+    mock_adc.phase[1] = (uint16_t)(2048 - OVER_LIMIT_COUNTS);
+    run_isr(1);
+    assert_int_equal(d.state, DRIVE_STATE_FAULT);
+    assert_int_equal(d.fault, DRIVE_FAULT_OVERCURRENT);
+    assert_int_equal(drive_faults_latched(&d), CTL_FAULT_OVERCURRENT);
+    assert_true(mock_rec.pwm_off);
+    assert_int_equal(mock_rec.write, writes); /* the faulted period wrote no compare value */
+
+    /* clear refused while the current is still high; the record stays */
+    drive_request_clear_fault(&d);
+    run_isr(1);
+    assert_int_equal(d.state, DRIVE_STATE_FAULT);
+    mock_adc.phase[0] = 2048u;
+    mock_adc.phase[1] = 2048u;
+    drive_request_clear_fault(&d);
+    run_isr(1);
+    assert_int_equal(d.state, DRIVE_STATE_READY);
+    assert_int_equal(drive_faults_latched(&d), 0u);
+
+    /* the record survived the clear and describes the faulted period */
+    assert_true(drive_read_fault_record(&d, &r));
+    assert_int_equal(r.faults, CTL_FAULT_OVERCURRENT);
+    assert_true(r.i_phase[0] > ctl_from_float(16.0f / 10.0f));
+    assert_true(r.i_phase[1] < ctl_from_float(-16.0f / 10.0f));
+    assert_false(drive_read_fault_record(&d, &r));
+}
+
+static void test_simultaneous_faults_one_record_all_bits(void **state)
+{
+    ctl_fault_record_t r;
+    (void)state;
+    start_running();
+    mock_adc.phase[3] = (uint16_t)(2048 + OVER_LIMIT_COUNTS);
+    mock_adc.phase[4] = (uint16_t)(2048 - OVER_LIMIT_COUNTS);
+    mock_rec.hw_trip = true;
+    run_isr(1);
+    assert_int_equal(d.fault, DRIVE_FAULT_HW_TRIP); /* the most severe code names it */
+    assert_int_equal(drive_faults_latched(&d), CTL_FAULT_HW_TRIP | CTL_FAULT_OVERCURRENT);
+    assert_true(drive_read_fault_record(&d, &r));
+    assert_int_equal(r.faults, CTL_FAULT_HW_TRIP | CTL_FAULT_OVERCURRENT);
+    assert_false(drive_read_fault_record(&d, &r));
+
+    /* a later fault of another kind while latched: logged, the first code kept */
+    drive_report_overrun(&d);
+    assert_int_equal(d.fault, DRIVE_FAULT_HW_TRIP);
+    assert_true(drive_read_fault_record(&d, &r));
+    assert_int_equal(r.faults, CTL_FAULT_OVERRUN);
+}
+
+static void test_dc_overvoltage_faults_when_idle(void **state)
+{
+    (void)state;
+    calibrate();
+    mock_adc.vdc = 3800u; /* 742 V, over the 720 V limit */
+    run_isr(2);
+    assert_int_equal(d.state, DRIVE_STATE_READY); /* filtered: 3 periods */
+    run_isr(1);
+    assert_int_equal(d.state, DRIVE_STATE_FAULT);
+    assert_int_equal(d.fault, DRIVE_FAULT_DC_OVERVOLTAGE);
+    drive_request_run(&d);
+    run_isr(1);
+    assert_int_equal(d.state, DRIVE_STATE_FAULT);
+    assert_int_equal(mock_rec.enable, 0u);
+}
+
+static void test_fault_mask_mapping_round_trips(void **state)
+{
+    int16_t code;
+    (void)state;
+    assert_int_equal(drive_fault_from_mask(0u), DRIVE_FAULT_NONE);
+    assert_int_equal(drive_fault_to_mask(DRIVE_FAULT_NONE), 0u);
+    for (code = 1; code < DRIVE_FAULT_COUNT; code++) {
+        const uint16_t bit = drive_fault_to_mask((drive_fault_t)code);
+        assert_int_not_equal(bit, 0u);
+        assert_int_equal(drive_fault_from_mask(bit), code);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -336,6 +435,10 @@ int main(void)
         cmocka_unit_test_setup(test_request_params, setup),
         cmocka_unit_test_setup(test_duty_conversion, setup),
         cmocka_unit_test_setup(test_references, setup),
+        cmocka_unit_test_setup(test_overcurrent_forces_off_before_any_write, setup),
+        cmocka_unit_test_setup(test_simultaneous_faults_one_record_all_bits, setup),
+        cmocka_unit_test_setup(test_dc_overvoltage_faults_when_idle, setup),
+        cmocka_unit_test_setup(test_fault_mask_mapping_round_trips, setup),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -158,7 +158,7 @@ int LLVMFuzzerTestOneInput(const unsigned char *data, size_t size)
             in.running = true;
             (void)ctl_protect_check(&prot, &in, ctl_diag(&c)->torque_ref, cmd.vector, cmd.duty);
             if ((prot.latched & (uint16_t)~0x3FFFu) != 0u ||
-                prot.log_count > CTL_PROTECT_LOG_SIZE) {
+                ctl_protect_log_pending(&prot) > CTL_PROTECT_LOG_SIZE) {
                 abort();
             }
             steps++;
