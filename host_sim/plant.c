@@ -13,6 +13,16 @@ const double plant_phase_angle_rad[PLANT_PHASES] = {0.0,
                                                     5.0 * PLANT_PI / 6.0,
                                                     3.0 * PLANT_PI / 2.0};
 
+/* cos th_k, sin th_k, cos 5th_k, sin 5th_k as exact constants (the same values
+ * plant_phase_currents uses), so the derivative needs no libm. */
+#define PLANT_H3 0.86602540378443864676 /* sqrt(3)/2 */
+static const double plant_vsd_row[4][PLANT_PHASES] = {
+    {1.0, -0.5, -0.5, PLANT_H3, -PLANT_H3, 0.0},
+    {0.0, PLANT_H3, -PLANT_H3, 0.5, 0.5, -1.0},
+    {1.0, -0.5, -0.5, -PLANT_H3, PLANT_H3, 0.0},
+    {0.0, -PLANT_H3, PLANT_H3, 0.5, 0.5, -1.0},
+};
+
 void plant_params_default(plant_params_t *p)
 {
     p->r_ohm = 2.0;
@@ -27,6 +37,9 @@ void plant_params_default(plant_params_t *p)
     p->b_nms = 0.001;
     p->vdc_v = 540.0;
     p->dead_time_s = 2e-6;
+    for (int k = 0; k < PLANT_PHASES; k++) {
+        p->phase_extra_r_ohm[k] = 0.0;
+    }
     p->max_step_s = 50e-6;
     p->dead_time_on = true;
     p->harmonics_on = true;
@@ -69,6 +82,11 @@ const char *plant_params_check(const plant_params_t *p)
     }
     if (!(p->max_step_s > 1e-9 && p->max_step_s <= 1e-3)) {
         return "plant step must be in (1 ns, 1 ms]";
+    }
+    for (int k = 0; k < PLANT_PHASES; k++) {
+        if (!(p->phase_extra_r_ohm[k] >= 0.0 && p->phase_extra_r_ohm[k] < 1e5)) {
+            return "extra phase resistance must be in [0, 1e5) ohm";
+        }
     }
     if (p->encoder_lines < 1u || p->encoder_lines > 1000000u) {
         return "encoder lines must be in 1..1e6";
@@ -180,11 +198,22 @@ static inline void plant_small_rot(double d, double *c, double *s)
     }
 }
 
+/* plant_deriv and plant_rk4_gen are instantiated with a constant `extra`;
+ * without forced inlining gcc keeps one shared copy and the normal path pays
+ * for the fault path (register pressure, hoisted work). */
+#if defined(__GNUC__)
+#define PLANT_FORCE_INLINE inline __attribute__((always_inline))
+#else
+#define PLANT_FORCE_INLINE inline
+#endif
+
 /* Coefficients computed once per interval (no divisions in the derivative). */
 typedef struct {
     double pn, r, ld, lq, psi_f, inv_ld, inv_lq, inv_lxy, inv_j, b, five_psi5, seven_psi7;
     double t3pn;
+    double r_extra_3[PLANT_PHASES]; /* phase_extra_r_ohm / 3 (VSD projection scale) */
     bool harm;
+    bool extra_r; /* any phase_extra_r_ohm non-zero; keeps the normal path unchanged */
 } plant_coef_t;
 
 static void plant_coef(const plant_params_t *p, plant_coef_t *k)
@@ -203,6 +232,15 @@ static void plant_coef(const plant_params_t *p, plant_coef_t *k)
     k->seven_psi7 = 7.0 * p->psi7_wb;
     k->t3pn = 3.0 * k->pn;
     k->harm = p->harmonics_on;
+    k->extra_r = false;
+    for (int n = 0; n < PLANT_PHASES; n++) {
+        k->extra_r = k->extra_r || (p->phase_extra_r_ohm[n] != 0.0);
+    }
+    if (k->extra_r) { /* normal runs skip this per-interval work */
+        for (int n = 0; n < PLANT_PHASES; n++) {
+            k->r_extra_3[n] = p->phase_extra_r_ohm[n] / 3.0;
+        }
+    }
 }
 
 typedef struct {
@@ -210,13 +248,44 @@ typedef struct {
     double te;
 } plant_deriv_t;
 
-static inline void plant_deriv(const plant_coef_t *p, const double y[5], double c, double s,
-                               const double u[4], double t_load, bool lock_mech, plant_deriv_t *k)
+/* Subtract the extra-resistance drop: phase currents from the state, dv_k =
+ * R_k i_k, amplitude-invariant VSD projection (1/3) sum_k dv_k row_k; the
+ * zero-sequence part is taken by the isolated neutrals, so four components
+ * are the whole effect. alpha-beta is rotated into d-q like the supply. */
+static void plant_extra_drop(const plant_coef_t *p, const double y[5], double c, double s,
+                             double *ud, double *uq, double *ux, double *uy)
+{
+    const double ia = y[0] * c - y[1] * s;
+    const double ib = y[0] * s + y[1] * c;
+    double da = 0.0, db = 0.0, dx = 0.0, dy = 0.0;
+    for (int k = 0; k < PLANT_PHASES; k++) {
+        const double ik = ia * plant_vsd_row[0][k] + ib * plant_vsd_row[1][k] +
+                          y[2] * plant_vsd_row[2][k] + y[3] * plant_vsd_row[3][k];
+        const double dv3 = p->r_extra_3[k] * ik;
+        da += dv3 * plant_vsd_row[0][k];
+        db += dv3 * plant_vsd_row[1][k];
+        dx += dv3 * plant_vsd_row[2][k];
+        dy += dv3 * plant_vsd_row[3][k];
+    }
+    *ud -= da * c + db * s;
+    *uq -= -da * s + db * c;
+    *ux -= dx;
+    *uy -= dy;
+}
+
+/* `extra` is p->extra_r passed as a constant, so the normal path carries no test. */
+static PLANT_FORCE_INLINE void plant_deriv(const plant_coef_t *p, const double y[5], double c,
+                                           double s, const double u[4], double t_load,
+                                           bool lock_mech, bool extra, plant_deriv_t *k)
 {
     const double we = p->pn * y[4];
-    const double ud = u[0] * c + u[1] * s;
-    const double uq = -u[0] * s + u[1] * c;
+    double ud = u[0] * c + u[1] * s;
+    double uq = -u[0] * s + u[1] * c;
+    double ux = u[2], uy = u[3];
     double ex = 0.0, ey = 0.0;
+    if (extra) {
+        plant_extra_drop(p, y, c, s, &ud, &uq, &ux, &uy);
+    }
     k->did = (ud - p->r * y[0] + we * p->lq * y[1]) * p->inv_ld;
     k->diq = (uq - p->r * y[1] - we * (p->ld * y[0] + p->psi_f)) * p->inv_lq;
     k->te = p->t3pn * ((p->ld - p->lq) * y[0] * y[1] + p->psi_f * y[1]);
@@ -231,13 +300,14 @@ static inline void plant_deriv(const plant_coef_t *p, const double y[5], double 
         ey = we * gy;
         k->te += p->t3pn * (gx * y[2] + gy * y[3]);
     }
-    k->dix = (u[2] - p->r * y[2] - ex) * p->inv_lxy;
-    k->diy = (u[3] - p->r * y[3] - ey) * p->inv_lxy;
+    k->dix = (ux - p->r * y[2] - ex) * p->inv_lxy;
+    k->diy = (uy - p->r * y[3] - ey) * p->inv_lxy;
     k->dw = lock_mech ? 0.0 : (k->te - t_load - p->b * y[4]) * p->inv_j;
 }
 
-static double plant_rk4(const plant_coef_t *kc, plant_state_t *s, const double u[4], double t_load,
-                        bool lock_mech, double h)
+static PLANT_FORCE_INLINE double plant_rk4_gen(const plant_coef_t *kc, plant_state_t *s,
+                                               const double u[4], double t_load, bool lock_mech,
+                                               bool extra, double h)
 {
     const double pn = kc->pn;
     const double y0[5] = {s->i_d, s->i_q, s->i_x, s->i_y, s->omega_m};
@@ -247,7 +317,7 @@ static double plant_rk4(const plant_coef_t *kc, plant_state_t *s, const double u
     c0 = s->cos_e;
     s0 = s->sin_e;
 
-    plant_deriv(kc, y0, c0, s0, u, t_load, lock_mech, &k1);
+    plant_deriv(kc, y0, c0, s0, u, t_load, lock_mech, extra, &k1);
 
     y[0] = y0[0] + 0.5 * h * k1.did;
     y[1] = y0[1] + 0.5 * h * k1.diq;
@@ -257,7 +327,7 @@ static double plant_rk4(const plant_coef_t *kc, plant_state_t *s, const double u
     plant_small_rot(pn * 0.5 * h * y0[4], &cr, &sr); /* theta_m stage increments */
     c = c0 * cr - s0 * sr;
     sn = s0 * cr + c0 * sr;
-    plant_deriv(kc, y, c, sn, u, t_load, lock_mech, &k2);
+    plant_deriv(kc, y, c, sn, u, t_load, lock_mech, extra, &k2);
     const double w2 = y[4];
 
     y[0] = y0[0] + 0.5 * h * k2.did;
@@ -268,7 +338,7 @@ static double plant_rk4(const plant_coef_t *kc, plant_state_t *s, const double u
     plant_small_rot(pn * 0.5 * h * w2, &cr, &sr);
     c = c0 * cr - s0 * sr;
     sn = s0 * cr + c0 * sr;
-    plant_deriv(kc, y, c, sn, u, t_load, lock_mech, &k3);
+    plant_deriv(kc, y, c, sn, u, t_load, lock_mech, extra, &k3);
     const double w3 = y[4];
 
     y[0] = y0[0] + h * k3.did;
@@ -279,7 +349,7 @@ static double plant_rk4(const plant_coef_t *kc, plant_state_t *s, const double u
     plant_small_rot(pn * h * w3, &cr, &sr);
     c = c0 * cr - s0 * sr;
     sn = s0 * cr + c0 * sr;
-    plant_deriv(kc, y, c, sn, u, t_load, lock_mech, &k4);
+    plant_deriv(kc, y, c, sn, u, t_load, lock_mech, extra, &k4);
     const double w4 = y[4];
 
     s->i_d = y0[0] + h / 6.0 * (k1.did + 2.0 * k2.did + 2.0 * k3.did + k4.did);
@@ -297,12 +367,30 @@ static double plant_rk4(const plant_coef_t *kc, plant_state_t *s, const double u
     return h / 6.0 * (k1.te + 2.0 * k2.te + 2.0 * k3.te + k4.te);
 }
 
+/* The normal and the fault instantiation as separate functions: with one
+ * shared body gcc hoists fault-path work into the normal path (measured
+ * ~10 % slower); this way the normal path compiles as before. */
+static double plant_rk4_plain(const plant_coef_t *kc, plant_state_t *s, const double u[4],
+                              double t_load, bool lock_mech, double h)
+{
+    return plant_rk4_gen(kc, s, u, t_load, lock_mech, false, h);
+}
+
+static double plant_rk4_fault(const plant_coef_t *kc, plant_state_t *s, const double u[4],
+                              double t_load, bool lock_mech, double h)
+{
+    return plant_rk4_gen(kc, s, u, t_load, lock_mech, true, h);
+}
+
 double plant_rk4_step(const plant_params_t *p, plant_state_t *s, const double u[4], double t_load,
                       bool lock_mech, double h)
 {
     plant_coef_t kc;
     plant_coef(p, &kc);
-    return plant_rk4(&kc, s, u, t_load, lock_mech, h);
+    if (kc.extra_r) {
+        return plant_rk4_fault(&kc, s, u, t_load, lock_mech, h);
+    }
+    return plant_rk4_plain(&kc, s, u, t_load, lock_mech, h);
 }
 
 double plant_integrate(const plant_params_t *p, plant_state_t *s, const double u[4], double t_load,
@@ -325,8 +413,14 @@ double plant_integrate_nosync(const plant_params_t *p, plant_state_t *s, const d
     steps = (n < 1.0) ? 1L : (long)n;
     hs = h / (double)steps;
     plant_coef(p, &kc);
-    for (i = 0; i < steps; i++) {
-        te_int += plant_rk4(&kc, s, u, t_load, lock_mech, hs);
+    if (kc.extra_r) { /* flag tested once per interval */
+        for (i = 0; i < steps; i++) {
+            te_int += plant_rk4_fault(&kc, s, u, t_load, lock_mech, hs);
+        }
+    } else {
+        for (i = 0; i < steps; i++) {
+            te_int += plant_rk4_plain(&kc, s, u, t_load, lock_mech, hs);
+        }
     }
     return te_int;
 }

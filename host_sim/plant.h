@@ -9,6 +9,15 @@
  * Between switching instants the phase voltages are constant; each such
  * interval is integrated with classical RK4 (sub-steps no longer than
  * plant_params_t.max_step_s).
+ *
+ * Open-phase fault: phase_extra_r_ohm[k] adds a series resistance to phase k
+ * (its drop projected onto the VSD planes; the zero-sequence part is taken by
+ * the isolated neutral). A large value makes the model stiff: the fastest
+ * eigenvalue is about 2 R_extra / (3 L) (at most that with L the smallest of
+ * L_d, L_q, L_xy), and RK4 diverges once max_step_s times it exceeds ~2.8
+ * (the default 50 us step does at 2 kohm). Callers injecting an open phase
+ * must therefore reduce max_step_s themselves, e.g. to 2e-6 s for 2 kohm with
+ * L_xy = 10 mH; the plant does not change it.
  */
 #ifndef SIM_PLANT_H
 #define SIM_PLANT_H
@@ -33,6 +42,9 @@ typedef struct {
     /* inverter */
     double vdc_v;
     double dead_time_s;
+    /* faults: series resistance added to one phase (a loose terminal; ~2 kohm =
+     * open circuit); 0 in normal runs. See the stiffness note above. */
+    double phase_extra_r_ohm[PLANT_PHASES];
     /* numerics */
     double max_step_s; /* longest RK4 sub-step inside a constant-voltage interval */
     /* non-idealities, each on/off */

@@ -1,6 +1,6 @@
 /* Plant accuracy: locked-rotor step responses against the analytic solution,
  * RK4 convergence when the step is halved, VSD voltage table, harmonic-flux
- * mapping into x-y. */
+ * mapping into x-y, per-phase extra resistance (open-phase fault). */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -74,21 +74,26 @@ static void test_locked_rotor_xy_step(void **state)
 /* Rotating machine, free mechanics, harmonics on: error against a reference
  * with a 64x smaller step falls ~16x per halving (4th order), and the default
  * step is accurate to a stated bound. */
-static double run_rotating(double step, plant_state_t *out)
+static void run_rotating_with(const plant_params_t *p, plant_state_t *out)
 {
-    plant_params_t p;
     plant_state_t s = {0};
     int k;
-    plant_params_default(&p);
-    p.max_step_s = step;
     s.omega_m = 157.0;
     s.i_q = 3.0;
     for (k = 0; k < 200; k++) { /* 20 ms, alternating voltage intervals */
         const double u1[4] = {150.0, 60.0, 20.0, -10.0};
         const double u2[4] = {-30.0, 170.0, -15.0, 25.0};
-        (void)plant_integrate(&p, &s, (k % 2) ? u1 : u2, 3.0, false, 100e-6);
+        (void)plant_integrate(p, &s, (k % 2) ? u1 : u2, 3.0, false, 100e-6);
     }
     *out = s;
+}
+
+static double run_rotating(double step, plant_state_t *out)
+{
+    plant_params_t p;
+    plant_params_default(&p);
+    p.max_step_s = step;
+    run_rotating_with(&p, out);
     return 0.0;
 }
 
@@ -256,6 +261,165 @@ static void test_power_balance(void **state)
     assert_true(fabs(w_in - w_cu - (w_mag1 - w_mag0) - w_mech) < 1e-3 * fabs(w_in));
 }
 
+/* Phase voltages of a stationary-frame vector (inverse VSD, no zero sequence). */
+static void phase_voltages(const double u[4], double v[6])
+{
+    int k;
+    for (k = 0; k < 6; k++) {
+        const double th = plant_phase_angle_rad[k];
+        v[k] = u[0] * cos(th) + u[1] * sin(th) + u[2] * cos(5.0 * th) + u[3] * sin(5.0 * th);
+    }
+}
+
+/* Extra resistance 0 (the default) leaves the rotating run as it was before the
+ * fault model existed: values recorded from that code. Bit-identical where
+ * double arithmetic is plain SSE2; elsewhere FMA contraction may move the last bits. */
+static void test_extra_r_zero_unchanged(void **state)
+{
+    static const double before[6] = {-0x1.2a842a7d528f2p+2, -0x1.06dbb86887d63p+5,
+                                     0x1.46320838b85e1p-1,  0x1.9a26942108696p+1,
+                                     0x1.3b7954c165a0ep+7,  0x1.7a9e38e89c5b4p+1};
+    plant_params_t p;
+    plant_state_t s, tiny;
+    double got[6], iph[6], max_rel = 0.0;
+    int k;
+    (void)state;
+    plant_params_default(&p);
+    for (k = 0; k < 6; k++) {
+        assert_true(p.phase_extra_r_ohm[k] == 0.0);
+    }
+    run_rotating_with(&p, &s);
+    got[0] = s.i_d;
+    got[1] = s.i_q;
+    got[2] = s.i_x;
+    got[3] = s.i_y;
+    got[4] = s.omega_m;
+    got[5] = s.theta_m;
+    for (k = 0; k < 6; k++) {
+        max_rel = fmax(max_rel, fabs(got[k] - before[k]) / fabs(before[k]));
+    }
+    print_message("extra R = 0: max relative change vs. before %.3g\n", max_rel);
+#if defined(__x86_64__) && !defined(__FMA__)
+    for (k = 0; k < 6; k++) {
+        assert_true(got[k] == before[k]);
+    }
+#else
+    assert_true(max_rel < 1e-12);
+#endif
+    /* isolated neutrals: each three-phase set sums to zero */
+    plant_phase_currents(&p, &s, iph);
+    assert_true(fabs(iph[0] + iph[1] + iph[2]) < 1e-12 * fabs(s.i_q));
+    assert_true(fabs(iph[3] + iph[4] + iph[5]) < 1e-12 * fabs(s.i_q));
+    /* the fault path with a negligible resistance agrees with the normal path */
+    for (k = 0; k < 6; k++) {
+        p.phase_extra_r_ohm[k] = 1e-200;
+    }
+    run_rotating_with(&p, &tiny);
+    assert_true(state_err(&tiny, &s) < 1e-12);
+}
+
+/* 2 kohm in series with phase C (index 2) at standstill: phase C carries almost
+ * nothing, A and B form one loop (i_A = -i_B), set 2 is unaffected, and the
+ * currents settle to the DC solution of the resistive network (floating neutral). */
+static void test_open_phase_c(void **state)
+{
+    const double r_open = 2000.0;
+    const double th = 0.7; /* electrical angle */
+    const double u[4] = {40.0, -25.0, 6.0, -4.0};
+    plant_params_t p;
+    plant_state_t s = {0};
+    double iph[6], v[6], max_c_ratio = 0.0, max_set1_sum = 0.0;
+    int k;
+    (void)state;
+    plant_params_default(&p);
+    p.phase_extra_r_ohm[2] = r_open;
+    p.max_step_s = 2e-6;
+    assert_string_equal(plant_params_check(&p), "");
+    s.theta_m = th / (double)p.pole_pairs;
+    for (k = 0; k < 200; k++) { /* 20 ms in 100 us intervals */
+        (void)plant_integrate(&p, &s, u, 0.0, true, 100e-6);
+        plant_phase_currents(&p, &s, iph);
+        max_set1_sum = fmax(max_set1_sum, fabs(iph[0] + iph[1] + iph[2]));
+        if (k >= 9) { /* from 1 ms on: A and B have built up */
+            max_c_ratio = fmax(max_c_ratio, fabs(iph[2]) / fmax(fabs(iph[0]), fabs(iph[1])));
+        }
+    }
+    print_message("open phase C: i_A %.4g i_B %.4g i_C %.3g A at 20 ms, max |i_C|/|i_AB| %.3g\n",
+                  iph[0], iph[1], iph[2], max_c_ratio);
+    assert_true(fabs(iph[0]) > 1.0 && fabs(iph[1]) > 1.0);
+    assert_true(max_c_ratio < 0.03);
+    assert_true(fabs(iph[0] + iph[1]) < 0.03 * fabs(iph[0]));
+    assert_true(max_set1_sum < 1e-9);
+    assert_true(fabs(iph[3] + iph[4] + iph[5]) < 1e-9);
+    assert_true(isfinite(s.i_d) && isfinite(s.i_q) && isfinite(s.i_x) && isfinite(s.i_y));
+
+    /* on to 300 ms (> 10 time constants): DC steady state, i_k = (v_k - v_n) / R_k */
+    for (k = 200; k < 3000; k++) {
+        (void)plant_integrate(&p, &s, u, 0.0, true, 100e-6);
+    }
+    plant_phase_currents(&p, &s, iph);
+    phase_voltages(u, v);
+    {
+        const double g[3] = {1.0 / p.r_ohm, 1.0 / p.r_ohm, 1.0 / (p.r_ohm + r_open)};
+        const double vn = (v[0] * g[0] + v[1] * g[1] + v[2] * g[2]) / (g[0] + g[1] + g[2]);
+        const double scale = fabs(v[0] - v[1]) / p.r_ohm;
+        for (k = 0; k < 3; k++) {
+            const double want = (v[k] - vn) * g[k];
+            assert_true(fabs(iph[k] - want) < 1e-4 * scale);
+        }
+        /* the small open-phase current itself, to 0.1 %: checks the drop's scale */
+        assert_true(fabs(iph[2] - (v[2] - vn) * g[2]) < 1e-3 * fabs((v[2] - vn) * g[2]));
+        for (k = 3; k < 6; k++) {
+            assert_true(fabs(iph[k] - v[k] / p.r_ohm) < 1e-4 * scale);
+        }
+        print_message("open phase C, DC: i_C %.4g A (resistive network %.4g A)\n", iph[2],
+                      (v[2] - vn) * g[2]);
+    }
+}
+
+/* The same extra resistance in all six phases is a larger stator resistance:
+ * checks the 1/3 scaling of the VSD projection and the d-q rotation. */
+static void test_extra_r_all_phases_is_stator_r(void **state)
+{
+    const double r_add = 0.75;
+    plant_params_t pa, pb;
+    plant_state_t sa, sb;
+    double rel;
+    int k;
+    (void)state;
+    plant_params_default(&pa);
+    for (k = 0; k < 6; k++) {
+        pa.phase_extra_r_ohm[k] = r_add;
+    }
+    plant_params_default(&pb);
+    pb.r_ohm += r_add;
+    run_rotating_with(&pa, &sa);
+    run_rotating_with(&pb, &sb);
+    rel = state_err(&sa, &sb) / fmax(fabs(sb.i_q), fabs(sb.omega_m));
+    print_message("extra R in all phases vs. stator R: relative difference %.3g\n", rel);
+    assert_true(rel < 1e-9);
+    assert_true(fabs(sa.theta_m - sb.theta_m) < 1e-9 * fabs(sb.theta_m));
+    /* and it did change the run */
+    run_rotating(50e-6, &sb);
+    assert_true(state_err(&sa, &sb) > 1e-3);
+}
+
+static void test_extra_r_check(void **state)
+{
+    plant_params_t p;
+    (void)state;
+    plant_params_default(&p);
+    assert_string_equal(plant_params_check(&p), "");
+    p.phase_extra_r_ohm[4] = -1.0;
+    assert_true(plant_params_check(&p)[0] != '\0');
+    p.phase_extra_r_ohm[4] = NAN;
+    assert_true(plant_params_check(&p)[0] != '\0');
+    p.phase_extra_r_ohm[4] = 1e5;
+    assert_true(plant_params_check(&p)[0] != '\0');
+    p.phase_extra_r_ohm[4] = 2000.0;
+    assert_string_equal(plant_params_check(&p), "");
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -266,6 +430,10 @@ int main(void)
         cmocka_unit_test(test_phase_currents_inverse),
         cmocka_unit_test(test_harmonic_flux_mapping),
         cmocka_unit_test(test_power_balance),
+        cmocka_unit_test(test_extra_r_zero_unchanged),
+        cmocka_unit_test(test_open_phase_c),
+        cmocka_unit_test(test_extra_r_all_phases_is_stator_r),
+        cmocka_unit_test(test_extra_r_check),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
