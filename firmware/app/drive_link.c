@@ -4,6 +4,30 @@
 #include "hal_pwm.h"
 #include "profile.h"
 
+/* The protocol's name tables (sxlink_names.c) are numbered like the firmware's enums, and
+ * sxlink stays free of drive.h: check them here, where both are visible (C99 has no
+ * static_assert; a false condition gives an array of size -1). */
+#define DRIVE_LINK_ASSERT(name, cond) typedef char drive_link_assert_##name[(cond) ? 1 : -1]
+DRIVE_LINK_ASSERT(fault_names, (int32_t)SXL_FAULT_NAME_COUNT == (int32_t)DRIVE_FAULT_COUNT);
+DRIVE_LINK_ASSERT(state_names, (int32_t)SXL_STATE_NAME_COUNT == (int32_t)DRIVE_STATE_FAULT + 1);
+DRIVE_LINK_ASSERT(fault_bits, SXL_FAULT_BIT_COUNT == 16u);
+DRIVE_LINK_ASSERT(bit_overcurrent, CTL_FAULT_OVERCURRENT == 0x0001);
+DRIVE_LINK_ASSERT(bit_dc_overvoltage, CTL_FAULT_DC_OVERVOLTAGE == 0x0002);
+DRIVE_LINK_ASSERT(bit_dc_undervoltage, CTL_FAULT_DC_UNDERVOLTAGE == 0x0004);
+DRIVE_LINK_ASSERT(bit_overspeed, CTL_FAULT_OVERSPEED == 0x0008);
+DRIVE_LINK_ASSERT(bit_encoder, CTL_FAULT_ENCODER == 0x0010);
+DRIVE_LINK_ASSERT(bit_adc_rail, CTL_FAULT_ADC_RAIL == 0x0020);
+DRIVE_LINK_ASSERT(bit_adc_stuck, CTL_FAULT_ADC_STUCK == 0x0040);
+DRIVE_LINK_ASSERT(bit_adc_offset, CTL_FAULT_ADC_OFFSET == 0x0080);
+DRIVE_LINK_ASSERT(bit_overrun, CTL_FAULT_OVERRUN == 0x0100);
+DRIVE_LINK_ASSERT(bit_current_sum, CTL_FAULT_CURRENT_SUM == 0x0200);
+DRIVE_LINK_ASSERT(bit_open_phase, CTL_FAULT_OPEN_PHASE == 0x0400);
+DRIVE_LINK_ASSERT(bit_hw_trip, CTL_FAULT_HW_TRIP == 0x0800);
+DRIVE_LINK_ASSERT(bit_params, CTL_FAULT_PARAMS == 0x1000);
+DRIVE_LINK_ASSERT(bit_measurement, CTL_FAULT_MEASUREMENT == 0x2000);
+DRIVE_LINK_ASSERT(bit_adc_missing, CTL_FAULT_ADC_MISSING == 0x4000);
+DRIVE_LINK_ASSERT(bit_platform, CTL_FAULT_PLATFORM == 0x8000);
+
 /* x rounded to the nearest integer and saturated to int32. */
 static int32_t float_to_i32(float x)
 {
@@ -17,6 +41,21 @@ static int32_t float_to_i32(float x)
         return -INT32_MAX;
     }
     return (int32_t)((x >= 0.0f) ? (x + 0.5f) : (x - 0.5f));
+}
+
+/* x rounded and saturated to int16 (NaN: 0), for the record's 16-bit fields. */
+static int16_t float_to_i16(float x)
+{
+    if (!(x == x)) {
+        return 0;
+    }
+    if (x >= 32767.0f) {
+        return INT16_MAX;
+    }
+    if (x <= -32767.0f) {
+        return -INT16_MAX;
+    }
+    return (int16_t)((x >= 0.0f) ? (x + 0.5f) : (x - 0.5f));
 }
 
 void drive_link_status(const drive_t *d, uint16_t rx_errors, uint16_t *out)
@@ -50,6 +89,47 @@ void drive_link_status(const drive_t *d, uint16_t rx_errors, uint16_t *out)
     sxl_put_u32(&out[SXL_ST_ISR_COUNT], d->isr_count);
     sxl_put_u32(&out[SXL_ST_ISR_MAX], d->isr_cycles_max);
     sxl_put_u16(&out[SXL_ST_RX_ERRORS], rx_errors);
+    sxl_put_u16(&out[SXL_ST_FAULTS], drive_faults_latched(d));
+    sxl_put_u16(&out[SXL_ST_RECORDS], ctl_protect_log_pending(&d->protect));
+}
+
+uint16_t drive_link_fault_record(drive_t *d, uint16_t *out)
+{
+    ctl_fault_record_t r;
+    const bool present = drive_read_fault_record(d, &r);
+    /* counts after the read, so PENDING 0 tells the host it has everything */
+    out[SXL_FR_PRESENT] = present ? 1u : 0u;
+    sxl_put_u16(&out[SXL_FR_PENDING], ctl_protect_log_pending(&d->protect));
+    sxl_put_u16(&out[SXL_FR_DROPPED], d->protect.log_dropped);
+    if (!present) {
+        return SXL_FR_HEADER_SIZE;
+    }
+    {
+        const float amp_10ma = (float)(CTL_BASE_CURRENT_A * 100.0);
+        const float volt_01 = (float)(CTL_BASE_VOLTAGE_V * 10.0);
+        const float torque_mnm = (float)(CTL_BASE_TORQUE_NM * 1000.0);
+        /* electrical per unit -> mechanical 0.1 r/min; a set without pole pairs reads as 1 */
+        const int16_t pole_pairs = (d->params_bg.pole_pairs > 0) ? d->params_bg.pole_pairs : 1;
+        const float speed_01rpm =
+            (float)(CTL_BASE_OMEGA_RAD_S * 600.0 / CTL_TWO_PI) / (float)pole_pairs;
+        /* turns -> 1/65536 turn, wrapped: the low 16 bits of the saturated count */
+        const int32_t theta = float_to_i32(ctl_to_float(r.theta_e) * 65536.0f);
+        uint16_t k;
+        sxl_put_u16(&out[SXL_FR_FAULTS], r.faults);
+        sxl_put_u32(&out[SXL_FR_PERIOD], r.period);
+        for (k = 0u; k < SXL_FR_PHASES; k++) {
+            sxl_put_i16(&out[SXL_FR_I_PHASE + 2u * k],
+                        float_to_i16(ctl_to_float(r.i_phase[k]) * amp_10ma));
+        }
+        sxl_put_i16(&out[SXL_FR_VDC], float_to_i16(ctl_to_float(r.vdc) * volt_01));
+        sxl_put_u16(&out[SXL_FR_THETA], (uint16_t)((uint32_t)theta & 0xFFFFu));
+        sxl_put_i32(&out[SXL_FR_SPEED], float_to_i32(ctl_to_float(r.omega_e) * speed_01rpm));
+        sxl_put_i32(&out[SXL_FR_TORQUE], float_to_i32(ctl_to_float(r.torque_est) * torque_mnm));
+        sxl_put_i32(&out[SXL_FR_TORQUE_REF], float_to_i32(ctl_to_float(r.torque_ref) * torque_mnm));
+        sxl_put_i16(&out[SXL_FR_VECTOR], r.vector);
+        sxl_put_u16(&out[SXL_FR_DUTY], drive_duty_to_hal(r.duty));
+    }
+    return SXL_FR_SIZE;
 }
 
 void drive_link_profile(uint16_t stage, uint16_t *out)
@@ -118,6 +198,13 @@ void drive_link_handle(drive_t *d, const sxl_frame_t *req, sxl_frame_t *reply, u
             drive_link_profile(req->payload[0], &reply->payload[1]);
             reply->len = (uint16_t)(1u + SXL_PF_SIZE);
         }
+        break;
+    case SXL_CMD_GET_FAULT_RECORD:
+        if (req->len != 0u) {
+            result = SXL_ERR_LENGTH;
+            break;
+        }
+        reply->len = (uint16_t)(1u + drive_link_fault_record(d, &reply->payload[1]));
         break;
     case SXL_CMD_SET_SPEED: {
         int32_t v;

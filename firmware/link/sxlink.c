@@ -161,3 +161,15 @@ int32_t sxl_get_i32(const uint16_t *p)
     }
     return (int32_t)(u - 0x80000000u) - INT32_MAX - 1;
 }
+
+void sxl_put_i16(uint16_t *p, int16_t v) { sxl_put_u16(p, (uint16_t)v); }
+
+int16_t sxl_get_i16(const uint16_t *p)
+{
+    const uint16_t u = sxl_get_u16(p);
+    /* two's complement without implementation-defined conversion */
+    if (u <= (uint16_t)INT16_MAX) {
+        return (int16_t)u;
+    }
+    return (int16_t)((int32_t)u - 65536);
+}

@@ -19,15 +19,16 @@
 #define SXL_SOF 0xA5u
 #define SXL_MAX_PAYLOAD 48u
 #define SXL_MAX_FRAME (SXL_MAX_PAYLOAD + 5u)
-#define SXL_VERSION 1u
+#define SXL_VERSION 2u /* 2: fault fields in the status, SXL_CMD_GET_FAULT_RECORD */
 
 /* Commands (host -> drive). A reply carries CMD | SXL_REPLY and starts with
  * a result byte. */
 #define SXL_CMD_PING 0x01u
 #define SXL_CMD_GET_STATUS 0x02u
-#define SXL_CMD_GET_PROFILE 0x03u /* uint8 stage (0..7) -> SXL_PF_* reply */
-#define SXL_CMD_SET_SPEED 0x10u   /* int32 speed reference, 0.1 r/min */
-#define SXL_CMD_SET_TORQUE 0x11u  /* int32 torque reference, mN*m */
+#define SXL_CMD_GET_PROFILE 0x03u      /* uint8 stage (0..7) -> SXL_PF_* reply */
+#define SXL_CMD_GET_FAULT_RECORD 0x04u /* none -> SXL_FR_* reply; removes the record read */
+#define SXL_CMD_SET_SPEED 0x10u        /* int32 speed reference, 0.1 r/min */
+#define SXL_CMD_SET_TORQUE 0x11u       /* int32 torque reference, mN*m */
 #define SXL_CMD_RUN 0x12u
 #define SXL_CMD_STOP 0x13u
 #define SXL_CMD_CLEAR_FAULT 0x14u
@@ -59,7 +60,10 @@
 #define SXL_ST_ISR_COUNT 24u  /* uint32 control periods since start */
 #define SXL_ST_ISR_MAX 28u    /* uint32 longest ISR, CPU cycles */
 #define SXL_ST_RX_ERRORS 32u  /* uint16 malformed frames received */
-#define SXL_ST_SIZE 34u
+#define SXL_ST_FAULTS 34u     /* uint16 latched ctl_fault_t mask (protocol 2) */
+#define SXL_ST_RECORDS 36u    /* uint16 fault records not yet read (protocol 2) */
+#define SXL_ST_SIZE 38u
+#define SXL_ST_SIZE_V1 34u /* protocol 1 ended at rx_errors: readers accept the shorter block */
 /* Profile payload (reply to SXL_CMD_GET_PROFILE, after the result byte); cycles of the
  * ISR's counter, see firmware/app/profile.h. */
 #define SXL_PF_STAGE 0u          /* uint8 stage echoed */
@@ -75,6 +79,24 @@
 #define SXL_PF_OVERRUNS 31u      /* uint32 */
 #define SXL_PF_SIZE 35u
 #define SXL_PF_STAGES 8u
+/* Fault record payload (reply to SXL_CMD_GET_FAULT_RECORD, after the result byte). An
+ * empty log gives PRESENT 0 and only the first SXL_FR_HEADER_SIZE bytes. */
+#define SXL_FR_PRESENT 0u /* uint8 1: a record follows (now removed from the log), 0: none */
+#define SXL_FR_PENDING 1u /* uint16 records still unread after this one */
+#define SXL_FR_DROPPED 3u /* uint16 records dropped because the log was full */
+#define SXL_FR_HEADER_SIZE 5u
+#define SXL_FR_FAULTS 5u      /* uint16 ctl_fault_t mask detected in that period */
+#define SXL_FR_PERIOD 7u      /* uint32 control-period count at detection */
+#define SXL_FR_I_PHASE 11u    /* int16 x 6, phase currents A..F, 10 mA */
+#define SXL_FR_VDC 23u        /* int16 DC link, 0.1 V */
+#define SXL_FR_THETA 25u      /* uint16 electrical angle, 1/65536 turn */
+#define SXL_FR_SPEED 27u      /* int32 mechanical speed, 0.1 r/min */
+#define SXL_FR_TORQUE 31u     /* int32 torque estimate, mN*m */
+#define SXL_FR_TORQUE_REF 35u /* int32 torque reference, mN*m */
+#define SXL_FR_VECTOR 39u     /* int16 switching vector in force */
+#define SXL_FR_DUTY 41u       /* uint16 duty of that vector, Q15 (32768 = 1.0) */
+#define SXL_FR_SIZE 43u
+#define SXL_FR_PHASES 6u
 
 #define SXL_FLAG_ENCODER_OK 0x01u
 #define SXL_FLAG_PWM_OFF 0x02u
@@ -125,5 +147,20 @@ uint16_t sxl_get_u16(const uint16_t *p);
 uint32_t sxl_get_u32(const uint16_t *p);
 int32_t sxl_get_i32(const uint16_t *p);
 void sxl_put_i32(uint16_t *p, int32_t v);
+void sxl_put_i16(uint16_t *p, int16_t v);
+int16_t sxl_get_i16(const uint16_t *p);
+
+/* Names (sxlink_names.c), upper case as in the firmware's enums; "?" out of range. Plain
+ * numbers, no firmware headers, so host programs can use them. */
+#define SXL_STATE_NAME_COUNT 5u  /* drive_state_t: INIT .. FAULT */
+#define SXL_FAULT_NAME_COUNT 17u /* drive_fault_t: NONE .. MEASUREMENT (= DRIVE_FAULT_COUNT) */
+#define SXL_FAULT_BIT_COUNT 16u  /* ctl_fault_t bits 0..15 */
+const char *sxl_state_name(uint16_t state);
+const char *sxl_fault_name(uint16_t code);
+/* Name of ctl_fault_t bit number bit (0 = OVERCURRENT .. 15 = PLATFORM), not of a mask. */
+const char *sxl_fault_bit_name(uint16_t bit);
+/* The names of the bits set in mask joined by '|' ("NONE" for 0) into out (cap chars incl.
+ * the terminator, cap > 0); cut short if out is too small. Returns the length written. */
+uint16_t sxl_fault_mask_str(uint16_t mask, char *out, uint16_t cap);
 
 #endif /* SXLINK_H */

@@ -4,8 +4,9 @@
  *
  *   sixphase-link [-d DEVICE] [-b BAUD] [-t MS] [-n] COMMAND [ARGS]
  *
- * Commands: ping | status | run | stop | clear | speed RPM | torque NM |
- *           controller ddc|mptc49|mptc13 LAMBDA | decode HEXBYTE...
+ * Commands: ping | status | profile | faults | run | stop | clear | speed RPM |
+ *           torque NM | controller ddc|mptc49|mptc13 LAMBDA | decode HEXBYTE...
+ * "faults" reads the drive's fault log until it is empty, one line per record.
  * -n prints the request frame in hex instead of sending it. "decode" checks
  * and prints a frame given as hex bytes (no device needed).
  * Every error is one line on stderr and a non-zero exit status
@@ -38,9 +39,9 @@ typedef struct {
     int print_only;
 } options_t;
 
-static const char *const state_names[] = {"INIT", "CALIBRATE", "READY", "RUN", "FAULT"};
-static const char *const fault_names[] = {"NONE",    "PARAMS",  "ADC_OFFSET", "ADC_MISSING",
-                                          "HW_TRIP", "OVERRUN", "ENCODER",    "STARTUP"};
+/* Bound on the records "faults" reads, so a misbehaving device cannot loop it forever
+ * (the drive's log holds 8). */
+#define FAULTS_MAX_RECORDS 256
 static const char *const controller_names[] = {"ddc", "mptc49", "mptc13"};
 static const char *const result_names[] = {"ok", "bad length", "bad value", "unknown command",
                                            "refused"};
@@ -58,12 +59,12 @@ static int fail(int code, const char *fmt, ...)
 
 static int usage(const char *why)
 {
-    return fail(
-        EXIT_USAGE,
-        "%s (usage: sixphase-link [-d DEVICE] [-b BAUD] [-t MS] [-n] "
-        "ping|status|profile|run|stop|clear|speed RPM|torque NM|controller ddc|mptc49|mptc13 "
-        "LAMBDA|decode HEX...)",
-        why);
+    return fail(EXIT_USAGE,
+                "%s (usage: sixphase-link [-d DEVICE] [-b BAUD] [-t MS] [-n] "
+                "ping|status|profile|faults|run|stop|clear|speed RPM|torque NM|controller "
+                "ddc|mptc49|mptc13 "
+                "LAMBDA|decode HEX...)",
+                why);
 }
 
 static int parse_long(const char *s, long lo, long hi, long *out)
@@ -249,14 +250,14 @@ static int print_reply(const sxl_frame_t *r)
         printf("pong protocol=%u\n", (unsigned)r->payload[1]);
         return 0;
     case SXL_CMD_GET_STATUS:
-        if (r->len < 1u + SXL_ST_SIZE) {
+        /* protocol 1 firmware sends the block without the fault fields */
+        if (r->len < 1u + SXL_ST_SIZE_V1) {
             return fail(EXIT_IO, "short status reply (%u bytes)", (unsigned)r->len);
         }
         printf("state=%s fault=%s controller=%s speed=%.1frpm speed_ref=%.1frpm torque=%.3fNm "
                "torque_ref=%.3fNm lambda=%.3f encoder=%s pwm=%s params_pending=%s isr_count=%lu "
-               "isr_max_cycles=%lu rx_errors=%u\n",
-               name_of(state_names, sizeof state_names / sizeof state_names[0], st[SXL_ST_STATE]),
-               name_of(fault_names, sizeof fault_names / sizeof fault_names[0], st[SXL_ST_FAULT]),
+               "isr_max_cycles=%lu rx_errors=%u",
+               sxl_state_name(st[SXL_ST_STATE]), sxl_fault_name(st[SXL_ST_FAULT]),
                name_of(controller_names, 3u, st[SXL_ST_CONTROLLER]),
                (double)sxl_get_i32(&st[SXL_ST_SPEED]) / 10.0,
                (double)sxl_get_i32(&st[SXL_ST_SPEED_REF]) / 10.0,
@@ -269,6 +270,12 @@ static int print_reply(const sxl_frame_t *r)
                (unsigned long)sxl_get_u32(&st[SXL_ST_ISR_COUNT]),
                (unsigned long)sxl_get_u32(&st[SXL_ST_ISR_MAX]),
                (unsigned)sxl_get_u16(&st[SXL_ST_RX_ERRORS]));
+        if (r->len >= 1u + SXL_ST_SIZE) {
+            char mask[256];
+            (void)sxl_fault_mask_str(sxl_get_u16(&st[SXL_ST_FAULTS]), mask, (uint16_t)sizeof mask);
+            printf(" faults=%s fault_records=%u", mask, (unsigned)sxl_get_u16(&st[SXL_ST_RECORDS]));
+        }
+        printf("\n");
         return 0;
     default:
         printf("ok\n");
@@ -318,6 +325,106 @@ static int print_profile_row(const sxl_frame_t *r, int first)
            (unsigned long)sxl_get_u32(&pf[SXL_PF_MIN]), (unsigned long)sxl_get_u32(&pf[SXL_PF_MAX]),
            (unsigned long)sxl_get_u32(&pf[SXL_PF_MEAN]),
            (double)sxl_get_u32(&pf[SXL_PF_MEAN]) / cpu, (double)sxl_get_u32(&pf[SXL_PF_MAX]) / cpu);
+    return 0;
+}
+
+/* One fault record reply as a line; *present is 0 when the log was empty. */
+static int print_fault_record(const sxl_frame_t *r, int *present)
+{
+    static const char *const phase_names[SXL_FR_PHASES] = {"ia", "ib", "ic", "id", "ie", "if"};
+    const uint16_t *fr = &r->payload[1];
+    char mask[256];
+    uint16_t k;
+    if (r->payload[0] != SXL_OK) {
+        return fail(
+            EXIT_IO, "drive answered: %s",
+            name_of(result_names, sizeof result_names / sizeof result_names[0], r->payload[0]));
+    }
+    if (r->len < 1u + SXL_FR_HEADER_SIZE || fr[SXL_FR_PRESENT] > 1u ||
+        (fr[SXL_FR_PRESENT] == 1u && r->len < 1u + SXL_FR_SIZE)) {
+        return fail(EXIT_IO, "short or malformed fault record reply (%u bytes)", (unsigned)r->len);
+    }
+    *present = (int)fr[SXL_FR_PRESENT];
+    if (!*present) {
+        return 0;
+    }
+    (void)sxl_fault_mask_str(sxl_get_u16(&fr[SXL_FR_FAULTS]), mask, (uint16_t)sizeof mask);
+    printf("period=%lu faults=%s", (unsigned long)sxl_get_u32(&fr[SXL_FR_PERIOD]), mask);
+    for (k = 0u; k < SXL_FR_PHASES; k++) {
+        printf(" %s=%.2fA", phase_names[k],
+               (double)sxl_get_i16(&fr[SXL_FR_I_PHASE + 2u * k]) / 100.0);
+    }
+    printf(" vdc=%.1fV theta=%.1fdeg speed=%.1frpm te=%.3fNm tref=%.3fNm vector=%d duty=%.3f\n",
+           (double)sxl_get_i16(&fr[SXL_FR_VDC]) / 10.0,
+           (double)sxl_get_u16(&fr[SXL_FR_THETA]) * (360.0 / 65536.0),
+           (double)sxl_get_i32(&fr[SXL_FR_SPEED]) / 10.0,
+           (double)sxl_get_i32(&fr[SXL_FR_TORQUE]) / 1000.0,
+           (double)sxl_get_i32(&fr[SXL_FR_TORQUE_REF]) / 1000.0,
+           (int)sxl_get_i16(&fr[SXL_FR_VECTOR]), (double)sxl_get_u16(&fr[SXL_FR_DUTY]) / 32768.0);
+    return 0;
+}
+
+static void print_frame(const uint16_t *frame, uint16_t n)
+{
+    uint16_t k;
+    for (k = 0u; k < n; k++) {
+        printf("%02X%s", (unsigned)frame[k], (k + 1u < n) ? " " : "\n");
+    }
+}
+
+/* Send one request and wait for its reply; 0 on success. */
+static int exchange(int fd, const options_t *o, uint16_t cmd, const uint16_t *payload, uint16_t len,
+                    sxl_frame_t *reply)
+{
+    uint16_t frame[SXL_MAX_FRAME];
+    const uint16_t flen = sxl_encode(cmd, payload, len, frame, (uint16_t)SXL_MAX_FRAME);
+    int rc;
+    if (flen == 0u) {
+        return fail(EXIT_USAGE, "cannot encode the request");
+    }
+    rc = write_all(fd, frame, flen);
+    if (rc != 0) {
+        return rc;
+    }
+    return read_reply(fd, cmd, o->timeout_ms, reply);
+}
+
+/* Read the fault log until the drive reports it empty. */
+static int cmd_faults(const options_t *o)
+{
+    sxl_frame_t reply;
+    int fd = -1;
+    int n = 0;
+    int present = 1;
+    int rc = open_port(o, &fd);
+    if (rc != 0) {
+        return rc;
+    }
+    while (rc == 0 && present && n < FAULTS_MAX_RECORDS) {
+        rc = exchange(fd, o, SXL_CMD_GET_FAULT_RECORD, NULL, 0u, &reply);
+        if (rc == 0) {
+            rc = print_fault_record(&reply, &present);
+        }
+        if (rc == 0 && present) {
+            n++;
+        }
+    }
+    close(fd);
+    if (rc != 0) {
+        return rc;
+    }
+    if (present) {
+        return fail(EXIT_IO, "fault log still not empty after %d records", n);
+    }
+    if (n == 0) {
+        printf("no fault records\n");
+    }
+    {
+        const uint16_t dropped = sxl_get_u16(&reply.payload[1 + SXL_FR_DROPPED]);
+        if (dropped != 0u) {
+            printf("dropped=%u (log was full; the oldest records were kept)\n", (unsigned)dropped);
+        }
+    }
     return 0;
 }
 
@@ -451,7 +558,7 @@ int main(int argc, char **argv)
         }
         if (strcmp(opt, "-h") == 0 || strcmp(opt, "--help") == 0) {
             printf("usage: sixphase-link [-d DEVICE] [-b BAUD] [-t MS] [-n] COMMAND [ARGS]\n"
-                   "commands: ping status profile run stop clear speed RPM torque NM\n"
+                   "commands: ping status profile faults run stop clear speed RPM torque NM\n"
                    "          controller ddc|mptc49|mptc13 LAMBDA decode HEXBYTE...\n");
             return 0;
         }
@@ -479,6 +586,17 @@ int main(int argc, char **argv)
     if (strcmp(argv[i], "decode") == 0) {
         return cmd_decode(argc - i - 1, &argv[i + 1]);
     }
+    if (strcmp(argv[i], "faults") == 0) {
+        if (argc - i != 1) {
+            return usage("this command takes no arguments");
+        }
+        if (o.print_only) {
+            flen = sxl_encode(SXL_CMD_GET_FAULT_RECORD, NULL, 0u, frame, (uint16_t)SXL_MAX_FRAME);
+            print_frame(frame, flen);
+            return 0;
+        }
+        return cmd_faults(&o);
+    }
     if (strcmp(argv[i], "profile") == 0) {
         uint16_t stage;
         if (argc - i != 1) {
@@ -487,9 +605,7 @@ int main(int argc, char **argv)
         if (o.print_only) {
             payload[0] = 0u;
             flen = sxl_encode(SXL_CMD_GET_PROFILE, payload, 1u, frame, (uint16_t)SXL_MAX_FRAME);
-            for (stage = 0u; stage < flen; stage++) {
-                printf("%02X%s", (unsigned)frame[stage], (stage + 1u < flen) ? " " : "\n");
-            }
+            print_frame(frame, flen);
             return 0;
         }
         rc = open_port(&o, &fd);
@@ -498,11 +614,7 @@ int main(int argc, char **argv)
         }
         for (stage = 0u; stage < SXL_PF_STAGES && rc == 0; stage++) {
             payload[0] = stage;
-            flen = sxl_encode(SXL_CMD_GET_PROFILE, payload, 1u, frame, (uint16_t)SXL_MAX_FRAME);
-            rc = write_all(fd, frame, flen);
-            if (rc == 0) {
-                rc = read_reply(fd, SXL_CMD_GET_PROFILE, o.timeout_ms, &reply);
-            }
+            rc = exchange(fd, &o, SXL_CMD_GET_PROFILE, payload, 1u, &reply);
             if (rc == 0) {
                 rc = print_profile_row(&reply, stage == 0u);
             }
@@ -519,10 +631,7 @@ int main(int argc, char **argv)
         return fail(EXIT_USAGE, "cannot encode the request");
     }
     if (o.print_only) {
-        uint16_t k;
-        for (k = 0u; k < flen; k++) {
-            printf("%02X%s", (unsigned)frame[k], (k + 1u < flen) ? " " : "\n");
-        }
+        print_frame(frame, flen);
         return 0;
     }
     rc = open_port(&o, &fd);

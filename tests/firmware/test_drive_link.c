@@ -86,6 +86,8 @@ static void test_status(void **state)
     assert_int_equal(sxl_get_u32(&st[SXL_ST_ISR_COUNT]), 123456u);
     assert_int_equal(sxl_get_u32(&st[SXL_ST_ISR_MAX]), 4321u);
     assert_int_equal(sxl_get_u16(&st[SXL_ST_RX_ERRORS]), 7u);
+    assert_int_equal(sxl_get_u16(&st[SXL_ST_FAULTS]), 0u);
+    assert_int_equal(sxl_get_u16(&st[SXL_ST_RECORDS]), 0u);
     {
         uint16_t i;
         for (i = 0u; i < rep.len; i++) {
@@ -187,6 +189,191 @@ static void test_profile(void **state)
     assert_int_equal(send(SXL_CMD_GET_PROFILE), SXL_ERR_LENGTH);
 }
 
+/* Each reply byte is a byte (the C28x keeps them in 16-bit words). */
+static void assert_reply_bytes(void)
+{
+    uint16_t i;
+    for (i = 0u; i < rep.len; i++) {
+        assert_true(rep.payload[i] <= 0xFFu);
+    }
+}
+
+static void assert_near(int32_t value, int32_t expected, int32_t tolerance)
+{
+    if (value < expected - tolerance || value > expected + tolerance) {
+        fail_msg("%ld not within %ld of %ld", (long)value, (long)tolerance, (long)expected);
+    }
+}
+
+/* GET_FAULT_RECORD; returns the record payload (after the result byte). */
+static const uint16_t *get_record(void)
+{
+    req.len = 0u;
+    assert_int_equal(send(SXL_CMD_GET_FAULT_RECORD), SXL_OK);
+    assert_true(rep.len == 1u + SXL_FR_HEADER_SIZE || rep.len == 1u + SXL_FR_SIZE);
+    assert_reply_bytes();
+    return &rep.payload[1];
+}
+
+#define OVER_LIMIT_COUNTS 1700 /* 16.60 A: above the 15 A limit */
+
+/* An over-current while running, then an overrun reported in the next period: the status
+ * carries the first code, both latched bits and the two unread records; the records come
+ * back oldest first, scaled, then the log reads empty. */
+static void test_fault_status_and_records(void **state)
+{
+    const uint16_t *st;
+    const uint16_t *fr;
+    uint32_t period;
+    (void)state;
+    mock_encoder.elec_angle = 0x40000000u; /* 0.25 turn, steady: no encoder jump */
+    calibrate();
+    mock_cmd.enable = true;
+    assert_int_equal(send(SXL_CMD_RUN), SXL_OK);
+    will_return(hal_adc_read, true);
+    drive_control_isr(&d);
+    assert_int_equal(d.state, DRIVE_STATE_RUN);
+
+    /* what the controller had in force, as the record should report it */
+    d.ctl.diag.torque_est = ctl_from_float((float)(7.1 / CTL_BASE_TORQUE_NM));
+    d.ctl.diag.torque_ref = ctl_from_float((float)(-8.4 / CTL_BASE_TORQUE_NM));
+    d.ctl.applied_vector = 45;
+    d.ctl.applied_duty = CTL_Q(0.6);
+    mock_encoder.mech_speed_q16 = 25 << 16; /* 1500 r/min */
+    mock_adc.phase[0] = (uint16_t)(2048 + OVER_LIMIT_COUNTS);
+    mock_adc.phase[1] = (uint16_t)(2048 - OVER_LIMIT_COUNTS);
+    will_return(hal_adc_read, true);
+    drive_control_isr(&d);
+    assert_int_equal(d.state, DRIVE_STATE_FAULT);
+    period = d.protect.period;
+    will_return(hal_adc_read, true);
+    drive_control_isr(&d); /* still over the limit: already latched, no new record */
+    drive_trip(&d, DRIVE_FAULT_OVERRUN);
+
+    assert_int_equal(send(SXL_CMD_GET_STATUS), SXL_OK);
+    assert_int_equal(rep.len, 1u + SXL_ST_SIZE);
+    assert_reply_bytes();
+    st = &rep.payload[1];
+    assert_int_equal(st[SXL_ST_STATE], DRIVE_STATE_FAULT);
+    assert_int_equal(st[SXL_ST_FAULT], DRIVE_FAULT_OVERCURRENT);
+    assert_string_equal(sxl_fault_name(st[SXL_ST_FAULT]), "OVERCURRENT");
+    assert_int_equal(sxl_get_u16(&st[SXL_ST_FAULTS]), CTL_FAULT_OVERCURRENT | CTL_FAULT_OVERRUN);
+    assert_int_equal(sxl_get_u16(&st[SXL_ST_RECORDS]), 2u);
+
+    fr = get_record(); /* the over-current, oldest */
+    assert_int_equal(rep.len, 1u + SXL_FR_SIZE);
+    assert_int_equal(fr[SXL_FR_PRESENT], 1u);
+    assert_int_equal(sxl_get_u16(&fr[SXL_FR_PENDING]), 1u);
+    assert_int_equal(sxl_get_u16(&fr[SXL_FR_DROPPED]), 0u);
+    assert_int_equal(sxl_get_u16(&fr[SXL_FR_FAULTS]), CTL_FAULT_OVERCURRENT);
+    assert_int_equal(sxl_get_u32(&fr[SXL_FR_PERIOD]), period);
+    assert_near(sxl_get_i16(&fr[SXL_FR_I_PHASE]), 1660, 1); /* 1700 counts * 40 A / 4096 */
+    assert_near(sxl_get_i16(&fr[SXL_FR_I_PHASE + 2u]), -1660, 1);
+    assert_int_equal(sxl_get_i16(&fr[SXL_FR_I_PHASE + 4u]), 0);
+    assert_int_equal(sxl_get_i16(&fr[SXL_FR_I_PHASE + 10u]), 0);
+    assert_near(sxl_get_i16(&fr[SXL_FR_VDC]), 5400, 1); /* 2765 counts * 800 V / 4096 */
+    assert_near(sxl_get_u16(&fr[SXL_FR_THETA]), 16384, 1);
+    assert_near(sxl_get_i32(&fr[SXL_FR_SPEED]), 15000, 1);
+    assert_near(sxl_get_i32(&fr[SXL_FR_TORQUE]), 7100, 1);
+    assert_near(sxl_get_i32(&fr[SXL_FR_TORQUE_REF]), -8400, 1);
+    assert_int_equal(sxl_get_i16(&fr[SXL_FR_VECTOR]), 45);
+    assert_near(sxl_get_u16(&fr[SXL_FR_DUTY]), 19661, 1); /* 0.6 in Q15 */
+
+    fr = get_record(); /* the overrun, raised outside the periodic check */
+    assert_int_equal(fr[SXL_FR_PRESENT], 1u);
+    assert_int_equal(sxl_get_u16(&fr[SXL_FR_PENDING]), 0u);
+    assert_int_equal(sxl_get_u16(&fr[SXL_FR_FAULTS]), CTL_FAULT_OVERRUN);
+    assert_int_equal(sxl_get_u32(&fr[SXL_FR_PERIOD]), period + 1u);
+    assert_near(sxl_get_i16(&fr[SXL_FR_I_PHASE]), 1660, 1);
+    assert_int_equal(sxl_get_i16(&fr[SXL_FR_VECTOR]), 0);
+    assert_int_equal(sxl_get_u16(&fr[SXL_FR_DUTY]), 0u);
+
+    fr = get_record(); /* empty */
+    assert_int_equal(rep.len, 1u + SXL_FR_HEADER_SIZE);
+    assert_int_equal(fr[SXL_FR_PRESENT], 0u);
+    assert_int_equal(sxl_get_u16(&fr[SXL_FR_PENDING]), 0u);
+    assert_int_equal(sxl_get_u16(&fr[SXL_FR_DROPPED]), 0u);
+
+    /* the latch is untouched by reading the log */
+    assert_int_equal(send(SXL_CMD_GET_STATUS), SXL_OK);
+    assert_int_equal(sxl_get_u16(&rep.payload[1 + SXL_ST_FAULTS]),
+                     CTL_FAULT_OVERCURRENT | CTL_FAULT_OVERRUN);
+    assert_int_equal(sxl_get_u16(&rep.payload[1 + SXL_ST_RECORDS]), 0u);
+
+    req.len = 1u;
+    req.payload[0] = 0u;
+    assert_int_equal(send(SXL_CMD_GET_FAULT_RECORD), SXL_ERR_LENGTH);
+    assert_int_equal(rep.len, 1u);
+}
+
+/* More faults than the log holds: the oldest are kept, in order, and the rest counted. */
+static void test_fault_log_order_and_dropped(void **state)
+{
+    uint16_t code;
+    uint16_t i;
+    (void)state;
+    for (code = 1u; code <= 10u; code++) {
+        drive_trip(&d, (drive_fault_t)code); /* a new bit each time: one record each */
+    }
+    assert_int_equal(send(SXL_CMD_GET_STATUS), SXL_OK);
+    assert_int_equal(rep.payload[1 + SXL_ST_FAULT], DRIVE_FAULT_PARAMS);
+    assert_int_equal(sxl_get_u16(&rep.payload[1 + SXL_ST_RECORDS]), CTL_PROTECT_LOG_SIZE);
+    for (i = 0u; i < (uint16_t)CTL_PROTECT_LOG_SIZE; i++) {
+        const uint16_t *fr = get_record();
+        assert_int_equal(fr[SXL_FR_PRESENT], 1u);
+        assert_int_equal(sxl_get_u16(&fr[SXL_FR_FAULTS]),
+                         drive_fault_to_mask((drive_fault_t)(i + 1u)));
+        assert_int_equal(sxl_get_u16(&fr[SXL_FR_PENDING]), CTL_PROTECT_LOG_SIZE - 1u - i);
+        assert_int_equal(sxl_get_u16(&fr[SXL_FR_DROPPED]), 2u);
+    }
+    assert_int_equal(get_record()[SXL_FR_PRESENT], 0u);
+    assert_int_equal(sxl_get_u16(&rep.payload[1 + SXL_FR_DROPPED]), 2u);
+}
+
+/* Out-of-range values saturate instead of wrapping; the angle wraps into one turn. */
+static void test_fault_record_saturates(void **state)
+{
+    const uint16_t *fr;
+    (void)state;
+    d.protect_in.i_phase[0] = CTL_Q_MAX;
+    d.protect_in.i_phase[1] = CTL_Q_MIN;
+    d.protect_in.vdc = CTL_Q_MAX;
+    d.protect_in.theta_e = CTL_Q(-0.25);
+    d.protect_in.omega_e = CTL_Q_MIN;
+    d.protect_in.torque_est = CTL_Q_MAX;
+    d.params_bg.pole_pairs = 0; /* unusable set: read as one pole pair, no division by 0 */
+    drive_trip(&d, DRIVE_FAULT_OVERRUN);
+    fr = get_record();
+    assert_int_equal(fr[SXL_FR_PRESENT], 1u);
+    assert_int_equal(sxl_get_i16(&fr[SXL_FR_I_PHASE]), INT16_MAX);
+    assert_int_equal(sxl_get_i16(&fr[SXL_FR_I_PHASE + 2u]), -INT16_MAX);
+    assert_int_equal(sxl_get_i16(&fr[SXL_FR_VDC]), INT16_MAX);
+    assert_int_equal(sxl_get_u16(&fr[SXL_FR_THETA]), 49152u); /* 0.75 turn */
+    assert_near(sxl_get_i32(&fr[SXL_FR_SPEED]), -128 * 90000, 2);
+    assert_true(sxl_get_i32(&fr[SXL_FR_TORQUE]) > 0);
+}
+
+/* The protocol's names agree with the drive's codes and their protection bits. */
+static void test_fault_names_match_masks(void **state)
+{
+    uint16_t code;
+    (void)state;
+    for (code = 1u; code < (uint16_t)DRIVE_FAULT_COUNT; code++) {
+        const uint16_t mask = drive_fault_to_mask((drive_fault_t)code);
+        uint16_t bit = 0u;
+        assert_true(mask != 0u && (mask & (uint16_t)(mask - 1u)) == 0u); /* one bit */
+        while ((mask >> bit) != 1u) {
+            bit++;
+        }
+        if (code == DRIVE_FAULT_STARTUP) {
+            assert_string_equal(sxl_fault_bit_name(bit), "PLATFORM");
+        } else {
+            assert_string_equal(sxl_fault_bit_name(bit), sxl_fault_name(code));
+        }
+    }
+    assert_string_equal(sxl_state_name(DRIVE_STATE_FAULT), "FAULT");
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -196,6 +383,10 @@ int main(void)
         cmocka_unit_test_setup(test_run_stop_clear, setup),
         cmocka_unit_test_setup(test_set_controller, setup),
         cmocka_unit_test_setup(test_profile, setup),
+        cmocka_unit_test_setup(test_fault_status_and_records, setup),
+        cmocka_unit_test_setup(test_fault_log_order_and_dropped, setup),
+        cmocka_unit_test_setup(test_fault_record_saturates, setup),
+        cmocka_unit_test_setup(test_fault_names_match_masks, setup),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -3,6 +3,7 @@
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <string.h>
 
 #include <cmocka.h>
 
@@ -177,6 +178,78 @@ static void test_fields(void **state)
     }
 }
 
+static void test_i16_fields(void **state)
+{
+    uint16_t b[2];
+    (void)state;
+    sxl_put_i16(b, -2);
+    assert_int_equal(b[0], 0xFEu);
+    assert_int_equal(b[1], 0xFFu);
+    assert_int_equal(sxl_get_i16(b), -2);
+    sxl_put_i16(b, INT16_MIN);
+    assert_int_equal(sxl_get_i16(b), INT16_MIN);
+    sxl_put_i16(b, INT16_MAX);
+    assert_int_equal(sxl_get_i16(b), INT16_MAX);
+    assert_true(b[0] <= 0xFFu && b[1] <= 0xFFu);
+}
+
+/* Names follow drive_state_t, drive_fault_t and the ctl_fault_t bit order; "?" past the end. */
+static void test_names(void **state)
+{
+    (void)state;
+    assert_string_equal(sxl_state_name(0u), "INIT");
+    assert_string_equal(sxl_state_name(4u), "FAULT");
+    assert_string_equal(sxl_state_name(SXL_STATE_NAME_COUNT), "?");
+    assert_string_equal(sxl_state_name(0xFFFFu), "?");
+
+    assert_int_equal(SXL_FAULT_NAME_COUNT, 17u);
+    assert_string_equal(sxl_fault_name(0u), "NONE");
+    assert_string_equal(sxl_fault_name(1u), "PARAMS");
+    assert_string_equal(sxl_fault_name(4u), "HW_TRIP");
+    assert_string_equal(sxl_fault_name(7u), "STARTUP");
+    assert_string_equal(sxl_fault_name(8u), "OVERCURRENT");
+    assert_string_equal(sxl_fault_name(10u), "DC_UNDERVOLTAGE");
+    assert_string_equal(sxl_fault_name(16u), "MEASUREMENT");
+    assert_string_equal(sxl_fault_name(17u), "?");
+    assert_string_equal(sxl_fault_name(0xFFFFu), "?");
+
+    assert_string_equal(sxl_fault_bit_name(0u), "OVERCURRENT");
+    assert_string_equal(sxl_fault_bit_name(7u), "ADC_OFFSET");
+    assert_string_equal(sxl_fault_bit_name(11u), "HW_TRIP");
+    assert_string_equal(sxl_fault_bit_name(15u), "PLATFORM");
+    assert_string_equal(sxl_fault_bit_name(16u), "?");
+    {
+        uint16_t i;
+        for (i = 0u; i < SXL_FAULT_NAME_COUNT; i++) {
+            assert_true(strlen(sxl_fault_name(i)) > 1u);
+        }
+        for (i = 0u; i < SXL_FAULT_BIT_COUNT; i++) {
+            assert_true(strlen(sxl_fault_bit_name(i)) > 1u);
+        }
+    }
+}
+
+static void test_fault_mask_str(void **state)
+{
+    char buf[256];
+    char small[8];
+    (void)state;
+    assert_int_equal(sxl_fault_mask_str(0u, buf, (uint16_t)sizeof buf), 4u);
+    assert_string_equal(buf, "NONE");
+    sxl_fault_mask_str(0x0801u, buf, (uint16_t)sizeof buf);
+    assert_string_equal(buf, "OVERCURRENT|HW_TRIP");
+    sxl_fault_mask_str(0x8000u, buf, (uint16_t)sizeof buf);
+    assert_string_equal(buf, "PLATFORM");
+    assert_true(sxl_fault_mask_str(0xFFFFu, buf, (uint16_t)sizeof buf) < sizeof buf);
+    assert_true(strncmp(buf, "OVERCURRENT|DC_OVERVOLTAGE|", 27u) == 0);
+    /* too small: cut short, still terminated */
+    assert_int_equal(sxl_fault_mask_str(0x0801u, small, (uint16_t)sizeof small), 7u);
+    assert_string_equal(small, "OVERCUR");
+    assert_int_equal(sxl_fault_mask_str(1u, small, 1u), 0u);
+    assert_string_equal(small, "");
+    assert_int_equal(sxl_fault_mask_str(1u, small, 0u), 0u);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -187,6 +260,9 @@ int main(void)
         cmocka_unit_test(test_crc_error_and_recovery),
         cmocka_unit_test(test_bad_length_and_bytes),
         cmocka_unit_test(test_fields),
+        cmocka_unit_test(test_i16_fields),
+        cmocka_unit_test(test_names),
+        cmocka_unit_test(test_fault_mask_str),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
