@@ -210,6 +210,46 @@ static void test_loss_of_edges_at_speed(void **state)
     assert_int_equal(s.mech_speed_q16, 0);
 }
 
+/* The realistic order: the unit timer sees the empty periods (speed 0) long before the
+ * 10 ms watchdog; the watchdog must still judge by the speed before the signal stopped. */
+static void test_loss_of_edges_after_unit_timer_reported_zero(void **state)
+{
+    hal_encoder_sample_t s;
+    int k;
+    (void)state;
+    unit_event(0u, 100u, 10u, EQEP_STS_FIMF | EQEP_STS_QDF);
+    hal_encoder_read(&s);
+    unit_event(1000u, 75u, 10u, EQEP_STS_FIMF | EQEP_STS_QDF);
+    hal_encoder_read(&s);
+    for (k = 0; k < 9; k++) {
+        unit_event(1000u, 75u, 10u, EQEP_STS_FIMF | EQEP_STS_QDF | EQEP_STS_COEF);
+        hal_encoder_read(&s);
+    }
+    assert_true(s.healthy);
+    assert_int_equal(s.mech_speed_q16, 0);
+    R.eqep1.QEPSTS = EQEP_STS_FIMF; /* the RAM frame keeps what the driver wrote to clear COEF */
+    R.eqep1.QFLG = EQEP_WTO;
+    hal_encoder_read(&s);
+    assert_false(s.healthy);
+}
+
+/* Slowing to a stop below the threshold is a stop, not a loss. */
+static void test_slow_stop_stays_healthy(void **state)
+{
+    hal_encoder_sample_t s;
+    (void)state;
+    unit_event(0u, 100u, 10u, EQEP_STS_FIMF | EQEP_STS_QDF);
+    hal_encoder_read(&s);
+    unit_event(2u, 100u, 10u, EQEP_STS_FIMF | EQEP_STS_QDF | EQEP_STS_COEF);
+    hal_encoder_read(&s);
+    unit_event(2u, 100u, 10u, EQEP_STS_FIMF | EQEP_STS_QDF | EQEP_STS_COEF);
+    hal_encoder_read(&s);
+    R.eqep1.QEPSTS = EQEP_STS_FIMF; /* the RAM frame keeps what the driver wrote to clear COEF */
+    R.eqep1.QFLG = EQEP_WTO;
+    hal_encoder_read(&s);
+    assert_true(s.healthy);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -220,6 +260,8 @@ int main(void)
         cmocka_unit_test_setup(test_switch_with_hysteresis, setup),
         cmocka_unit_test_setup(test_health, setup),
         cmocka_unit_test_setup(test_loss_of_edges_at_speed, setup),
+        cmocka_unit_test_setup(test_loss_of_edges_after_unit_timer_reported_zero, setup),
+        cmocka_unit_test_setup(test_slow_stop_stays_healthy, setup),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -96,6 +96,7 @@ typedef struct {
     bool use_capture;   /* current estimator: capture (low speed) or unit timer */
     bool error_latched; /* counter error, phase error or signal loss seen */
     int32_t speed_q16;
+    int32_t edge_speed_q16; /* speed_q16 of the last unit period in which the position moved */
 } f28335_qep_state_t;
 
 /* Electrical angle (2^32 = one turn) of a position count. */

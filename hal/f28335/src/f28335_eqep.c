@@ -76,6 +76,7 @@ bool hal_encoder_init(uint32_t lines, uint16_t pole_pairs, uint32_t elec_offset)
     qep.use_capture = true;
     qep.error_latched = false;
     qep.speed_q16 = 0;
+    qep.edge_speed_q16 = 0;
 
     F28335_EALLOW();
     F28335_SYSCTRL->PCLKCR1 |= PCLKCR1_EQEP1ENCLK;
@@ -114,6 +115,7 @@ static void qep_unit_period(volatile f28335_eqep_t *e, uint16_t sts)
     int32_t ut_speed = qep.speed_q16;
     int32_t cap_speed;
     bool cap_valid = true;
+    bool moved = false;
 
     if (qep.have_poslat) {
         int32_t delta = (int32_t)(poslat - qep.last_poslat);
@@ -124,6 +126,7 @@ static void qep_unit_period(volatile f28335_eqep_t *e, uint16_t sts)
             delta += (int32_t)qep.counts;
         }
         ut_speed = f28335_qep_speed_unit(&qep, delta);
+        moved = (delta != 0);
     }
     qep.last_poslat = poslat;
     qep.have_poslat = true;
@@ -150,6 +153,9 @@ static void qep_unit_period(volatile f28335_eqep_t *e, uint16_t sts)
         qep.use_capture = true;
     }
     qep.speed_q16 = (qep.use_capture && cap_valid) ? cap_speed : ut_speed;
+    if (moved) {
+        qep.edge_speed_q16 = qep.speed_q16;
+    }
 }
 
 F28335_RAMFUNC(hal_encoder_read)
@@ -170,11 +176,14 @@ void hal_encoder_read(hal_encoder_sample_t *s)
         clr = (uint16_t)(clr | EQEP_UTO);
     }
     if ((flg & EQEP_WTO) != 0u) {
-        /* No edge for 10 ms: a stop from above the threshold is a lost signal. */
-        if (abs32(qep.speed_q16) > F28335_QEP_TIMEOUT_SPEED_Q16) {
+        /* No edge for 10 ms: a stop from above the threshold is a lost signal. The speed
+         * is the one measured while the shaft still moved: by now the unit timer has
+         * already reported zero for the empty periods. */
+        if (abs32(qep.edge_speed_q16) > F28335_QEP_TIMEOUT_SPEED_Q16) {
             qep.error_latched = true;
         }
         qep.speed_q16 = 0;
+        qep.edge_speed_q16 = 0;
         clr = (uint16_t)(clr | EQEP_WTO);
     }
     if (clr != 0u) {
