@@ -84,6 +84,8 @@ typedef struct {
     bool overrun;
     bool hw_trip;
     bool running; /* PWM enabled this period (under-voltage, stuck, encoder, open phase need it) */
+    bool currents_calibrated; /* offsets measured: before, a set's sum is the offset error, which
+                               * the calibration itself judges (ADC_OFFSET) */
 } ctl_protect_input_t;
 
 typedef struct {

@@ -24,7 +24,7 @@ void ctl_protect_default(ctl_protect_limits_t *l, float sample_time_s, int16_t p
     l->adc_rail_low = 2;
     l->adc_rail_high = 4093;
     l->adc_rail_periods = 3;
-    l->adc_stuck_periods = 500;
+    l->adc_stuck_periods = 50; /* 5 ms: switching ripple moves every word each period */
     l->stuck_min_current = ctl_from_float(1.0f / ib);
     l->encoder_torque = ctl_from_float(1.0f / (float)CTL_BASE_TORQUE_NM);
     l->encoder_expected_turn = CTL_Q(0.25);
@@ -268,7 +268,8 @@ uint16_t ctl_protect_check(ctl_protect_t *p, const ctl_protect_input_t *in, ctl_
     {
         const ctl_q sum1 = ctl_add(ctl_add(in->i_phase[0], in->i_phase[1]), in->i_phase[2]);
         const ctl_q sum2 = ctl_add(ctl_add(in->i_phase[3], in->i_phase[4]), in->i_phase[5]);
-        const bool bad = ctl_abs(sum1) > l->current_sum || ctl_abs(sum2) > l->current_sum;
+        const bool bad = in->currents_calibrated &&
+                         (ctl_abs(sum1) > l->current_sum || ctl_abs(sum2) > l->current_sum);
         if (filtered(bad, &p->n_sum, l->current_sum_periods)) {
             f |= CTL_FAULT_CURRENT_SUM;
         }

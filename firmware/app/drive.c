@@ -93,6 +93,7 @@ static void drive_init_protection(drive_t *d, const ctl_params_t *p)
     d->protect_in.overrun = false;
     d->protect_in.hw_trip = false;
     d->protect_in.running = false;
+    d->protect_in.currents_calibrated = false;
 }
 
 void drive_init(drive_t *d, const ctl_params_t *p)
@@ -236,6 +237,7 @@ static uint16_t drive_protect(drive_t *d, bool running)
     in->overrun = false; /* reported by the platform after the ISR (drive_report_overrun) */
     in->hw_trip = hal_pwm_hw_trip_seen();
     in->running = running;
+    in->currents_calibrated = d->calibrated;
     return ctl_protect_check(&d->protect, in, d->ctl.diag.torque_ref, d->ctl.applied_vector,
                              d->ctl.applied_duty);
 }

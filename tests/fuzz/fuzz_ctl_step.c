@@ -156,6 +156,7 @@ int LLVMFuzzerTestOneInput(const unsigned char *data, size_t size)
             in.overrun = false;
             in.hw_trip = false;
             in.running = true;
+            in.currents_calibrated = (tag & 2u) != 0u;
             (void)ctl_protect_check(&prot, &in, ctl_diag(&c)->torque_ref, cmd.vector, cmd.duty);
             if ((prot.latched & (uint16_t)~0x3FFFu) != 0u ||
                 ctl_protect_log_pending(&prot) > CTL_PROTECT_LOG_SIZE) {
