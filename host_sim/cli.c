@@ -13,7 +13,7 @@ void sim_cli_usage(FILE *f)
         f,
         "usage:\n"
         "  sixphase-sim run --controller {ddc,mptc49,mptc13} --scenario "
-        "{steady,load-step,accel,reversal}\n"
+        "{steady,load-step,accel,reversal,fault-<name>}\n"
         "                   [--lambda X] [--fs HZ] [--speed RPM] [--load NM] [--duration S]\n"
         "                   [--arith {fixed,float}] [--seed N] [--out DIR]\n"
         "                   [--ddc-direction {flux-error,xy-table}] [--duty-levels N] "
@@ -25,7 +25,16 @@ void sim_cli_usage(FILE *f)
         "                   [--no-adc-noise] [--no-encoder-quant] [--ideal] [--no-fine] "
         "[--no-protect]\n"
         "                   [--quiet]\n"
-        "  sixphase-sim reproduce --out DIR [--jobs N] [--quiet]\n");
+        "                   [--fault-time S]\n"
+        "  sixphase-sim reproduce --out DIR [--jobs N] [--quiet]\n"
+        "fault scenarios (rated operation, the fault at 0.25 s; docs/faults.md):\n");
+    {
+        int k;
+        for (k = 1; k < (int)SIM_FAULT_COUNT; k++) {
+            const sim_fault_info_t *fi = sim_fault_info((sim_fault_t)k);
+            fprintf(f, "  fault-%-16s %s\n", fi->name, fi->injection);
+        }
+    }
 }
 
 static int cli_bad(char *err, size_t len, const char *opt, const char *val)
@@ -186,6 +195,9 @@ static int cli_parse(int argc, char **argv, sim_cli_t *o, char *err, size_t len,
                 c->scenario = SIM_SCEN_ACCEL;
             } else if (v && strcmp(v, "reversal") == 0) {
                 c->scenario = SIM_SCEN_REVERSAL;
+            } else if (sim_fault_from_scenario(v) != SIM_FAULT_NONE) {
+                c->scenario = SIM_SCEN_STEADY; /* rated operation, then the fault */
+                c->fault = sim_fault_from_scenario(v);
             } else {
                 return cli_bad(err, len, a, v);
             }
@@ -247,6 +259,10 @@ static int cli_parse(int argc, char **argv, sim_cli_t *o, char *err, size_t len,
             if (cli_num(v, 0.1, 50.0, &c->torque_limit_nm) != 0) {
                 return cli_bad(err, len, a, v);
             }
+        } else if (strcmp(a, "--fault-time") == 0) {
+            if (cli_num(v, 0.001, 100.0, &c->fault_time_s) != 0) {
+                return cli_bad(err, len, a, v);
+            }
         } else if (strcmp(a, "--trip-current") == 0) {
             if (cli_num(v, 0.1, 1000.0, &c->trip_current_a) != 0) {
                 return cli_bad(err, len, a, v);
@@ -291,6 +307,15 @@ static int cli_parse(int argc, char **argv, sim_cli_t *o, char *err, size_t len,
     }
     if (!reproduce && !have_scen) {
         (void)snprintf(err, len, "missing --scenario");
+        return -1;
+    }
+    if (c->fault_time_s > 0.0 && c->fault == SIM_FAULT_NONE) {
+        (void)snprintf(err, len, "--fault-time needs a fault-<name> scenario");
+        return -1;
+    }
+    if (c->fault != SIM_FAULT_NONE && sim_fault_at_power_up(c->fault) && c->fault_time_s > 0.0) {
+        (void)snprintf(err, len, "fault-%s is present from power-up: no --fault-time",
+                       sim_fault_info(c->fault)->name);
         return -1;
     }
     if (reproduce && !c->out_dir) {

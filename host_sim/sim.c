@@ -17,10 +17,13 @@
 #include "inverter.h"
 #include "metrics.h"
 #include "sim_ctl.h"
+#include "sxlink.h"
 
 #define SIM_PI 3.14159265358979323846
 #define SIM_CAL_PERIODS_MAX 4096
 #define SIM_FINE_RATE_HZ 100000.0
+#define SIM_QEP_WATCHDOG_S 10e-3 /* F28335_QEP_WATCHDOG_PRD */
+#define SIM_QEP_LOSS_REV_S 5.0   /* F28335_QEP_TIMEOUT_SPEED_Q16 */
 #define SIM_DRIVE_STATE_READY 2
 #define SIM_DRIVE_STATE_FAULT 4
 
@@ -109,6 +112,8 @@ void sim_config_default(sim_config_t *c)
     c->flux_ref_mode = -1;
     c->ddc_torque_guard = -1;
     c->protect = true;
+    c->fault = SIM_FAULT_NONE;
+    c->fault_time_s = 0.0;
     plant_params_default(&c->plant);
     c->out_dir = NULL;
     c->write_trace = true;
@@ -167,6 +172,9 @@ static void sim_plan(const sim_config_t *c, sim_plan_t *pl)
         pl->window = 0.2;
         break;
     }
+    if (c->fault != SIM_FAULT_NONE) {
+        pl->duration = SIM_FAULT_DURATION_S; /* rated operation, injection, aftermath */
+    }
     if (c->duration_s > 0.0) {
         pl->duration = c->duration_s;
     }
@@ -204,6 +212,8 @@ typedef struct {
     int64_t count_prev;
     double pos_prev; /* counts, continuous */
     double edge_t_prev;
+    double edge_speed_rev_s; /* speed reported while the count still moved */
+    bool qep_error;          /* signal loss latched, as the eQEP HAL does */
     int64_t *ring_count;
     double *ring_t;
     int ring_len, ring_pos;
@@ -235,11 +245,14 @@ static void sim_sensors_init(sim_sensors_t *se, const plant_params_t *p, uint64_
     se->ring_len = ring_len;
     se->ring_pos = 0;
     se->first = true;
+    se->edge_speed_rev_s = 0.0;
+    se->qep_error = false;
 }
 
 static long sim_adc_clipped;
 
-static void sim_sample_adc(sim_sensors_t *se, const plant_params_t *p, const double iph[6])
+static void sim_sample_adc(sim_sensors_t *se, const plant_params_t *p, const double iph[6],
+                           sim_fault_state_t *fs)
 {
     hal_adc_sample_t a;
     int k;
@@ -260,6 +273,7 @@ static void sim_sample_adc(sim_sensors_t *se, const plant_params_t *p, const dou
         }
         a.vdc = hal_sim_vdc_to_counts(v);
     }
+    sim_fault_adc(fs, &a);
     hal_sim_post_adc(&a);
 }
 
@@ -292,11 +306,14 @@ static uint32_t sim_turn_u32(double turns)
  * count change over a window of ring_len periods divided by the time between
  * the latest edges at both ends (eQEP capture / T-method; edge times are
  * interpolated between samples). */
-static void sim_sample_encoder(sim_sensors_t *se, const plant_params_t *p, const plant_state_t *s,
-                               double t, double ts)
+static void sim_sample_encoder(sim_sensors_t *se, const plant_params_t *p, const plant_state_t *x,
+                               double t, double ts, sim_fault_state_t *fs)
 {
+    plant_state_t seen = *x; /* the shaft as the encoder interface sees it */
+    const plant_state_t *s = &seen;
     hal_encoder_sample_t e;
     const double pn = (double)p->pole_pairs;
+    seen.theta_m = sim_fault_encoder_angle(fs, x->theta_m);
     e.healthy = true;
     if (!p->encoder_quant_on) {
         e.elec_angle = sim_turn_u32(pn * s->theta_m / (2.0 * SIM_PI));
@@ -352,7 +369,17 @@ static void sim_sample_encoder(sim_sensors_t *se, const plant_params_t *p, const
         se->count_prev = count;
         se->pos_prev = pos;
         se->edge_t_prev = edge_t;
+        /* eQEP watchdog (hal/f28335 f28335_eqep.c): no edge for 10 ms after moving faster
+         * than 5 rev/s is a lost signal, latched */
+        if (dc != 0) {
+            se->edge_speed_rev_s = (double)e.mech_speed_q16 / 65536.0;
+        }
+        if (t - edge_t > SIM_QEP_WATCHDOG_S && fabs(se->edge_speed_rev_s) > SIM_QEP_LOSS_REV_S) {
+            se->qep_error = true;
+        }
+        e.healthy = !se->qep_error;
     }
+    sim_fault_encoder(fs, &e);
     hal_sim_post_encoder(&e);
 }
 
@@ -566,6 +593,47 @@ int sim_write_metrics_json(const char *path, const sim_config_t *c, const sim_re
     return (fclose(f) == 0) ? 0 : -1;
 }
 
+/* The fault block: what was injected, what the drive latched and when, its first record. */
+static void sim_print_fault_json(FILE *f, const sim_config_t *c, const sim_result_t *r)
+{
+    const sim_fault_info_t *fi = sim_fault_info(c->fault);
+    const sim_fault_record_t *rec = &r->first_record;
+    char names[256];
+    int k;
+    if (fi) {
+        fprintf(f, "  \"fault_injected\": \"%s\",\n  \"fault_injection\": \"%s\",\n", fi->name,
+                fi->injection);
+        fprintf(f, "  \"fault_expected\": %d,\n", fi->expected_fault);
+    } else {
+        fprintf(f, "  \"fault_injected\": null,\n");
+    }
+    json_num(f, "fault_inject_s", (r->fault_inject_s >= 0.0) ? r->fault_inject_s : (double)NAN,
+             true);
+    fprintf(f, "  \"fault_code\": %d,\n  \"fault_name\": \"%s\",\n", r->fault,
+            sxl_fault_name((uint16_t)r->fault));
+    (void)sxl_fault_mask_str((uint16_t)r->faults_latched, names, (uint16_t)sizeof names);
+    fprintf(f, "  \"fault_mask\": %u,\n  \"fault_mask_names\": \"%s\",\n", r->faults_latched,
+            names);
+    json_num(f, "fault_detect_ms", (r->fault_detect_ms >= 0.0) ? r->fault_detect_ms : (double)NAN,
+             true);
+    fprintf(f, "  \"outputs_off\": %s,\n", r->outputs_off ? "true" : "false");
+    fprintf(f, "  \"fault_records\": %d,\n", r->fault_records);
+    if (!r->have_first_record) {
+        fprintf(f, "  \"first_fault_record\": null,\n");
+        return;
+    }
+    fprintf(f, "  \"first_fault_record\": {\"faults\": %u, \"t_s\": %.6g, \"i_phase_a\": [",
+            rec->faults, r->first_record_t_s);
+    for (k = 0; k < 6; k++) {
+        fprintf(f, "%.4g%s", rec->i_phase_a[k], (k < 5) ? ", " : "");
+    }
+    fprintf(f,
+            "], \"vdc_v\": %.5g, \"speed_rpm\": %.5g, \"torque_est_nm\": %.4g, "
+            "\"torque_ref_nm\": %.4g, \"vector\": %d, \"duty\": %.4g},\n",
+            rec->vdc_v, rec->speed_rpm, rec->torque_est_nm, rec->torque_ref_nm, rec->vector,
+            rec->duty);
+}
+
 void sim_print_metrics_json(FILE *f, const sim_config_t *c, const sim_result_t *r)
 {
     const plant_params_t *p = &c->plant;
@@ -604,6 +672,7 @@ void sim_print_metrics_json(FILE *f, const sim_config_t *c, const sim_result_t *
     json_num(f, "trip_current_a", (c->trip_current_a > 0.0) ? c->trip_current_a : (double)NAN,
              true);
     fprintf(f, "  \"software_protection\": %s,\n", c->protect ? "true" : "false");
+    sim_print_fault_json(f, c, r);
     fprintf(f,
             "  \"controller_params\": {\"lambda_nm_per_wb\": %.6g, \"speed_kp_nm_per_rad_s\": "
             "%.6g, \"speed_ki_nm_per_rad\": %.6g, \"torque_limit_nm\": %.6g, "
@@ -651,7 +720,10 @@ static void sim_err(char *err, size_t len, const char *msg)
 int sim_run(const sim_config_t *c, sim_result_t *r, char *err, size_t err_len)
 {
     const sim_ctl_ops_t *ops = (c->arith == 1) ? &simflt_sim_ctl_ops_float : &sim_ctl_ops_fixed;
-    const plant_params_t *p = &c->plant;
+    plant_params_t plant_now = c->plant; /* the plant as any injected fault leaves it */
+    const plant_params_t *p = &plant_now;
+    sim_fault_state_t fs;
+    long k_detect = -1;
     sim_plan_t pl;
     sim_ctl_config_t cc;
     sim_ctl_status_t st;
@@ -663,12 +735,14 @@ int sim_run(const sim_config_t *c, sim_result_t *r, char *err, size_t err_len)
     double ts, duty[6] = {0, 0, 0, 0, 0, 0};
     double *fine_times = NULL, *ring_t = NULL;
     int64_t *ring_count = NULL;
-    long n_periods, k, k_win, cal;
+    long n_periods, k, k_win, cal, cal_isr_calls;
     int n_fine, ring_len, rc = -1, applied_vector = 0, j;
     double applied_duty = 0.0, wall0, wall1, isr_wall = 0.0;
     const char *chk = plant_params_check(p);
 
     memset(r, 0, sizeof *r);
+    r->fault_inject_s = -1.0;
+    r->fault_detect_ms = -1.0;
     memset(&tr, 0, sizeof tr);
     memset(&fi, 0, sizeof fi);
     if (chk[0] != '\0') {
@@ -679,8 +753,19 @@ int sim_run(const sim_config_t *c, sim_result_t *r, char *err, size_t err_len)
         sim_err(err, err_len, "fs must be in [1000, 100000] Hz");
         return -1;
     }
+    if (c->fault != SIM_FAULT_NONE &&
+        (c->scenario != SIM_SCEN_STEADY || sim_fault_info(c->fault) == NULL)) {
+        sim_err(err, err_len, "fault injection runs on the steady scenario only");
+        return -1;
+    }
     sim_plan(c, &pl);
     ts = 1.0 / c->fs_hz;
+    sim_fault_begin(&fs, c->fault, (c->fault_time_s > 0.0) ? c->fault_time_s : SIM_FAULT_INJECT_S);
+    if (c->fault != SIM_FAULT_NONE && !sim_fault_at_power_up(c->fault) &&
+        !(fs.t_inject < pl.duration)) {
+        sim_err(err, err_len, "fault injection time must be inside the run");
+        return -1;
+    }
     n_periods = lround(pl.duration / ts);
     if (n_periods < 10) {
         sim_err(err, err_len, "duration shorter than 10 control periods");
@@ -764,8 +849,8 @@ int sim_run(const sim_config_t *c, sim_result_t *r, char *err, size_t err_len)
     for (cal = 0; cal < SIM_CAL_PERIODS_MAX && st.state != SIM_DRIVE_STATE_READY; cal++) {
         double iph[6];
         plant_phase_currents(p, &x, iph);
-        sim_sample_adc(&se, p, iph);
-        sim_sample_encoder(&se, p, &x, (double)(cal - SIM_CAL_PERIODS_MAX) * ts, ts);
+        sim_sample_adc(&se, p, iph, &fs);
+        sim_sample_encoder(&se, p, &x, (double)(cal - SIM_CAL_PERIODS_MAX) * ts, ts, &fs);
         ops->isr();
         (void)inverter_run_period(&inv, p, &x, duty, true, 0.0, true, NULL, 0, NULL, NULL);
         ops->status(&st);
@@ -773,7 +858,14 @@ int sim_run(const sim_config_t *c, sim_result_t *r, char *err, size_t err_len)
             break;
         }
     }
-    if (st.state != SIM_DRIVE_STATE_READY) {
+    cal_isr_calls = (st.state == SIM_DRIVE_STATE_FAULT) ? cal + 1 : cal;
+    if (st.state == SIM_DRIVE_STATE_FAULT && sim_fault_at_power_up(c->fault)) {
+        /* found by the calibration: the latency is the calibration itself */
+        r->fault_inject_s = 0.0;
+        r->fault_detect_ms = 1e3 * (double)cal_isr_calls * ts;
+        r->fault = st.fault;
+        k_detect = 0;
+    } else if (st.state != SIM_DRIVE_STATE_READY) {
         sim_err(err, err_len, "drive did not finish ADC calibration");
         goto done;
     }
@@ -782,14 +874,15 @@ int sim_run(const sim_config_t *c, sim_result_t *r, char *err, size_t err_len)
     se.first = true;
 
     ops->set_speed_rpm(pl.speed0);
-    ops->request_run();
+    ops->request_run(); /* refused by a drive already in FAULT */
     sim_adc_clipped = 0;
-    r->fault_time_s = -1.0;
+    r->outputs_off = true;
+    r->fault_time_s = (k_detect == 0) ? 0.0 : -1.0;
     r->trip_time_s = -1.0;
     wall0 = sim_now();
     for (k = 0; k < n_periods; k++) {
         const double t = (double)k * ts;
-        const double t_load = sim_load_at(c, &pl, t);
+        const double t_load = sim_fault_load(&fs, sim_load_at(c, &pl, t));
         plant_out_t o;
         double te_avg, w0, w1;
         const bool in_win = (k >= k_win);
@@ -797,6 +890,8 @@ int sim_run(const sim_config_t *c, sim_result_t *r, char *err, size_t err_len)
         if (k > 0 && pl.speed != pl.speed0 && t >= pl.t_event && t - ts < pl.t_event) {
             ops->set_speed_rpm(pl.speed);
         }
+        sim_fault_update(&fs, t);
+        sim_fault_plant(&fs, &c->plant, &plant_now);
         plant_outputs(p, &x, &o);
         if (c->trip_current_a > 0.0 && !hal_sim_bus.hw_trip) {
             /* comparator sampled once per period (a real one acts within microseconds) */
@@ -809,16 +904,27 @@ int sim_run(const sim_config_t *c, sim_result_t *r, char *err, size_t err_len)
                 }
             }
         }
-        sim_sample_adc(&se, p, o.i_phase);
-        sim_sample_encoder(&se, p, &x, t, ts);
+        sim_sample_adc(&se, p, o.i_phase, &fs);
+        sim_sample_encoder(&se, p, &x, t, ts, &fs);
         w0 = sim_now();
         ops->isr();
         w1 = sim_now();
         isr_wall += w1 - w0;
+        if (sim_fault_overrun(&fs)) {
+            ops->report_overrun(); /* fw_isr's end-of-ISR check, on a simulated ISR time */
+        }
         ops->status(&st);
         if (st.state == SIM_DRIVE_STATE_FAULT && r->fault_time_s < 0.0) {
             r->fault_time_s = t;
             r->fault = st.fault;
+            k_detect = k;
+            if (fs.active) {
+                r->fault_inject_s = fs.t_inject;
+                r->fault_detect_ms = 1e3 * (t - fs.t_inject);
+            }
+        }
+        if (k_detect >= 0 && !hal_sim_bus.forced_off) {
+            r->outputs_off = false;
         }
 
         i = tr.n++;
@@ -849,6 +955,7 @@ int sim_run(const sim_config_t *c, sim_result_t *r, char *err, size_t err_len)
         for (j = 0; j < 6; j++) {
             duty[j] = hal_sim_duty_fraction(j);
         }
+        sim_fault_duty(&fs, hal_sim_bus.forced_off, duty);
         if (!hal_sim_bus.forced_off && st.enable) {
             applied_vector = st.vector;
             applied_duty = st.duty;
@@ -866,7 +973,14 @@ int sim_run(const sim_config_t *c, sim_result_t *r, char *err, size_t err_len)
     /* ---- metrics ---- */
     (void)snprintf(r->controller, sizeof r->controller, "%s", sim_controller_name(c->controller));
     (void)snprintf(r->arith, sizeof r->arith, "%s", ops->arith);
-    (void)snprintf(r->scenario, sizeof r->scenario, "%s", sim_scenario_name(c->scenario));
+    if (c->fault != SIM_FAULT_NONE) {
+        (void)snprintf(r->scenario, sizeof r->scenario, "fault-%s", sim_fault_info(c->fault)->name);
+        if (r->fault_inject_s < 0.0) {
+            r->fault_inject_s = fs.t_inject; /* injected, never detected */
+        }
+    } else {
+        (void)snprintf(r->scenario, sizeof r->scenario, "%s", sim_scenario_name(c->scenario));
+    }
     r->lambda = c->lambda;
     r->fs_hz = c->fs_hz;
     r->speed_ref_rpm = pl.speed;
@@ -881,6 +995,18 @@ int sim_run(const sim_config_t *c, sim_result_t *r, char *err, size_t err_len)
     r->final_state = st.state;
     if (r->fault_time_s < 0.0) {
         r->fault = st.fault;
+        r->outputs_off = false; /* nothing detected: nothing to be off for */
+    }
+    r->faults_latched = st.faults_latched;
+    r->fault_records = st.fault_records;
+    {
+        sim_fault_record_t rec;
+        r->have_first_record = ops->read_fault_record(&rec) != 0;
+        if (r->have_first_record) {
+            r->first_record = rec;
+            /* protection period n (1-based) is ISR call n: calibration calls come first */
+            r->first_record_t_s = ((double)rec.period - 1.0 - (double)cal_isr_calls) * ts;
+        }
     }
     r->p_speed_kp = st.p_speed_kp;
     r->p_speed_ki = st.p_speed_ki;

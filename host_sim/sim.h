@@ -10,7 +10,9 @@
 #include <stdio.h>
 #include <stdint.h>
 
+#include "fault_inject.h"
 #include "plant.h"
+#include "sim_ctl.h"
 
 typedef enum {
     SIM_SCEN_STEADY = 0,    /* 1500 r/min, rated load */
@@ -35,6 +37,8 @@ typedef struct {
     int ddc_torque_guard;   /* < 0: core default (on); 0: the paper's method */
     double torque_limit_nm; /* <= 0: scenario default (rated 7 N*m; 1.2x rated with rated load) */
     double trip_current_a;  /* > 0: simulated hardware over-current comparator (trip zone) */
+    sim_fault_t fault;      /* injected fault (scenario fault-<name>): steady scenario */
+    double fault_time_s;    /* injection time; <= 0: SIM_FAULT_INJECT_S */
     bool protect;           /* the firmware's software protection at its default limits; false:
                              * thresholds out of reach (comparing controllers that overload the
                              * drive, e.g. MPTC-49 peaks near 30 A) */
@@ -50,7 +54,7 @@ typedef struct {
 typedef struct {
     char controller[8];
     char arith[8];
-    char scenario[12];
+    char scenario[32];
     double lambda, fs_hz, speed_ref_rpm, load_nm, duration_s;
     double window_start_s, window_end_s;
     int thd_periods;
@@ -74,6 +78,15 @@ typedef struct {
     int final_state, fault;
     double fault_time_s; /* first period the drive was in FAULT; < 0: never */
     double trip_time_s;  /* simulated hardware trip; < 0: never */
+    /* fault injection (scenario fault-<name>) and the drive's answer */
+    double fault_inject_s;   /* < 0: no injection; power-up faults: 0 = calibration start */
+    double fault_detect_ms;  /* injection to the first period in FAULT; < 0: not detected */
+    bool outputs_off;        /* every leg off in every period from detection on */
+    unsigned faults_latched; /* ctl_fault_t bits latched at the end */
+    int fault_records;       /* records in the drive's fault log at the end */
+    bool have_first_record;
+    sim_fault_record_t first_record; /* the oldest, i.e. the detection */
+    double first_record_t_s;         /* its time on the scenario clock */
     /* core parameters in force */
     double p_speed_kp, p_speed_ki, p_torque_limit, p_flux_ref_wb;
     int p_duty_levels, p_ddc_direction, p_flux_ref_mode, p_ddc_torque_guard;

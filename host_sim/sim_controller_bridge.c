@@ -98,6 +98,31 @@ static void bridge_set_torque_nm(double nm) { drive_set_torque_ref_nm(&bridge_dr
 
 static double q2d(ctl_q v) { return (double)ctl_to_float(v); }
 
+static void bridge_report_overrun(void) { drive_report_overrun(&bridge_drive); }
+
+static int bridge_read_fault_record(sim_fault_record_t *out)
+{
+    ctl_fault_record_t r;
+    int k;
+    if (!drive_read_fault_record(&bridge_drive, &r)) {
+        return 0;
+    }
+    out->faults = r.faults;
+    out->period = (unsigned long)r.period;
+    for (k = 0; k < 6; k++) {
+        out->i_phase_a[k] = q2d(r.i_phase[k]) * CTL_BASE_CURRENT_A;
+    }
+    out->vdc_v = q2d(r.vdc) * CTL_BASE_VOLTAGE_V;
+    out->speed_rpm =
+        q2d(r.omega_e) * CTL_BASE_OMEGA_RAD_S * 60.0 / CTL_TWO_PI /
+        (double)((bridge_drive.params_bg.pole_pairs > 0) ? bridge_drive.params_bg.pole_pairs : 1);
+    out->torque_est_nm = q2d(r.torque_est) * CTL_BASE_TORQUE_NM;
+    out->torque_ref_nm = q2d(r.torque_ref) * CTL_BASE_TORQUE_NM;
+    out->vector = (int)r.vector;
+    out->duty = q2d(r.duty);
+    return 1;
+}
+
 static void bridge_status(sim_ctl_status_t *st)
 {
     const ctl_t *c = &bridge_drive.ctl;
@@ -122,8 +147,11 @@ static void bridge_status(sim_ctl_status_t *st)
     st->p_ddc_direction = (int)c->params.ddc_direction;
     st->p_flux_ref_mode = (int)c->params.flux_ref_mode;
     st->p_ddc_torque_guard = c->params.ddc_torque_guard ? 1 : 0;
+    st->faults_latched = (unsigned)drive_faults_latched(&bridge_drive);
+    st->fault_records = (int)ctl_protect_log_pending(&bridge_drive.protect);
 }
 
 const sim_ctl_ops_t SIM_BRIDGE_OPS = {
-    SIM_BRIDGE_ARITH,     bridge_init,          bridge_isr,   bridge_request_run,
-    bridge_set_speed_rpm, bridge_set_torque_nm, bridge_status};
+    SIM_BRIDGE_ARITH,   bridge_init,           bridge_isr,
+    bridge_request_run, bridge_set_speed_rpm,  bridge_set_torque_nm,
+    bridge_status,      bridge_report_overrun, bridge_read_fault_record};

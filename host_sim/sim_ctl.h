@@ -39,7 +39,22 @@ typedef struct {
     /* effective core parameters (after defaults) */
     double p_lambda, p_speed_kp, p_speed_ki, p_torque_limit, p_flux_ref_wb;
     int p_duty_levels, p_ddc_direction, p_flux_ref_mode, p_ddc_torque_guard;
+    unsigned faults_latched; /* ctl_fault_t bits since the last clear */
+    int fault_records;       /* unread records in the drive's fault log */
 } sim_ctl_status_t;
+
+/* One record of the drive's fault log, in SI units. */
+typedef struct {
+    unsigned faults;      /* ctl_fault_t bits detected in that period */
+    unsigned long period; /* protection period count since drive_init */
+    double i_phase_a[6];
+    double vdc_v;
+    double speed_rpm; /* mechanical */
+    double torque_est_nm;
+    double torque_ref_nm;
+    int vector;
+    double duty;
+} sim_fault_record_t;
 
 typedef struct {
     const char *arith; /* "fixed" or "float" */
@@ -50,6 +65,9 @@ typedef struct {
     void (*set_speed_rpm)(double rpm);
     void (*set_torque_nm)(double nm);
     void (*status)(sim_ctl_status_t *st);
+    void (*report_overrun)(void); /* the platform's overrun detection fired */
+    /* oldest unread fault record: 1 and removed from the log, or 0 when the log is empty */
+    int (*read_fault_record)(sim_fault_record_t *r);
 } sim_ctl_ops_t;
 
 /* Defined by the two builds of the bridge. The float build's symbols are all

@@ -1,0 +1,148 @@
+/*
+ * Fault injection regression (issue 6): for every fault scenario the firmware's drive,
+ * running the paper's operating point through the simulator, must report the expected
+ * fault code, within the latency bound of fault_inject.c, with every leg off from the
+ * detection on and the detection in the fault log. Healthy runs must not trip.
+ */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include <cmocka.h>
+
+#include "sim.h"
+
+static void run(sim_config_t *c, sim_result_t *r)
+{
+    char err[200] = "";
+    c->out_dir = NULL;
+    if (sim_run(c, r, err, sizeof err) != 0) {
+        print_error("sim_run failed: %s\n", err);
+        fail();
+    }
+}
+
+static void check_fault(sim_fault_t kind, int arith)
+{
+    const sim_fault_info_t *fi = sim_fault_info(kind);
+    const double ts = 1e-4;
+    sim_config_t c;
+    sim_result_t r;
+    sim_config_default(&c);
+    c.arith = arith;
+    c.fault = kind;
+    run(&c, &r);
+    print_message("fault-%-16s %-5s code %2d mask 0x%04x detect %6.1f ms (bound %5.1f) outputs_off "
+                  "%d records %d\n",
+                  fi->name, r.arith, r.fault, r.faults_latched, r.fault_detect_ms,
+                  fi->detect_bound_ms, r.outputs_off ? 1 : 0, r.fault_records);
+    assert_int_equal(r.fault, fi->expected_fault);
+    assert_true(r.fault_detect_ms >= 0.0); /* never before the injection */
+    assert_true(r.fault_detect_ms <= fi->detect_bound_ms);
+    assert_true(r.outputs_off);
+    assert_true(r.fault_records >= 1);
+    assert_true(r.have_first_record);
+    assert_int_not_equal(r.first_record.faults, 0u);
+    assert_true((r.first_record.faults & r.faults_latched) == r.first_record.faults);
+    if (!sim_fault_at_power_up(kind)) {
+        /* the oldest record is the detecting period */
+        assert_true(r.first_record_t_s > r.fault_time_s - 0.5 * ts);
+        assert_true(r.first_record_t_s < r.fault_time_s + 0.5 * ts);
+    }
+}
+
+static void test_each_fault_fixed(void **state)
+{
+    int k;
+    (void)state;
+    for (k = 1; k < (int)SIM_FAULT_COUNT; k++) {
+        check_fault((sim_fault_t)k, 0);
+    }
+}
+
+static void test_each_fault_float(void **state)
+{
+    int k;
+    (void)state;
+    for (k = 1; k < (int)SIM_FAULT_COUNT; k++) {
+        check_fault((sim_fault_t)k, 1);
+    }
+}
+
+/* The later injection time moves the detection with it (the latency is the drive's). */
+static void test_injection_time_is_honoured(void **state)
+{
+    sim_config_t c;
+    sim_result_t r;
+    (void)state;
+    sim_config_default(&c);
+    c.fault = SIM_FAULT_DC_OVERVOLTAGE;
+    c.fault_time_s = 0.3;
+    run(&c, &r);
+    assert_true(r.fault_inject_s > 0.2999 && r.fault_inject_s < 0.3001);
+    assert_true(r.fault_time_s >= 0.3 && r.fault_time_s < 0.301);
+}
+
+/* No fault without an injection: the product's controllers at the paper's operating points
+ * with the default protection, with and without the plant's non-idealities. */
+static void test_healthy_runs_do_not_trip(void **state)
+{
+    static const sim_scenario_t scen[4] = {SIM_SCEN_STEADY, SIM_SCEN_LOAD_STEP, SIM_SCEN_ACCEL,
+                                           SIM_SCEN_REVERSAL};
+    int controller, s, ideal;
+    (void)state;
+    for (controller = 0; controller <= 2; controller += 2) { /* DDC and MPTC-13 */
+        for (s = 0; s < 4; s++) {
+            for (ideal = 0; ideal <= 1; ideal++) {
+                sim_config_t c;
+                sim_result_t r;
+                sim_config_default(&c);
+                c.controller = controller;
+                c.scenario = scen[s];
+                if (ideal) {
+                    c.plant.dead_time_on = c.plant.harmonics_on = false;
+                    c.plant.adc_offset_on = c.plant.adc_gain_on = c.plant.adc_noise_on = false;
+                    c.plant.encoder_quant_on = false;
+                }
+                run(&c, &r);
+                if (r.fault != 0) {
+                    print_error("%s %s ideal=%d: fault %d mask 0x%04x at %.4f s\n", r.controller,
+                                r.scenario, ideal, r.fault, r.faults_latched, r.fault_time_s);
+                }
+                assert_int_equal(r.fault, 0);
+                assert_int_equal(r.faults_latched, 0u);
+                assert_int_equal(r.fault_records, 0);
+            }
+        }
+    }
+}
+
+/* MPTC-49 overloads the drive (x-y currents, peaks near 30 A): with the protection at its
+ * limits the firmware stops it, outputs off, within a few milliseconds of the start. */
+static void test_mptc49_trips_the_protection(void **state)
+{
+    sim_config_t c;
+    sim_result_t r;
+    (void)state;
+    sim_config_default(&c);
+    c.controller = 1;
+    run(&c, &r);
+    print_message("mptc49 with protection: code %d mask 0x%04x at %.2f ms\n", r.fault,
+                  r.faults_latched, 1e3 * r.fault_time_s);
+    assert_int_not_equal(r.fault, 0);
+    assert_true(r.fault_time_s >= 0.0 && r.fault_time_s < 0.02);
+    assert_true(r.outputs_off);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_each_fault_fixed),
+        cmocka_unit_test(test_each_fault_float),
+        cmocka_unit_test(test_injection_time_is_honoured),
+        cmocka_unit_test(test_healthy_runs_do_not_trip),
+        cmocka_unit_test(test_mptc49_trips_the_protection),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
