@@ -32,6 +32,13 @@ int16_t flt_bench_setup(int16_t controller);
 uint32_t bench_run(int32_t reps);
 uint32_t flt_bench_run(int32_t reps);
 
+/* The protection check (ctl_protect_check) over every prepared point, `reps` times, as the
+ * drive runs it each period while running: limits of ctl_protect_default, raw ADC words
+ * rebuilt from the currents with the board's scaling. Returns a checksum; only this is
+ * measured. */
+uint32_t bench_protect_run(int32_t reps);
+uint32_t flt_bench_protect_run(int32_t reps);
+
 /* One step at prepared point i (i < the prepared count) after bench_setup; for tools that
  * look at single steps (ctl-opcount). Returns a word of the command. */
 uint32_t bench_step(size_t i);

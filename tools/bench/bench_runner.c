@@ -1,12 +1,23 @@
 /* The measured loop of the benchmark, compiled once per arithmetic. */
 #include "bench.h"
 #include "ctl.h"
+#include "ctl_protect.h"
 #include "ctl_pu.h"
 
 static ctl_meas_t meas[BENCH_MAX_POINTS];
 static ctl_q torque_ref[BENCH_MAX_POINTS];
 static size_t count;
 static ctl_t controller_state;
+static int16_t raw_phase[BENCH_MAX_POINTS][6];
+static int16_t raw_vdc[BENCH_MAX_POINTS];
+static ctl_protect_t protect_state;
+
+/* Board scaling (hal_board.h): +-20 A over 4096 counts around 2048, 800 V full scale. */
+static int16_t raw_counts(double value, double per_count, double zero)
+{
+    const double c = zero + value / per_count + 0.5;
+    return (int16_t)((c < 0.0) ? 0.0 : ((c > 4095.0) ? 4095.0 : c));
+}
 
 static ctl_q pu(double si, double base) { return ctl_from_float((float)(si / base)); }
 
@@ -23,6 +34,10 @@ size_t bench_prepare(const bench_point_t *points, size_t n)
         meas[i].theta_e = ctl_wrap_turn(pu(points[i].theta_e, CTL_TWO_PI));
         meas[i].omega_e = pu(points[i].omega_e, CTL_BASE_OMEGA_RAD_S);
         torque_ref[i] = pu(points[i].torque_ref, CTL_BASE_TORQUE_NM);
+        for (k = 0; k < 6; k++) {
+            raw_phase[i][k] = raw_counts(points[i].i_phase[k], 40.0 / 4096.0, 2048.0);
+        }
+        raw_vdc[i] = raw_counts(points[i].vdc, 800.0 / 4096.0, 0.0);
     }
     return count;
 }
@@ -59,6 +74,39 @@ uint32_t bench_run(int32_t reps)
         ctl_reset(&controller_state);
         for (i = 0; i < count; i++) {
             checksum = checksum * 31u + step_at(i);
+        }
+    }
+    return checksum;
+}
+
+uint32_t bench_protect_run(int32_t reps)
+{
+    ctl_protect_limits_t l;
+    ctl_protect_input_t in;
+    uint32_t checksum = 0u;
+    int32_t r;
+    size_t i;
+    int16_t k;
+    ctl_protect_default(&l, 1e-4f, 3, 0.01f);
+    in.encoder_healthy = true;
+    in.overrun = false;
+    in.hw_trip = false;
+    in.running = true;
+    in.currents_calibrated = true;
+    for (r = 0; r < reps; r++) {
+        ctl_protect_init(&protect_state, &l);
+        for (i = 0; i < count; i++) {
+            for (k = 0; k < 6; k++) {
+                in.i_phase[k] = meas[i].i_phase[k];
+                in.raw_phase[k] = raw_phase[i][k];
+            }
+            in.vdc = meas[i].vdc;
+            in.raw_vdc = raw_vdc[i];
+            in.theta_e = meas[i].theta_e;
+            in.omega_e = meas[i].omega_e;
+            in.torque_est = torque_ref[i];
+            checksum = checksum * 31u +
+                       ctl_protect_check(&protect_state, &in, torque_ref[i], 0, CTL_Q(0.0));
         }
     }
     return checksum;

@@ -105,5 +105,23 @@ int main(int argc, char **argv)
                    1e9 * (t1 - t0) / ((double)n * reps_d), (unsigned)sum);
         }
     }
+    {
+        int arith;
+        for (arith = 0; arith < 2; arith++) {
+            const char *label = arith ? "protect_float" : "protect_fixed";
+            double t0;
+            double t1;
+            uint32_t sum;
+            CALLGRIND_TOGGLE_COLLECT;
+            t0 = now_s();
+            sum =
+                arith ? flt_bench_protect_run((int32_t)reps_d) : bench_protect_run((int32_t)reps_d);
+            t1 = now_s();
+            CALLGRIND_TOGGLE_COLLECT;
+            CALLGRIND_DUMP_STATS_AT(label);
+            printf("%s steps %zu ns_per_step %.1f checksum %08x\n", label, n * (size_t)reps_d,
+                   1e9 * (t1 - t0) / ((double)n * reps_d), (unsigned)sum);
+        }
+    }
     return 0;
 }

@@ -17,6 +17,7 @@ import tempfile
 SCENARIOS = ["steady", "load-step", "accel", "reversal"]
 CONFIGS = ["ddc_fixed", "ddc_float", "mptc49_fixed", "mptc49_float", "mptc13_fixed", "mptc13_float"]
 PAPER_US = {"ddc": 50.6, "mptc49": 74.2}
+PROTECT = ["protect_fixed", "protect_float"]
 OPS = ["add", "mul", "div", "sqrt", "sin"]
 # Assumed C28x cycles per primitive (see the estimate section of the report for the reasoning).
 CYCLES = {
@@ -85,7 +86,7 @@ def instruction_counts(bench, traces, work):
                              ann, re.M):
             rows.append((m.group(3), int(m.group(1).replace(",", "")), float(m.group(2))))
         profiles[name.group(1)] = rows
-    missing = [c for c in CONFIGS if c not in counts]
+    missing = [c for c in CONFIGS + PROTECT if c not in counts]
     if missing:
         fail("no callgrind dump for " + ", ".join(missing))
     return counts, profiles
@@ -204,6 +205,20 @@ def main():
     w("Here: DDC / MPTC-49 = **%.3f** in fixed point and **%.3f** in float (aim: at most 0.25)."
       % (per_step["ddc_fixed"] / per_step["mptc49_fixed"],
          per_step["ddc_float"] / per_step["mptc49_float"]))
+    w("")
+    w("## Protection check per period")
+    w("")
+    w("The drive runs `ctl_protect_check` every period before the control step (docs/faults.md);")
+    w("replayed over the same operating points with the default limits, running (every check")
+    w("is evaluated each period; only a newly latched fault adds the writing of a record):")
+    w("")
+    w("| arithmetic | instructions / period | share of a DDC step | wall ns / period |")
+    w("|---|---|---|---|")
+    for c in PROTECT:
+        arith = c.split("_")[1]
+        w("| %s | %.0f | %.2f | %.0f |" % (arith, counts[c] / points,
+                                          counts[c] / points / per_step["ddc_" + arith],
+                                          ns.get(c, float("nan"))))
     w("")
     w("## Where the cost goes (self cost per function; inlined helpers count in their caller)")
     w("")
