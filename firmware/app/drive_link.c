@@ -46,16 +46,14 @@ static int32_t float_to_i32(float x)
 /* x rounded and saturated to int16 (NaN: 0), for the record's 16-bit fields. */
 static int16_t float_to_i16(float x)
 {
-    if (!(x == x)) {
-        return 0;
-    }
-    if (x >= 32767.0f) {
+    const int32_t v = float_to_i32(x);
+    if (v > (int32_t)INT16_MAX) {
         return INT16_MAX;
     }
-    if (x <= -32767.0f) {
+    if (v < -(int32_t)INT16_MAX) {
         return -INT16_MAX;
     }
-    return (int16_t)((x >= 0.0f) ? (x + 0.5f) : (x - 0.5f));
+    return (int16_t)v;
 }
 
 void drive_link_status(const drive_t *d, uint16_t rx_errors, uint16_t *out)

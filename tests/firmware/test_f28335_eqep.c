@@ -195,14 +195,28 @@ static void test_health(void **state)
     assert_false(s.healthy);
 }
 
+/* Two unit periods: 1000 counts in 2 ms, 50 rev/s. */
+static void spin_at_50_rev_s(hal_encoder_sample_t *s)
+{
+    unit_event(0u, 100u, 10u, EQEP_STS_FIMF | EQEP_STS_QDF);
+    hal_encoder_read(s);
+    unit_event(1000u, 75u, 10u, EQEP_STS_FIMF | EQEP_STS_QDF);
+    hal_encoder_read(s);
+}
+
+/* No edge for 10 ms (the index is still valid). */
+static void watchdog_time_out(hal_encoder_sample_t *s)
+{
+    R.eqep1.QEPSTS = EQEP_STS_FIMF; /* the RAM frame keeps what the driver wrote to clear COEF */
+    R.eqep1.QFLG = EQEP_WTO;
+    hal_encoder_read(s);
+}
+
 static void test_loss_of_edges_at_speed(void **state)
 {
     hal_encoder_sample_t s;
     (void)state;
-    unit_event(0u, 100u, 10u, EQEP_STS_FIMF | EQEP_STS_QDF);
-    hal_encoder_read(&s);
-    unit_event(1000u, 75u, 10u, EQEP_STS_FIMF | EQEP_STS_QDF);
-    hal_encoder_read(&s);
+    spin_at_50_rev_s(&s);
     assert_true(s.healthy);
     R.eqep1.QFLG = EQEP_WTO; /* no edge for 10 ms at 50 rev/s */
     hal_encoder_read(&s);
@@ -217,19 +231,14 @@ static void test_loss_of_edges_after_unit_timer_reported_zero(void **state)
     hal_encoder_sample_t s;
     int k;
     (void)state;
-    unit_event(0u, 100u, 10u, EQEP_STS_FIMF | EQEP_STS_QDF);
-    hal_encoder_read(&s);
-    unit_event(1000u, 75u, 10u, EQEP_STS_FIMF | EQEP_STS_QDF);
-    hal_encoder_read(&s);
+    spin_at_50_rev_s(&s);
     for (k = 0; k < 9; k++) {
         unit_event(1000u, 75u, 10u, EQEP_STS_FIMF | EQEP_STS_QDF | EQEP_STS_COEF);
         hal_encoder_read(&s);
     }
     assert_true(s.healthy);
     assert_int_equal(s.mech_speed_q16, 0);
-    R.eqep1.QEPSTS = EQEP_STS_FIMF; /* the RAM frame keeps what the driver wrote to clear COEF */
-    R.eqep1.QFLG = EQEP_WTO;
-    hal_encoder_read(&s);
+    watchdog_time_out(&s);
     assert_false(s.healthy);
 }
 
@@ -244,9 +253,7 @@ static void test_slow_stop_stays_healthy(void **state)
     hal_encoder_read(&s);
     unit_event(2u, 100u, 10u, EQEP_STS_FIMF | EQEP_STS_QDF | EQEP_STS_COEF);
     hal_encoder_read(&s);
-    R.eqep1.QEPSTS = EQEP_STS_FIMF; /* the RAM frame keeps what the driver wrote to clear COEF */
-    R.eqep1.QFLG = EQEP_WTO;
-    hal_encoder_read(&s);
+    watchdog_time_out(&s);
     assert_true(s.healthy);
 }
 
