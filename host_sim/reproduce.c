@@ -235,6 +235,26 @@ static void rep_row_steady(FILE *f, const char *label, const rep_case_t *c, doub
             label, c->res.fs_hz / 1000.0, pt, a, b, d, pr, e, g, h, k, m, pk);
 }
 
+static void rep_steady_header(FILE *f)
+{
+    fprintf(
+        f, "| method, lambda | fs kHz | paper THD %% | THD %% | THD_50 %% | ripple std N m | paper "
+           "ripple | ripple p-p | x-y rms A | f_sw Hz | speed r/min | torque N m | peak A |\n");
+    fprintf(f, "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+}
+
+/* The row of case "<prefix>_l<lambda>", labelled "<method>, <lambda>", against the paper's
+ * DDC or conventional-MPTC figures at that lambda. */
+static void rep_row_lambda(FILE *f, const rep_case_t *cases, int n, const char *prefix,
+                           const char *method, int li, bool ddc)
+{
+    char nm[64], label[64];
+    (void)snprintf(nm, sizeof nm, "%s_l%.0f", prefix, paper_lambda[li]);
+    (void)snprintf(label, sizeof label, "%s, %.0f", method, paper_lambda[li]);
+    rep_row_steady(f, label, rep_find(cases, n, nm), ddc ? paper_thd_ddc[li] : paper_thd_mptc[li],
+                   ddc ? paper_rip_ddc[li] : paper_rip_mptc[li]);
+}
+
 /* Fault injection: each fault at rated operation, the drive's answer. */
 static void rep_write_faults(FILE *f, const rep_case_t *cases, int n)
 {
@@ -302,24 +322,12 @@ static int rep_write_report(const char *dir, rep_case_t *cases, int n, double wa
             100.0);
 
     fprintf(f, "## 1. Steady state, 1500 r/min, rated load, equal sampling frequency\n\n");
-    fprintf(
-        f, "| method, lambda | fs kHz | paper THD %% | THD %% | THD_50 %% | ripple std N m | paper "
-           "ripple | ripple p-p | x-y rms A | f_sw Hz | speed r/min | torque N m | peak A |\n");
-    fprintf(f, "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+    rep_steady_header(f);
     for (li = 0; li < 3; li++) {
-        char nm[64], label[64];
-        (void)snprintf(nm, sizeof nm, "steady_mptc49_l%.0f", paper_lambda[li]);
-        (void)snprintf(label, sizeof label, "MPTC-49, %.0f", paper_lambda[li]);
-        rep_row_steady(f, label, rep_find(cases, n, nm), paper_thd_mptc[li], paper_rip_mptc[li]);
-        (void)snprintf(nm, sizeof nm, "steady_mptc13_l%.0f", paper_lambda[li]);
-        (void)snprintf(label, sizeof label, "MPTC-13, %.0f", paper_lambda[li]);
-        rep_row_steady(f, label, rep_find(cases, n, nm), paper_thd_mptc[li], paper_rip_mptc[li]);
-        (void)snprintf(nm, sizeof nm, "steady_ddc_l%.0f", paper_lambda[li]);
-        (void)snprintf(label, sizeof label, "DDC, %.0f", paper_lambda[li]);
-        rep_row_steady(f, label, rep_find(cases, n, nm), paper_thd_ddc[li], paper_rip_ddc[li]);
-        (void)snprintf(nm, sizeof nm, "guard_ddc_l%.0f", paper_lambda[li]);
-        (void)snprintf(label, sizeof label, "DDC + torque guard, %.0f", paper_lambda[li]);
-        rep_row_steady(f, label, rep_find(cases, n, nm), paper_thd_ddc[li], paper_rip_ddc[li]);
+        rep_row_lambda(f, cases, n, "steady_mptc49", "MPTC-49", li, false);
+        rep_row_lambda(f, cases, n, "steady_mptc13", "MPTC-13", li, false);
+        rep_row_lambda(f, cases, n, "steady_ddc", "DDC", li, true);
+        rep_row_lambda(f, cases, n, "guard_ddc", "DDC + torque guard", li, true);
     }
     fprintf(f, "\n\"DDC\" is the paper's method (`ddc_torque_guard` off, `--paper-ddc`); \"DDC + "
                "torque guard\" is the core's default, which limits how far the flux weighting may "
@@ -337,35 +345,19 @@ static int rep_write_report(const char *dir, rep_case_t *cases, int n, double wa
     fprintf(f, "MPTC-49's sampling frequency is raised until its average switching frequency "
                "matches DDC's at 10 kHz for the same lambda (the paper used 10 and 7.5 kHz without "
                "saying which method got which).\n\n");
-    fprintf(
-        f, "| method, lambda | fs kHz | paper THD %% | THD %% | THD_50 %% | ripple std N m | paper "
-           "ripple | ripple p-p | x-y rms A | f_sw Hz | speed r/min | torque N m | peak A |\n");
-    fprintf(f, "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+    rep_steady_header(f);
     for (li = 0; li < 3; li++) {
-        char nm[64], label[64];
-        (void)snprintf(nm, sizeof nm, "eqsw_mptc49_l%.0f", paper_lambda[li]);
-        (void)snprintf(label, sizeof label, "MPTC-49, %.0f", paper_lambda[li]);
-        rep_row_steady(f, label, rep_find(cases, n, nm), paper_thd_mptc[li], paper_rip_mptc[li]);
-        (void)snprintf(nm, sizeof nm, "steady_ddc_l%.0f", paper_lambda[li]);
-        (void)snprintf(label, sizeof label, "DDC, %.0f", paper_lambda[li]);
-        rep_row_steady(f, label, rep_find(cases, n, nm), paper_thd_ddc[li], paper_rip_ddc[li]);
+        rep_row_lambda(f, cases, n, "eqsw_mptc49", "MPTC-49", li, false);
+        rep_row_lambda(f, cases, n, "steady_ddc", "DDC", li, true);
     }
 
     fprintf(f,
             "\nThe paper's own pairing, as far as it can be read (10 and 7.5 kHz): DDC at 7.5 kHz "
             "against MPTC-49 at 10 kHz.\n\n");
-    fprintf(
-        f, "| method, lambda | fs kHz | paper THD %% | THD %% | THD_50 %% | ripple std N m | paper "
-           "ripple | ripple p-p | x-y rms A | f_sw Hz | speed r/min | torque N m | peak A |\n");
-    fprintf(f, "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+    rep_steady_header(f);
     for (li = 0; li < 3; li++) {
-        char nm[64], label[64];
-        (void)snprintf(nm, sizeof nm, "steady_mptc49_l%.0f", paper_lambda[li]);
-        (void)snprintf(label, sizeof label, "MPTC-49, %.0f", paper_lambda[li]);
-        rep_row_steady(f, label, rep_find(cases, n, nm), paper_thd_mptc[li], paper_rip_mptc[li]);
-        (void)snprintf(nm, sizeof nm, "fs7k5_ddc_l%.0f", paper_lambda[li]);
-        (void)snprintf(label, sizeof label, "DDC, %.0f", paper_lambda[li]);
-        rep_row_steady(f, label, rep_find(cases, n, nm), paper_thd_ddc[li], paper_rip_ddc[li]);
+        rep_row_lambda(f, cases, n, "steady_mptc49", "MPTC-49", li, false);
+        rep_row_lambda(f, cases, n, "fs7k5_ddc", "DDC", li, true);
     }
 
     fprintf(f, "\n## 3. Dynamic tests (lambda = 100, 10 kHz)\n\n");
