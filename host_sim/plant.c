@@ -4,6 +4,8 @@
 #include <math.h>
 #include <stddef.h>
 
+#include "ctl_machine.h"
+
 #define PLANT_PI 3.14159265358979323846
 
 const double plant_phase_angle_rad[PLANT_PHASES] = {0.0,
@@ -25,17 +27,17 @@ static const double plant_vsd_row[4][PLANT_PHASES] = {
 
 void plant_params_default(plant_params_t *p)
 {
-    p->r_ohm = 2.0;
-    p->ld_h = 0.035;
-    p->lq_h = 0.055;
-    p->lxy_h = 0.010;
-    p->psi_f_wb = 0.225;
+    p->r_ohm = CTL_MACHINE_R_OHM; /* the machine the controller assumes by default */
+    p->ld_h = CTL_MACHINE_LD_H;
+    p->lq_h = CTL_MACHINE_LQ_H;
+    p->lxy_h = CTL_MACHINE_LXY_H;
+    p->psi_f_wb = CTL_MACHINE_PSI_F_WB;
     p->psi5_wb = 0.006;
     p->psi7_wb = 0.002;
-    p->pole_pairs = 3;
-    p->j_kgm2 = 0.01;
+    p->pole_pairs = CTL_MACHINE_POLE_PAIRS;
+    p->j_kgm2 = CTL_MACHINE_INERTIA_KG_M2;
     p->b_nms = 0.001;
-    p->vdc_v = 540.0;
+    p->vdc_v = CTL_MACHINE_VDC_V;
     p->dead_time_s = 2e-6;
     for (int k = 0; k < PLANT_PHASES; k++) {
         p->phase_extra_r_ohm[k] = 0.0;

@@ -1,6 +1,7 @@
 #include "ctl.h"
 
 #include "ctl_ddc.h"
+#include "ctl_machine.h"
 #include "ctl_mptc.h"
 #include "ctl_pu.h"
 #include "ctl_search.h"
@@ -9,13 +10,13 @@
 
 void ctl_params_default(ctl_params_t *p)
 {
-    p->resistance_ohm = 2.0f;
-    p->ld_h = 0.035f;
-    p->lq_h = 0.055f;
-    p->l_xy_h = 0.010f;
-    p->pm_flux_wb = 0.225f;
-    p->pole_pairs = 3;
-    p->inertia_kg_m2 = 0.01f;
+    p->resistance_ohm = (float)CTL_MACHINE_R_OHM;
+    p->ld_h = (float)CTL_MACHINE_LD_H;
+    p->lq_h = (float)CTL_MACHINE_LQ_H;
+    p->l_xy_h = (float)CTL_MACHINE_LXY_H;
+    p->pm_flux_wb = (float)CTL_MACHINE_PSI_F_WB;
+    p->pole_pairs = CTL_MACHINE_POLE_PAIRS;
+    p->inertia_kg_m2 = (float)CTL_MACHINE_INERTIA_KG_M2;
     p->sample_time_s = 1.0e-4f;
     p->controller = CTL_CONTROLLER_DDC;
     p->lambda_nm_per_wb = 100.0f;
