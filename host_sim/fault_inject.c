@@ -71,11 +71,13 @@ void sim_fault_begin(sim_fault_state_t *s, sim_fault_t kind, double t_inject)
     s->active = (kind != SIM_FAULT_NONE) && sim_fault_at_power_up(kind);
 }
 
-void sim_fault_update(sim_fault_state_t *s, double t)
+bool sim_fault_update(sim_fault_state_t *s, double t)
 {
-    if (s->kind != SIM_FAULT_NONE && t >= s->t_inject) {
-        s->active = true;
+    if (s->active || s->kind == SIM_FAULT_NONE || t < s->t_inject) {
+        return false;
     }
+    s->active = true;
+    return true;
 }
 
 void sim_fault_plant(const sim_fault_state_t *s, const plant_params_t *healthy, plant_params_t *p)

@@ -72,10 +72,12 @@ typedef struct {
 
 void sim_fault_begin(sim_fault_state_t *s, sim_fault_t kind, double t_inject);
 
-/* Activate at the injection time (or at once for power-up faults). */
-void sim_fault_update(sim_fault_state_t *s, double t);
+/* Activate at the injection time (or at once for power-up faults); true in the period the
+ * fault becomes active. */
+bool sim_fault_update(sim_fault_state_t *s, double t);
 
-/* The plant as the fault leaves it: DC link, phase connections, integration step. */
+/* The plant as the fault leaves it: DC link, phase connections, integration step (constant
+ * once active: call when sim_fault_update reports the activation). */
 void sim_fault_plant(const sim_fault_state_t *s, const plant_params_t *healthy, plant_params_t *p);
 
 /* Load torque on the shaft (N*m) with the fault. */

@@ -890,8 +890,9 @@ int sim_run(const sim_config_t *c, sim_result_t *r, char *err, size_t err_len)
         if (k > 0 && pl.speed != pl.speed0 && t >= pl.t_event && t - ts < pl.t_event) {
             ops->set_speed_rpm(pl.speed);
         }
-        sim_fault_update(&fs, t);
-        sim_fault_plant(&fs, &c->plant, &plant_now);
+        if (sim_fault_update(&fs, t)) {
+            sim_fault_plant(&fs, &c->plant, &plant_now);
+        }
         plant_outputs(p, &x, &o);
         if (c->trip_current_a > 0.0 && !hal_sim_bus.hw_trip) {
             /* comparator sampled once per period (a real one acts within microseconds) */

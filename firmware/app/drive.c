@@ -243,13 +243,13 @@ static uint16_t drive_protect(drive_t *d, bool running)
 }
 
 /* Healthy enough to leave FAULT: no protection condition active, the causes that
- * need a look at the hardware re-checked. */
+ * need a look at the hardware re-checked. Every drive fault is latched in the
+ * protection's mask (drive_enter_fault), so the mask alone says what happened. */
 static bool drive_may_clear(drive_t *d)
 {
     const uint16_t latched = d->protect.latched;
-    if (d->fault == DRIVE_FAULT_PARAMS || d->fault == DRIVE_FAULT_STARTUP ||
-        (latched & (CTL_FAULT_PARAMS | CTL_FAULT_PLATFORM)) != 0u) {
-        return false;
+    if ((latched & (CTL_FAULT_PARAMS | CTL_FAULT_PLATFORM)) != 0u) {
+        return false; /* not clearable: needs new parameters or a restart */
     }
     if (hal_pwm_hw_trip_seen()) {
         return false;
@@ -277,12 +277,9 @@ static void drive_control_step(drive_t *d)
     } else if (fresh) {
         /* stale words would fake a stuck converter: check fresh conversions only */
         faults = drive_protect(d, d->state == DRIVE_STATE_RUN);
-    } else {
-        /* nothing new to check; hardware trip is a pin, not a conversion */
-        if (hal_pwm_hw_trip_seen()) {
-            faults = CTL_FAULT_HW_TRIP;
-            ctl_protect_raise(&d->protect, faults, &d->protect_in);
-        }
+    } else if (hal_pwm_hw_trip_seen()) {
+        /* nothing new to check; the hardware trip is a pin, not a conversion */
+        drive_enter_fault(d, DRIVE_FAULT_HW_TRIP);
     }
     if (faults != 0u) {
         drive_latch_fault(d, drive_fault_from_mask(faults));
