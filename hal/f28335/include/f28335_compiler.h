@@ -51,6 +51,36 @@ extern __cregister volatile uint16_t IFR;
 /* Absolute address to a pointer; only the target build uses real addresses. */
 #define F28335_ADDR(type, addr) ((type *)(addr))
 
+#elif defined(F28335_LINK_PROXY)
+
+/* Host link check of the target source list (tools/ti_link_proxy): the target code paths,
+ * real addresses included, compiled by the host compiler so that linking exactly the TI
+ * list finds every missing source. The intrinsics become calls into the one stub file
+ * (tools/ti_link_proxy/ti_link_stubs.c). The result is linked, never run. */
+#define F28335_TARGET 1
+
+#define F28335_INTERRUPT
+
+extern volatile uint16_t IER;
+extern volatile uint16_t IFR;
+void f28335_proxy_intrinsic(const char *instruction);
+
+#define F28335_EALLOW() f28335_proxy_intrinsic("EALLOW")
+#define F28335_EDIS() f28335_proxy_intrinsic("EDIS")
+#define F28335_EINT() f28335_proxy_intrinsic("CLRC INTM")
+#define F28335_DINT() f28335_proxy_intrinsic("SETC INTM")
+#define F28335_ERTM() f28335_proxy_intrinsic("CLRC DBGM")
+#define F28335_NOP() f28335_proxy_intrinsic("NOP")
+#define F28335_FLUSH_PIPELINE() f28335_proxy_intrinsic("RPT #7 || NOP")
+#define F28335_IER_SET(mask) (IER |= (uint16_t)(mask))
+#define F28335_IER_CLEAR(mask) (IER &= (uint16_t) ~(uint16_t)(mask))
+#define F28335_IFR_CLEAR_ALL() (IFR = 0x0000u)
+
+#define F28335_RAMFUNC(fn)
+
+/* through uintptr_t: host pointers are wider than the 32-bit address arithmetic */
+#define F28335_ADDR(type, addr) ((type *)(uintptr_t)(addr))
+
 #else /* host build: stand-ins */
 
 #define F28335_TARGET 0

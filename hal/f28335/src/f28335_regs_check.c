@@ -97,7 +97,7 @@ F28335_CT_ASSERT(WORD_SIZE(f28335_piectrl_t) == 0x20u, pie_size);
 /* Vector of INT1.1 at 0x0D40, INT13 at 0x0D1A (2 words per entry on the target). */
 F28335_CT_ASSERT(PIE_VECTOR_INDEX(1u, 1u) * 2u == 0x40u, pie_vect_int1_1);
 F28335_CT_ASSERT(PIE_VECTOR_INDEX(5u, 1u) * 2u == 0x80u, pie_vect_int5_1);
-#if F28335_TARGET
+#if F28335_TARGET && !defined(F28335_LINK_PROXY) /* 32-bit code pointers: cl2000 only */
 F28335_CT_ASSERT(sizeof(f28335_isr_t) == 2u, pie_vect_entry);
 F28335_CT_ASSERT(WORD_SIZE(f28335_pievect_t) == 0x100u, pie_vect_size);
 #endif

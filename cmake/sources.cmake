@@ -1,0 +1,94 @@
+# The one list of the firmware's source files, relative to the repository root. The host
+# build (top-level CMakeLists.txt), the TI target build (firmware/f28335/CMakeLists.txt),
+# the host link check of the target list (tools/ti_link_proxy) and the CCS file list in
+# docs/porting.md (checked by tools/check_doc_sources.cmake) all come from here: a file
+# added to the firmware is added here once.
+
+get_filename_component(SIXPHASE_REPO_ROOT ${CMAKE_CURRENT_LIST_DIR}/.. ABSOLUTE)
+
+# Portable control core (control/).
+set(SIXPHASE_CTL_SOURCES
+    control/src/ctl_q.c
+    control/src/ctl_tables.c
+    control/src/ctl_vsd.c
+    control/src/ctl_predict.c
+    control/src/ctl_speed_pi.c
+    control/src/ctl_flux_ref.c
+    control/src/ctl_ddc.c
+    control/src/ctl_mptc.c
+    control/src/ctl_protect.c
+    control/src/ctl.c)
+
+# Drive application: control ISR body, state machine, stage profiler.
+set(SIXPHASE_DRIVE_SOURCES
+    firmware/app/drive.c
+    firmware/app/profile.c)
+
+# Serial protocol framing shared by the firmware and the host tool.
+set(SIXPHASE_SXLINK_SOURCES
+    firmware/link/sxlink.c)
+# Name tables of the protocol (host tool and simulator only, not linked into the target).
+set(SIXPHASE_SXLINK_NAMES_SOURCES
+    firmware/link/sxlink_names.c)
+
+# Serial commands of the drive.
+set(SIXPHASE_DRIVE_LINK_SOURCES
+    firmware/app/drive_link.c)
+
+# F28335 register-level HAL.
+set(SIXPHASE_HAL_F28335_SOURCES
+    hal/f28335/src/f28335_regs_check.c
+    hal/f28335/src/f28335_gpio.c
+    hal/f28335/src/f28335_sysctrl.c
+    hal/f28335/src/f28335_pie.c
+    hal/f28335/src/f28335_cycles.c
+    hal/f28335/src/f28335_pwm.c
+    hal/f28335/src/f28335_adc.c
+    hal/f28335/src/f28335_eqep.c
+    hal/f28335/src/f28335_sci.c)
+# Host build only: the register frames as RAM.
+set(SIXPHASE_HAL_F28335_HOST_SOURCES
+    hal/f28335/src/f28335_host_regs.c)
+
+# F28335 start-up, control interrupt, background loop.
+set(SIXPHASE_FW_F28335_SOURCES
+    firmware/f28335/fw_startup.c
+    firmware/f28335/fw_isr.c
+    firmware/f28335/fw_background.c
+    firmware/f28335/fw_main.c)
+set(SIXPHASE_FW_F28335_ASM_SOURCES
+    firmware/f28335/codestart.asm)
+
+# Include directories of the target image.
+set(SIXPHASE_TARGET_INCLUDE_DIRS
+    firmware/f28335
+    firmware/app
+    firmware/link
+    hal/include
+    hal/f28335/include
+    hal/f28335/src
+    control/include
+    control/src)
+
+# Everything the TI image links, C first.
+set(SIXPHASE_TARGET_C_SOURCES
+    ${SIXPHASE_CTL_SOURCES}
+    ${SIXPHASE_DRIVE_SOURCES}
+    ${SIXPHASE_DRIVE_LINK_SOURCES}
+    ${SIXPHASE_SXLINK_SOURCES}
+    ${SIXPHASE_HAL_F28335_SOURCES}
+    ${SIXPHASE_FW_F28335_SOURCES})
+set(SIXPHASE_TARGET_SOURCES
+    ${SIXPHASE_TARGET_C_SOURCES}
+    ${SIXPHASE_FW_F28335_ASM_SOURCES})
+
+# sixphase_sources(<out_var> <list_var>...): absolute paths of the named lists.
+function(sixphase_sources out)
+  set(result)
+  foreach(list_var ${ARGN})
+    foreach(f ${${list_var}})
+      list(APPEND result ${SIXPHASE_REPO_ROOT}/${f})
+    endforeach()
+  endforeach()
+  set(${out} ${result} PARENT_SCOPE)
+endfunction()

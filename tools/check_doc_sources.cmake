@@ -1,0 +1,27 @@
+# Checks that the CCS file list in docs/porting.md is exactly the TI image's source list
+# (cmake/sources.cmake). Run: cmake -P tools/check_doc_sources.cmake
+# On a mismatch it prints the block the document should hold and fails.
+include(${CMAKE_CURRENT_LIST_DIR}/../cmake/sources.cmake)
+set(doc ${SIXPHASE_REPO_ROOT}/docs/porting.md)
+file(READ ${doc} text)
+string(FIND "${text}" "<!-- target-sources -->" begin)
+string(FIND "${text}" "<!-- /target-sources -->" end)
+if(begin EQUAL -1 OR end EQUAL -1 OR end LESS begin)
+  message(FATAL_ERROR "docs/porting.md: markers <!-- target-sources --> ... <!-- /target-sources --> not found")
+endif()
+math(EXPR len "${end} - ${begin}")
+string(SUBSTRING "${text}" ${begin} ${len} block)
+string(REGEX MATCHALL "`[^`]+`" documented "${block}")
+set(expected_block "<!-- target-sources -->\n")
+set(expected)
+foreach(f ${SIXPHASE_TARGET_SOURCES})
+  list(APPEND expected "`${f}`")
+  string(APPEND expected_block "- `${f}`\n")
+endforeach()
+string(APPEND expected_block "<!-- /target-sources -->")
+if(NOT documented STREQUAL expected)
+  message(FATAL_ERROR "docs/porting.md: the CCS file list differs from cmake/sources.cmake; "
+                      "it should read:\n${expected_block}")
+endif()
+list(LENGTH expected n)
+message(STATUS "docs/porting.md lists the ${n} target sources of cmake/sources.cmake")
