@@ -8,6 +8,7 @@ get_filename_component(SIXPHASE_REPO_ROOT ${CMAKE_CURRENT_LIST_DIR}/.. ABSOLUTE)
 
 # Portable control core (control/).
 set(SIXPHASE_CTL_SOURCES
+    control/src/ctl_barrier.c
     control/src/ctl_q.c
     control/src/ctl_tables.c
     control/src/ctl_vsd.c
@@ -17,6 +18,8 @@ set(SIXPHASE_CTL_SOURCES
     control/src/ctl_ddc.c
     control/src/ctl_mptc.c
     control/src/ctl_protect.c
+    control/src/ctl_params.c
+    control/src/ctl_config.c
     control/src/ctl.c)
 
 # Drive application: control ISR body, state machine, stage profiler.

@@ -22,21 +22,23 @@
 
 static drive_t bridge_drive;
 
-/* Thresholds no measurement can reach: the simulator's way of watching a controller
- * that would trip the drive (the firmware itself has no such setting). */
-static void bridge_protect_out_of_reach(ctl_protect_limits_t *l)
+/* Thresholds no measurement can reach: the simulator's way of watching a controller that
+ * would trip the drive. An ordinary parameter set (the firmware accepts the same values over
+ * its parameter path); the largest thresholds saturate the per-unit limits. */
+static void bridge_protect_out_of_reach(ctl_protect_settings_t *s)
 {
-    l->overcurrent = CTL_Q_MAX;
-    l->dc_overvoltage = CTL_Q_MAX;
-    l->dc_undervoltage = CTL_Q_MIN;
-    l->overspeed = CTL_Q_MAX;
-    l->current_sum = CTL_Q_MAX;
-    l->adc_rail_low = -1;
-    l->adc_rail_high = INT16_MAX;
-    l->stuck_min_current = CTL_Q_MAX;
-    l->encoder_torque = CTL_Q_MAX;
-    l->encoder_jump = CTL_Q_MAX;
-    l->open_phase_min_mean = CTL_Q_MAX;
+    const float big = 1.0e6f;
+    s->overcurrent_a = big;
+    s->dc_overvoltage_v = big;
+    s->dc_undervoltage_v = 0.0f;
+    s->overspeed_rpm = big;
+    s->current_sum_a = big;
+    s->adc_rail_low_counts = -1;
+    s->adc_rail_high_counts = INT16_MAX;
+    s->stuck_min_current_a = big;
+    s->encoder_torque_nm = big;
+    s->encoder_jump_turns = big;
+    s->open_phase_min_current_a = big;
 }
 
 static int bridge_init(const sim_ctl_config_t *cfg)
@@ -79,15 +81,13 @@ static int bridge_init(const sim_ctl_config_t *cfg)
     if (cfg->torque_limit_nm > 0.0) {
         p.torque_limit_nm = (float)cfg->torque_limit_nm;
     }
+    if (!cfg->protect) {
+        bridge_protect_out_of_reach(&p.protect);
+    }
     if (!ctl_params_valid(&p)) {
         return 1;
     }
     drive_init(&bridge_drive, &p);
-    if (!cfg->protect) {
-        ctl_protect_limits_t l = bridge_drive.protect.limits;
-        bridge_protect_out_of_reach(&l);
-        drive_set_protect_limits(&bridge_drive, &l);
-    }
     return (bridge_drive.state == DRIVE_STATE_FAULT) ? 2 : 0;
 }
 
@@ -126,6 +126,7 @@ static int bridge_read_fault_record(sim_fault_record_t *out)
 static void bridge_status(sim_ctl_status_t *st)
 {
     const ctl_t *c = &bridge_drive.ctl;
+    const ctl_params_t *prm = ctl_params(c);
     const ctl_diag_t *dg = &c->diag;
     st->state = (int)bridge_drive.state;
     st->fault = (int)bridge_drive.fault;
@@ -138,15 +139,15 @@ static void bridge_status(sim_ctl_status_t *st)
     st->enable = bridge_drive.cmd.enable ? 1 : 0;
     st->candidates = (int)dg->candidates;
     st->braking = dg->braking ? 1 : 0;
-    st->p_lambda = (double)c->params.lambda_nm_per_wb;
-    st->p_speed_kp = (double)c->params.speed_kp_nm_per_rad_s;
-    st->p_speed_ki = (double)c->params.speed_ki_nm_per_rad;
-    st->p_torque_limit = (double)c->params.torque_limit_nm;
-    st->p_flux_ref_wb = (double)c->params.flux_ref_wb;
-    st->p_duty_levels = (int)c->params.duty_levels;
-    st->p_ddc_direction = (int)c->params.ddc_direction;
-    st->p_flux_ref_mode = (int)c->params.flux_ref_mode;
-    st->p_ddc_torque_guard = c->params.ddc_torque_guard ? 1 : 0;
+    st->p_lambda = (double)prm->lambda_nm_per_wb;
+    st->p_speed_kp = (double)prm->speed_kp_nm_per_rad_s;
+    st->p_speed_ki = (double)prm->speed_ki_nm_per_rad;
+    st->p_torque_limit = (double)prm->torque_limit_nm;
+    st->p_flux_ref_wb = (double)prm->flux_ref_wb;
+    st->p_duty_levels = (int)prm->duty_levels;
+    st->p_ddc_direction = (int)prm->ddc_direction;
+    st->p_flux_ref_mode = (int)prm->flux_ref_mode;
+    st->p_ddc_torque_guard = prm->ddc_torque_guard ? 1 : 0;
     st->faults_latched = (unsigned)drive_faults_latched(&bridge_drive);
     st->fault_records = (int)ctl_protect_log_pending(&bridge_drive.protect);
 }

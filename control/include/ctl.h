@@ -21,8 +21,8 @@
 #include <stdbool.h>
 #include <stdint.h>
 
-#include "ctl_flux_ref.h"
-#include "ctl_predict.h"
+#include "ctl_config.h"
+#include "ctl_params.h"
 #include "ctl_q.h"
 #include "ctl_speed_pi.h"
 
@@ -53,53 +53,10 @@ typedef void (*ctl_stage_hook_t)(int16_t stage);
 #else
 #define CTL_STAGE_MARK(hook, stage) ((void)0)
 #endif
-#define CTL_DUTY_LEVELS_MAX 11 /* = CTL_DDC_LEVELS_MAX */
-
-typedef enum {
-    CTL_CONTROLLER_DDC = 0,    /* the paper's discrete-duty MPTC */
-    CTL_CONTROLLER_MPTC49 = 1, /* conventional MPTC, 48 vectors + zero */
-    CTL_CONTROLLER_MPTC13 = 2  /* conventional MPTC, 12 largest + zero */
-} ctl_controller_t;
-
-/* How the discrete-duty method picks between the two alpha-beta directions
- * of a sector (see docs/design.md). */
-typedef enum {
-    CTL_DDC_DIRECTION_FLUX_ERROR = 0, /* DTC reading: flux error sign picks 75/105 deg */
-    CTL_DDC_DIRECTION_XY_TABLE = 1    /* paper's table 2 literally: x-y sector picks one of four */
-} ctl_ddc_direction_t;
-
 typedef enum {
     CTL_LOOP_SPEED = 0, /* speed PI produces the torque reference */
     CTL_LOOP_TORQUE = 1 /* torque reference given directly */
 } ctl_loop_mode_t;
-
-/* Everything that can be set at init or changed at run time, in SI units.
- * Converted to per-unit coefficients once when applied, never per step. */
-typedef struct {
-    /* machine */
-    float resistance_ohm;
-    float ld_h;
-    float lq_h;
-    float l_xy_h; /* x-y (leakage) inductance */
-    float pm_flux_wb;
-    int16_t pole_pairs;
-    float inertia_kg_m2; /* used by the protection's stopped-encoder check */
-    /* control */
-    float sample_time_s;
-    ctl_controller_t controller;
-    float lambda_nm_per_wb; /* flux weight of the cost */
-    int16_t duty_levels;    /* DDC: levels k/(n-1), k = 0..n-1; paper: 6 */
-    ctl_ddc_direction_t ddc_direction;
-    /* improvement over the paper (docs/improvements.md), on by default; false = the paper */
-    bool ddc_torque_guard; /* flux weighting moves the duty at most one level from the
-                            * level that best meets the torque reference */
-    ctl_flux_ref_mode_t flux_ref_mode;
-    float flux_ref_wb; /* used when flux_ref_mode is constant */
-    /* speed loop */
-    float speed_kp_nm_per_rad_s; /* per mechanical rad/s */
-    float speed_ki_nm_per_rad;   /* per mechanical rad */
-    float torque_limit_nm;
-} ctl_params_t;
 
 typedef struct {
     ctl_q i_phase[CTL_PHASES]; /* A B C D E F, per unit */
@@ -124,48 +81,65 @@ typedef struct {
     ctl_q torque_pred; /* chosen candidate, at k+2 */
     ctl_q flux_pred;
     ctl_q cost;
-    int16_t flux_sector;      /* alpha-beta sector 0..11 at k+1 (DDC) */
-    int16_t xy_sector;        /* x-y sector used by table 2 (DDC) */
-    int16_t candidates;       /* candidates evaluated this step */
-    bool braking;             /* DDC used the torque-lowering half of table 1 */
-    uint16_t params_rejected; /* shadow parameter sets refused as invalid */
+    int16_t flux_sector; /* alpha-beta sector 0..11 at k+1 (DDC) */
+    int16_t xy_sector;   /* x-y sector used by table 2 (DDC) */
+    int16_t candidates;  /* candidates evaluated this step */
+    bool braking;        /* DDC used the torque-lowering half of table 1 */
 } ctl_diag_t;
 
+/*
+ * Parameter hand-off (C2000Ware's init/run split, double-buffered): the background builds
+ * the whole derived configuration (ctl_config.h) of a new set into the standby buffer, then
+ * publishes it; the ISR switches to it at the start of a period, which costs a flag test
+ * and an index flip. Single producer (background), single consumer (ISR), no lock:
+ *   background  ctl_request_params: refused while a published set waits (config_ready);
+ *               else builds into config[1 - active], barrier, config_ready = 1
+ *   ISR         ctl_config_take: if config_ready: barrier, active flips, barrier,
+ *               config_ready = 0; from then on the old buffer is the background's
+ * The background never writes the buffer the ISR reads, and the ISR never reads a buffer
+ * before it is published (ctl_barrier.h says why the barriers are needed).
+ */
 typedef struct {
-    ctl_params_t params; /* in force */
-    ctl_params_t shadow; /* written by ctl_request_params, applied at a step start */
-    volatile bool shadow_pending;
-    ctl_model_t model;
-    ctl_speed_pi_t speed_pi;
-    ctl_flux_ref_t flux_ref;
-    ctl_q lambda_pu;
-    ctl_q duty_level[CTL_DUTY_LEVELS_MAX];
-    ctl_q torque_limit_pu;
+    ctl_config_t config[2];
+    volatile int16_t config_active; /* buffer in force: written by ctl_init and the ISR only */
+    volatile int16_t config_ready;  /* 1: the other buffer is published and waits for the ISR */
+    bool initialised;               /* false: no valid set was ever in force, commands all-off */
+    uint16_t params_rejected;       /* sets refused by ctl_request_params (background) */
+    ctl_param_error_t params_last_error; /* reason of the last refusal */
+    ctl_speed_pi_t speed_pi;             /* gains copied from the configuration in force */
     ctl_loop_mode_t loop_mode;
     ctl_q speed_ref; /* electrical, per unit */
     ctl_q torque_ref_direct;
     int16_t applied_vector; /* command in force during the current period */
     ctl_q applied_duty;
     ctl_diag_t diag;
-    bool initialised;            /* false: parameters were never valid, every command is all-off */
     ctl_stage_hook_t stage_hook; /* 0: none */
 } ctl_t;
 
-/* Paper's machine and controller with the brief's assumed values. */
-void ctl_params_default(ctl_params_t *p);
-
-/* True when every field is usable (positive inductances, levels in range...). */
-bool ctl_params_valid(const ctl_params_t *p);
-
-/* Returns false (and leaves c unusable, ctl_step commands all-off) on invalid parameters. */
+/* Builds the first configuration from p (background, before the ISR runs). Returns false,
+ * with the reason in params_last_error, on an unusable set: ctl_step then commands all-off
+ * until a valid set is taken. */
 bool ctl_init(ctl_t *c, const ctl_params_t *p);
 
 /* Clears integrators and the remembered command (call before enabling PWM). */
 void ctl_reset(ctl_t *c);
 
-/* Queue a parameter change; it is applied at the start of the next ctl_step.
- * On the target call it from the background loop only. */
-void ctl_request_params(ctl_t *c, const ctl_params_t *p);
+/* Background: check p, build its configuration into the standby buffer and publish it; the
+ * ISR takes it at the start of its next period. CTL_PARAM_BUSY while an earlier set still
+ * waits (try again after a period); any other refusal is counted, and the set in force
+ * stays. Never call from the ISR: building takes milliseconds. */
+ctl_param_error_t ctl_request_params(ctl_t *c, const ctl_params_t *p);
+
+/* ISR, at the start of a period, before anything reads the configuration: switches to a
+ * published set. True if it switched. ctl_step calls it too; calling it twice is harmless. */
+bool ctl_config_take(ctl_t *c);
+
+/* The configuration in force (ISR side), and its parameter set. */
+const ctl_config_t *ctl_config(const ctl_t *c);
+const ctl_params_t *ctl_params(const ctl_t *c);
+
+/* A published set waits for the ISR. */
+bool ctl_config_pending(const ctl_t *c);
 
 void ctl_set_loop_mode(ctl_t *c, ctl_loop_mode_t mode);
 void ctl_set_speed_ref(ctl_t *c, ctl_q omega_e_pu);

@@ -23,8 +23,10 @@ typedef struct {
     ctl_q table[CTL_FLUX_REF_TABLE_POINTS];
 } ctl_flux_ref_t;
 
-/* SI in; torque_max_nm sets the table span. False on unusable parameters. */
-bool ctl_flux_ref_init(ctl_flux_ref_t *f, ctl_flux_ref_mode_t mode, float constant_wb, float ld_h,
+/* SI in; torque_max_nm sets the table span. The parameters must have passed
+ * ctl_params_check (positive inductances and magnet flux, torque_max_nm >= 1 mN*m).
+ * Background only: the MTPA table takes thousands of square roots. */
+void ctl_flux_ref_init(ctl_flux_ref_t *f, ctl_flux_ref_mode_t mode, float constant_wb, float ld_h,
                        float lq_h, float psi_f_wb, int16_t pole_pairs, float torque_max_nm);
 
 ctl_q ctl_flux_ref_run(const ctl_flux_ref_t *f, ctl_q torque_ref_pu);

@@ -21,30 +21,55 @@
 
 #include "ctl_q.h"
 
-typedef enum {
-    CTL_FAULT_OVERCURRENT = 0x0001,     /* |i_phase| above limit */
-    CTL_FAULT_DC_OVERVOLTAGE = 0x0002,  /* Vdc above limit */
-    CTL_FAULT_DC_UNDERVOLTAGE = 0x0004, /* Vdc below limit while running */
-    CTL_FAULT_OVERSPEED = 0x0008,       /* |speed| above limit */
-    CTL_FAULT_ENCODER = 0x0010,         /* unhealthy, stopped under torque, or angle jump */
-    CTL_FAULT_ADC_RAIL = 0x0020,        /* a conversion at the rail */
-    CTL_FAULT_ADC_STUCK = 0x0040,       /* a channel frozen while current flows */
-    CTL_FAULT_ADC_OFFSET = 0x0080,      /* calibration offset out of range */
-    CTL_FAULT_OVERRUN = 0x0100,         /* control step not finished within the period */
-    CTL_FAULT_CURRENT_SUM = 0x0200,     /* a three-phase set does not sum to zero */
-    CTL_FAULT_OPEN_PHASE = 0x0400,      /* one phase carries no current while others do */
-    CTL_FAULT_HW_TRIP = 0x0800,         /* hardware over-current trip zone */
-    CTL_FAULT_PARAMS = 0x1000,          /* controller parameters unusable */
-    CTL_FAULT_MEASUREMENT = 0x2000,     /* a measurement is not a number (float build) */
-    CTL_FAULT_ADC_MISSING = 0x4000,     /* no new conversion in a control period */
-    CTL_FAULT_PLATFORM = 0x8000         /* a peripheral failed to initialise */
-} ctl_fault_t;
+/* Fault bits (uint16_t: 0x8000 does not fit the 16-bit int of the C28x, so no enum). */
+#define CTL_FAULT_OVERCURRENT ((uint16_t)0x0001u)     /* |i_phase| above limit */
+#define CTL_FAULT_DC_OVERVOLTAGE ((uint16_t)0x0002u)  /* Vdc above limit */
+#define CTL_FAULT_DC_UNDERVOLTAGE ((uint16_t)0x0004u) /* Vdc below limit while running */
+#define CTL_FAULT_OVERSPEED ((uint16_t)0x0008u)       /* |speed| above limit */
+#define CTL_FAULT_ENCODER ((uint16_t)0x0010u)         /* unhealthy, stopped under torque, or jump */
+#define CTL_FAULT_ADC_RAIL ((uint16_t)0x0020u)        /* a conversion at the rail */
+#define CTL_FAULT_ADC_STUCK ((uint16_t)0x0040u)       /* a channel frozen while current flows */
+#define CTL_FAULT_ADC_OFFSET ((uint16_t)0x0080u)      /* calibration offset out of range */
+#define CTL_FAULT_OVERRUN ((uint16_t)0x0100u)     /* control step not finished within the period */
+#define CTL_FAULT_CURRENT_SUM ((uint16_t)0x0200u) /* a three-phase set does not sum to zero */
+#define CTL_FAULT_OPEN_PHASE ((uint16_t)0x0400u)  /* one phase carries no current, others do */
+#define CTL_FAULT_HW_TRIP ((uint16_t)0x0800u)     /* hardware over-current trip zone */
+#define CTL_FAULT_PARAMS ((uint16_t)0x1000u)      /* controller parameters unusable */
+#define CTL_FAULT_MEASUREMENT ((uint16_t)0x2000u) /* a measurement is not a number (float) */
+#define CTL_FAULT_ADC_MISSING ((uint16_t)0x4000u) /* no new conversion in a control period */
+#define CTL_FAULT_PLATFORM ((uint16_t)0x8000u)    /* a peripheral failed to initialise */
 
 #define CTL_PROTECT_LOG_SIZE 8
 #define CTL_PROTECT_OPEN_PHASE_WINDOW                                                              \
     400 /* periods: 40 ms at 10 kHz, > 1 electrical period at 300 r/min */
 
-/* Thresholds and filters in per unit (see ctl_protect_default for the SI values). */
+/* Thresholds and filters as a user sets them, in SI units; part of the parameter set
+ * (ctl_params_t), so the per-unit limits below follow every applied set. Defaults in
+ * ctl_protect_settings_default, reasons in docs/faults.md. */
+typedef struct {
+    float overcurrent_a; /* |i_phase| limit */
+    int16_t overcurrent_periods;
+    float dc_overvoltage_v;
+    int16_t dc_overvoltage_periods;
+    float dc_undervoltage_v; /* RUN refused below it; a fault below it while running */
+    int16_t dc_undervoltage_periods;
+    float overspeed_rpm;
+    int16_t overspeed_periods;
+    float current_sum_a; /* |i_a + i_b + i_c| limit per three-phase set */
+    int16_t current_sum_periods;
+    int16_t adc_rail_low_counts;  /* a phase-current word at or below: at the rail */
+    int16_t adc_rail_high_counts; /* any word at or above: at the rail */
+    int16_t adc_rail_periods;
+    int16_t adc_stuck_periods;      /* identical word this long while current flows */
+    float stuck_min_current_a;      /* "current flows": largest |i_phase| above this */
+    float encoder_torque_nm;        /* |Te| above this accumulates expected motion */
+    float encoder_expected_turns;   /* electrical turns expected with no count -> fault */
+    float encoder_jump_turns;       /* |angle step - omega Ts| above this -> fault */
+    float open_phase_min_current_a; /* mean |i| that makes the open-phase check meaningful */
+    float open_phase_ratio;         /* a phase below this fraction of the mean is open */
+} ctl_protect_settings_t;
+
+/* Thresholds and filters in per unit, built from the settings (ctl_protect_limits_build). */
 typedef struct {
     ctl_q overcurrent; /* |i| limit */
     int16_t overcurrent_periods;
@@ -102,7 +127,6 @@ typedef struct {
 } ctl_fault_record_t;
 
 typedef struct {
-    ctl_protect_limits_t limits;
     uint16_t latched; /* faults since the last successful clear */
     uint16_t active;  /* faults whose condition held in the last period */
     uint32_t period;
@@ -128,16 +152,23 @@ typedef struct {
     volatile uint16_t log_dropped;
 } ctl_protect_t;
 
-/* Limits for the reference drive: 15 A, 720 V / 350 V, 2000 r/min, ... in SI, converted. */
-void ctl_protect_default(ctl_protect_limits_t *l, float sample_time_s, int16_t pole_pairs,
-                         float inertia_kg_m2);
-void ctl_protect_init(ctl_protect_t *p, const ctl_protect_limits_t *l);
+/* Settings of the reference drive: 15 A, 720 V / 350 V, 2000 r/min, ... */
+void ctl_protect_settings_default(ctl_protect_settings_t *s);
+/* True when every setting is a normal number in its range (thresholds up to 1e6 in SI, which
+ * saturates the per-unit limit: "out of reach"). */
+bool ctl_protect_settings_valid(const ctl_protect_settings_t *s);
+/* Per-unit limits of valid settings for one sample time, pole-pair count and inertia. */
+void ctl_protect_limits_build(ctl_protect_limits_t *l, const ctl_protect_settings_t *s,
+                              float sample_time_s, int16_t pole_pairs, float inertia_kg_m2);
 
-/* Run the detection for one period; returns the faults detected in this period (0: none).
- * On a non-zero return the caller must force the outputs off in this same period.
- * torque_ref, vector and duty only go into the record. */
-uint16_t ctl_protect_check(ctl_protect_t *p, const ctl_protect_input_t *in, ctl_q torque_ref,
-                           int16_t vector, ctl_q duty);
+void ctl_protect_init(ctl_protect_t *p);
+
+/* Run the detection for one period against the limits in force; returns the faults detected
+ * in this period (0: none). On a non-zero return the caller must force the outputs off in
+ * this same period. torque_ref, vector and duty only go into the record. */
+uint16_t ctl_protect_check(ctl_protect_t *p, const ctl_protect_limits_t *l,
+                           const ctl_protect_input_t *in, ctl_q torque_ref, int16_t vector,
+                           ctl_q duty);
 
 /* Latch a fault found outside the periodic check (calibration, parameters). */
 void ctl_protect_raise(ctl_protect_t *p, uint16_t faults, const ctl_protect_input_t *in);

@@ -41,11 +41,19 @@ extern uint32_t ctl_op_counts[CTL_OP_KINDS];
 #define CTL_COUNT_OP(kind) ((void)0)
 #endif
 
+/*
+ * Constants: CTL_Q(x) only for values exact in binary (k / 2^n, such as 0.5 or 0.25): it
+ * folds x in double, which is 32 bits on the C28x, so any other value would round there
+ * differently than on the host. Every other constant is generated (tools/gen_tables.py,
+ * ctl_constants.h and the tables) as CTL_QK(Q24 integer, float literal): the fixed build
+ * takes the integer, the float build the literal, and no build depends on double.
+ */
 #if CTL_MATH_FLOAT
 
 typedef float ctl_q;
 
 #define CTL_Q(x) ((float)(x))
+#define CTL_QK(q24, f) (f)
 #define CTL_Q_MAX (128.0f)
 #define CTL_Q_MIN (-128.0f)
 
@@ -89,8 +97,9 @@ typedef int32_t ctl_q;
 #define CTL_Q_ONE ((int32_t)1 << CTL_Q_FRAC_BITS)
 #define CTL_Q_MAX INT32_MAX
 #define CTL_Q_MIN INT32_MIN
-/* Compile-time constant conversion; rounds to nearest. */
+/* Compile-time constant conversion of a value exact in binary (see above). */
 #define CTL_Q(x) ((ctl_q)((x)*16777216.0 + (((x) >= 0) ? 0.5 : -0.5)))
+#define CTL_QK(q24, f) ((ctl_q)(q24))
 
 static inline ctl_q ctl_sat64(int64_t v)
 {
@@ -206,6 +215,10 @@ static inline int32_t ctl_to_qn(ctl_q x, int16_t n)
 static inline ctl_q ctl_min(ctl_q a, ctl_q b) { return (a < b) ? a : b; }
 static inline ctl_q ctl_max(ctl_q a, ctl_q b) { return (a > b) ? a : b; }
 static inline ctl_q ctl_clamp(ctl_q x, ctl_q lo, ctl_q hi) { return ctl_min(ctl_max(x, lo), hi); }
+
+/* True for a normal finite float (or exactly zero) within [lo, hi]: NaN, infinities and
+ * denormals are out, whatever the bounds. For checking parameters before they are used. */
+bool ctl_float_in_range(float x, float lo, float hi);
 
 /* Square root; negative input gives 0. */
 ctl_q ctl_sqrt(ctl_q a);

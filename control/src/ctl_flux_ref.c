@@ -23,26 +23,16 @@ static void mtpa_point(float i, float ld, float lq, float psi_f, int16_t pp, flo
     *flux = ctl_sqrtf(pd * pd + pq * pq);
 }
 
-bool ctl_flux_ref_init(ctl_flux_ref_t *f, ctl_flux_ref_mode_t mode, float constant_wb, float ld_h,
+void ctl_flux_ref_init(ctl_flux_ref_t *f, ctl_flux_ref_mode_t mode, float constant_wb, float ld_h,
                        float lq_h, float psi_f_wb, int16_t pole_pairs, float torque_max_nm)
 {
-    const float psi_b = (float)CTL_BASE_FLUX_WB;
+    const float psi_b = CTL_BASE_FLUX_WB_F;
+    const float torque_max_pu = torque_max_nm / CTL_BASE_TORQUE_NM_F;
     int16_t k;
-    if (!(ld_h > 0.0f && lq_h > 0.0f && psi_f_wb > 0.0f && pole_pairs > 0 && torque_max_nm > 0.0f &&
-          torque_max_nm < 1000.0f)) {
-        return false;
-    }
-    if (mode == CTL_FLUX_REF_CONSTANT && !(constant_wb > 0.0f && constant_wb < 10.0f)) {
-        return false;
-    }
-    if (mode != CTL_FLUX_REF_CONSTANT && mode != CTL_FLUX_REF_MTPA) {
-        return false;
-    }
     f->mode = mode;
     f->constant = ctl_from_float(constant_wb / psi_b);
-    f->torque_max = ctl_from_float(torque_max_nm / (float)CTL_BASE_TORQUE_NM);
-    f->points_per_torque = ctl_from_float((float)(CTL_FLUX_REF_TABLE_POINTS - 1) /
-                                          (torque_max_nm / (float)CTL_BASE_TORQUE_NM));
+    f->torque_max = ctl_from_float(torque_max_pu);
+    f->points_per_torque = ctl_from_float((float)(CTL_FLUX_REF_TABLE_POINTS - 1) / torque_max_pu);
     /* Tabulate flux against torque at equal torque steps: bisect the current magnitude
      * that gives each torque (torque rises monotonically with current on the MTPA curve). */
     for (k = 0; k < CTL_FLUX_REF_TABLE_POINTS; k++) {
@@ -69,7 +59,6 @@ bool ctl_flux_ref_init(ctl_flux_ref_t *f, ctl_flux_ref_mode_t mode, float consta
         mtpa_point(0.5f * (lo + hi), ld_h, lq_h, psi_f_wb, pole_pairs, &t, &flux);
         f->table[k] = ctl_from_float(flux / psi_b);
     }
-    return true;
 }
 
 ctl_q ctl_flux_ref_run(const ctl_flux_ref_t *f, ctl_q torque_ref_pu)
@@ -82,18 +71,18 @@ ctl_q ctl_flux_ref_run(const ctl_flux_ref_t *f, ctl_q torque_ref_pu)
     }
     /* Torque magnitude to table position; beyond the span the last point holds. */
     pos = ctl_mul(ctl_min(ctl_abs(torque_ref_pu), f->torque_max), f->points_per_torque);
+    if (!(pos < CTL_Q(CTL_FLUX_REF_TABLE_POINTS - 1))) { /* at or past the end, or NaN */
+        return f->table[CTL_FLUX_REF_TABLE_POINTS - 1];
+    }
+    if (!(pos > CTL_Q(0.0))) {
+        return f->table[0];
+    }
 #if CTL_MATH_FLOAT
-    k = (int16_t)pos;
+    k = (int16_t)pos; /* defined: 0 < pos < points - 1 */
     frac = pos - (float)k;
 #else
     k = (int16_t)(pos >> CTL_Q_FRAC_BITS);
     frac = pos & (CTL_Q_ONE - 1);
 #endif
-    if (k >= CTL_FLUX_REF_TABLE_POINTS - 1) {
-        return f->table[CTL_FLUX_REF_TABLE_POINTS - 1];
-    }
-    if (k < 0) {
-        k = 0;
-    }
     return ctl_add(f->table[k], ctl_mul(frac, ctl_sub(f->table[k + 1], f->table[k])));
 }

@@ -1,39 +1,89 @@
 #include "ctl_protect.h"
 
+#include "ctl_constants.h"
 #include "ctl_pu.h"
 
-void ctl_protect_default(ctl_protect_limits_t *l, float sample_time_s, int16_t pole_pairs,
-                         float inertia_kg_m2)
+void ctl_protect_settings_default(ctl_protect_settings_t *s)
 {
-    const float ib = (float)CTL_BASE_CURRENT_A;
-    const float vb = (float)CTL_BASE_VOLTAGE_V;
-    const float wb = (float)CTL_BASE_OMEGA_RAD_S;
-    const float two_pi = (float)CTL_TWO_PI;
-    const float pp = (pole_pairs > 0) ? (float)pole_pairs : 1.0f;
-    const float inertia = (inertia_kg_m2 > 0.0f) ? inertia_kg_m2 : 1.0f;
-    l->overcurrent = ctl_from_float(15.0f / ib); /* hardware trip is the first line */
-    l->overcurrent_periods = 1;
-    l->dc_overvoltage = ctl_from_float(720.0f / vb);
-    l->dc_overvoltage_periods = 3;
-    l->dc_undervoltage = ctl_from_float(350.0f / vb);
-    l->dc_undervoltage_periods = 10;
-    l->overspeed = ctl_from_float(2000.0f * two_pi / 60.0f * pp / wb); /* 2000 r/min */
-    l->overspeed_periods = 5;
-    l->current_sum = ctl_from_float(2.0f / ib);
-    l->current_sum_periods = 5;
-    l->adc_rail_low = 2;
-    l->adc_rail_high = 4093;
-    l->adc_rail_periods = 3;
-    l->adc_stuck_periods = 50; /* 5 ms: switching ripple moves every word each period */
-    l->stuck_min_current = ctl_from_float(1.0f / ib);
-    l->encoder_torque = ctl_from_float(1.0f / (float)CTL_BASE_TORQUE_NM);
-    l->encoder_expected_turn = CTL_Q(0.25);
-    l->encoder_jump = CTL_Q(0.05);
+    s->overcurrent_a = 15.0f; /* hardware trip is the first line */
+    s->overcurrent_periods = 1;
+    s->dc_overvoltage_v = 720.0f;
+    s->dc_overvoltage_periods = 3;
+    s->dc_undervoltage_v = 350.0f;
+    s->dc_undervoltage_periods = 10;
+    s->overspeed_rpm = 2000.0f;
+    s->overspeed_periods = 5;
+    s->current_sum_a = 2.0f;
+    s->current_sum_periods = 5;
+    s->adc_rail_low_counts = 2;
+    s->adc_rail_high_counts = 4093;
+    s->adc_rail_periods = 3;
+    s->adc_stuck_periods = 50; /* 5 ms: switching ripple moves every word each period */
+    s->stuck_min_current_a = 1.0f;
+    s->encoder_torque_nm = 1.0f;
+    s->encoder_expected_turns = 0.25f;
+    s->encoder_jump_turns = 0.05f;
+    s->open_phase_min_current_a = 1.0f;
+    s->open_phase_ratio = 0.2f;
+}
+
+static bool periods_valid(int16_t n) { return n >= 1 && n <= 10000; }
+
+bool ctl_protect_settings_valid(const ctl_protect_settings_t *s)
+{
+    const float big = 1.0e6f;
+    const bool thresholds = ctl_float_in_range(s->overcurrent_a, 0.01f, big) &&
+                            ctl_float_in_range(s->dc_overvoltage_v, 1.0f, big) &&
+                            ctl_float_in_range(s->dc_undervoltage_v, 0.0f, big) &&
+                            s->dc_undervoltage_v < s->dc_overvoltage_v &&
+                            ctl_float_in_range(s->overspeed_rpm, 1.0f, big) &&
+                            ctl_float_in_range(s->current_sum_a, 0.01f, big) &&
+                            ctl_float_in_range(s->stuck_min_current_a, 0.0f, big) &&
+                            ctl_float_in_range(s->encoder_torque_nm, 0.0f, big) &&
+                            ctl_float_in_range(s->encoder_expected_turns, 0.01f, big) &&
+                            ctl_float_in_range(s->encoder_jump_turns, 0.001f, big) &&
+                            ctl_float_in_range(s->open_phase_min_current_a, 0.0f, big) &&
+                            ctl_float_in_range(s->open_phase_ratio, 0.0f, 1.0f);
+    const bool filters =
+        periods_valid(s->overcurrent_periods) && periods_valid(s->dc_overvoltage_periods) &&
+        periods_valid(s->dc_undervoltage_periods) && periods_valid(s->overspeed_periods) &&
+        periods_valid(s->current_sum_periods) && periods_valid(s->adc_rail_periods) &&
+        periods_valid(s->adc_stuck_periods);
+    const bool rails =
+        s->adc_rail_low_counts >= -1 && s->adc_rail_low_counts < s->adc_rail_high_counts;
+    return thresholds && filters && rails;
+}
+
+void ctl_protect_limits_build(ctl_protect_limits_t *l, const ctl_protect_settings_t *s,
+                              float sample_time_s, int16_t pole_pairs, float inertia_kg_m2)
+{
+    const float ib = CTL_BASE_CURRENT_A_F;
+    const float vb = CTL_BASE_VOLTAGE_V_F;
+    const float wb = CTL_BASE_OMEGA_RAD_S_F;
+    const float pp = (float)pole_pairs;
+    l->overcurrent = ctl_from_float(s->overcurrent_a / ib);
+    l->overcurrent_periods = s->overcurrent_periods;
+    l->dc_overvoltage = ctl_from_float(s->dc_overvoltage_v / vb);
+    l->dc_overvoltage_periods = s->dc_overvoltage_periods;
+    l->dc_undervoltage = ctl_from_float(s->dc_undervoltage_v / vb);
+    l->dc_undervoltage_periods = s->dc_undervoltage_periods;
+    l->overspeed = ctl_from_float(s->overspeed_rpm * (CTL_TWO_PI_F / 60.0f) * pp / wb);
+    l->overspeed_periods = s->overspeed_periods;
+    l->current_sum = ctl_from_float(s->current_sum_a / ib);
+    l->current_sum_periods = s->current_sum_periods;
+    l->adc_rail_low = s->adc_rail_low_counts;
+    l->adc_rail_high = s->adc_rail_high_counts;
+    l->adc_rail_periods = s->adc_rail_periods;
+    l->adc_stuck_periods = s->adc_stuck_periods;
+    l->stuck_min_current = ctl_from_float(s->stuck_min_current_a / ib);
+    l->encoder_torque = ctl_from_float(s->encoder_torque_nm / CTL_BASE_TORQUE_NM_F);
+    l->encoder_expected_turn = ctl_from_float(s->encoder_expected_turns);
+    l->encoder_jump = ctl_from_float(s->encoder_jump_turns);
     l->torque_to_dspeed =
-        ctl_from_float((float)CTL_BASE_TORQUE_NM * pp * sample_time_s / (inertia * wb));
-    l->ts_turns = ctl_from_float(sample_time_s * wb / two_pi);
-    l->open_phase_min_mean = ctl_from_float(1.0f / ib);
-    l->open_phase_ratio = CTL_Q(0.2);
+        ctl_from_float(CTL_BASE_TORQUE_NM_F * pp * sample_time_s / (inertia_kg_m2 * wb));
+    l->ts_turns = ctl_from_float(sample_time_s * wb / CTL_TWO_PI_F);
+    l->open_phase_min_mean = ctl_from_float(s->open_phase_min_current_a / ib);
+    l->open_phase_ratio = ctl_from_float(s->open_phase_ratio);
 }
 
 static void reset_filters(ctl_protect_t *p)
@@ -59,9 +109,8 @@ static void reset_filters(ctl_protect_t *p)
     p->open_count = 0;
 }
 
-void ctl_protect_init(ctl_protect_t *p, const ctl_protect_limits_t *l)
+void ctl_protect_init(ctl_protect_t *p)
 {
-    p->limits = *l;
     p->latched = 0u;
     p->active = 0u;
     p->period = 0u;
@@ -106,9 +155,9 @@ static ctl_q turn_difference(ctl_q a, ctl_q b)
     return ctl_sub(ctl_wrap_turn(ctl_add(ctl_sub(a, b), CTL_Q(0.5))), CTL_Q(0.5));
 }
 
-static uint16_t check_encoder(ctl_protect_t *p, const ctl_protect_input_t *in)
+static uint16_t check_encoder(ctl_protect_t *p, const ctl_protect_limits_t *l,
+                              const ctl_protect_input_t *in)
 {
-    const ctl_protect_limits_t *l = &p->limits;
     uint16_t f = 0u;
     if (!in->running) {
         /* at standstill the index may not have been seen yet: the drive refuses to start
@@ -146,9 +195,9 @@ static uint16_t check_encoder(ctl_protect_t *p, const ctl_protect_input_t *in)
     return f;
 }
 
-static uint16_t check_adc(ctl_protect_t *p, const ctl_protect_input_t *in)
+static uint16_t check_adc(ctl_protect_t *p, const ctl_protect_limits_t *l,
+                          const ctl_protect_input_t *in)
 {
-    const ctl_protect_limits_t *l = &p->limits;
     uint16_t f = 0u;
     bool rail = false;
     bool flowing = false;
@@ -173,9 +222,9 @@ static uint16_t check_adc(ctl_protect_t *p, const ctl_protect_input_t *in)
     return f;
 }
 
-static uint16_t check_open_phase(ctl_protect_t *p, const ctl_protect_input_t *in)
+static uint16_t check_open_phase(ctl_protect_t *p, const ctl_protect_limits_t *l,
+                                 const ctl_protect_input_t *in)
 {
-    const ctl_protect_limits_t *l = &p->limits;
     ctl_q mean = CTL_Q(0.0);
     uint16_t f = 0u;
     int16_t k;
@@ -195,7 +244,7 @@ static uint16_t check_open_phase(ctl_protect_t *p, const ctl_protect_input_t *in
         return 0u;
     }
     for (k = 0; k < 6; k++) {
-        mean = ctl_add(mean, ctl_mul(p->open_sum[k], CTL_Q(1.0 / 6.0)));
+        mean = ctl_add(mean, ctl_mul(p->open_sum[k], CTL_K_ONE_SIXTH));
     }
     if (mean > ctl_mul_int(l->open_phase_min_mean, CTL_PROTECT_OPEN_PHASE_WINDOW)) {
         const ctl_q floor = ctl_mul(mean, l->open_phase_ratio);
@@ -238,10 +287,10 @@ static void record(ctl_protect_t *p, uint16_t faults, const ctl_protect_input_t 
     p->log_write = (uint16_t)(w + 1u); /* publish only once the record is complete */
 }
 
-uint16_t ctl_protect_check(ctl_protect_t *p, const ctl_protect_input_t *in, ctl_q torque_ref,
-                           int16_t vector, ctl_q duty)
+uint16_t ctl_protect_check(ctl_protect_t *p, const ctl_protect_limits_t *l,
+                           const ctl_protect_input_t *in, ctl_q torque_ref, int16_t vector,
+                           ctl_q duty)
 {
-    const ctl_protect_limits_t *l = &p->limits;
     uint16_t f = 0u;
     bool over = false;
     int16_t k;
@@ -280,9 +329,9 @@ uint16_t ctl_protect_check(ctl_protect_t *p, const ctl_protect_input_t *in, ctl_
     if (in->hw_trip) {
         f |= CTL_FAULT_HW_TRIP;
     }
-    f |= check_encoder(p, in);
-    f |= check_adc(p, in);
-    f |= check_open_phase(p, in);
+    f |= check_encoder(p, l, in);
+    f |= check_adc(p, l, in);
+    f |= check_open_phase(p, l, in);
 
     p->active = f;
     if ((f & (uint16_t)~p->latched) != 0u) {

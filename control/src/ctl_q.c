@@ -1,10 +1,21 @@
 #include "ctl_q.h"
 
+#include "ctl_constants.h"
 #include "ctl_tables.h"
 
 #if defined(CTL_COUNT_OPS)
 uint32_t ctl_op_counts[CTL_OP_KINDS];
 #endif
+
+#define SMALLEST_NORMAL_FLOAT 1.17549435e-38f /* FLT_MIN */
+#define LARGEST_FLOAT 3.40282347e38f          /* FLT_MAX */
+
+bool ctl_float_in_range(float x, float lo, float hi)
+{
+    const bool normal = (x == 0.0f) || (x >= SMALLEST_NORMAL_FLOAT && x <= LARGEST_FLOAT) ||
+                        (x <= -SMALLEST_NORMAL_FLOAT && x >= -LARGEST_FLOAT);
+    return normal && x >= lo && x <= hi; /* NaN fails every comparison */
+}
 
 float ctl_sqrtf(float x)
 {
@@ -17,7 +28,7 @@ float ctl_sqrtf(float x)
     if (!(x > 0.0f)) { /* negative, zero or NaN */
         return 0.0f;
     }
-    if (x > 3.40282347e38f) { /* only +inf (the literal is FLT_MAX): Newton would give inf/inf */
+    if (x > LARGEST_FLOAT) { /* only +inf: Newton would give inf/inf */
         return x;
     }
     /* 1/sqrt(x) from the exponent-halving guess (3.4 % error) and three Newton steps
@@ -192,9 +203,8 @@ void ctl_sincos_pu(ctl_q angle_turn, ctl_q *s, ctl_q *c)
 int16_t ctl_sector24(ctl_q y, ctl_q x)
 {
     /* First-quadrant angle phi of (|x|, |y|): phi >= 15j deg <=> |y| >= |x| tan(15j deg). */
-    static const ctl_q tan15[5] = {CTL_Q(0.26794919243112270), CTL_Q(0.57735026918962576),
-                                   CTL_Q(1.0), CTL_Q(1.7320508075688772),
-                                   CTL_Q(3.7320508075688772)};
+    static const ctl_q tan15[5] = {CTL_K_TAN_15_DEG, CTL_K_TAN_30_DEG, CTL_Q(1.0), CTL_K_TAN_60_DEG,
+                                   CTL_K_TAN_75_DEG};
     const ctl_q ax = ctl_abs(x);
     const ctl_q ay = ctl_abs(y);
     int16_t s;

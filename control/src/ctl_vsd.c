@@ -1,33 +1,30 @@
 #include "ctl_vsd.h"
 
+#include "ctl_constants.h"
+
 /* Rows of the amplitude-invariant VSD matrix without the 1/3 factor:
  * cos th_k, sin th_k, cos 5th_k, sin 5th_k for th = 0, 120, 240, 30, 150, 270 deg. */
-#define CTL_VSD_SQRT3_2 0.86602540378443865
 
-static const ctl_q vsd_cos1[6] = {
-    CTL_Q(1.0), CTL_Q(-0.5), CTL_Q(-0.5), CTL_Q(CTL_VSD_SQRT3_2), CTL_Q(-CTL_VSD_SQRT3_2),
-    CTL_Q(0.0)};
-static const ctl_q vsd_sin1[6] = {
-    CTL_Q(0.0), CTL_Q(CTL_VSD_SQRT3_2), CTL_Q(-CTL_VSD_SQRT3_2), CTL_Q(0.5), CTL_Q(0.5),
-    CTL_Q(-1.0)};
-static const ctl_q vsd_cos5[6] = {
-    CTL_Q(1.0), CTL_Q(-0.5), CTL_Q(-0.5), CTL_Q(-CTL_VSD_SQRT3_2), CTL_Q(CTL_VSD_SQRT3_2),
-    CTL_Q(0.0)};
-static const ctl_q vsd_sin5[6] = {
-    CTL_Q(0.0), CTL_Q(-CTL_VSD_SQRT3_2), CTL_Q(CTL_VSD_SQRT3_2), CTL_Q(0.5), CTL_Q(0.5),
-    CTL_Q(-1.0)};
+static const ctl_q vsd_cos1[6] = {CTL_Q(1.0),         CTL_Q(-0.5),         CTL_Q(-0.5),
+                                  CTL_K_SQRT3_OVER_2, -CTL_K_SQRT3_OVER_2, CTL_Q(0.0)};
+static const ctl_q vsd_sin1[6] = {CTL_Q(0.0), CTL_K_SQRT3_OVER_2, -CTL_K_SQRT3_OVER_2,
+                                  CTL_Q(0.5), CTL_Q(0.5),         CTL_Q(-1.0)};
+static const ctl_q vsd_cos5[6] = {CTL_Q(1.0),          CTL_Q(-0.5),        CTL_Q(-0.5),
+                                  -CTL_K_SQRT3_OVER_2, CTL_K_SQRT3_OVER_2, CTL_Q(0.0)};
+static const ctl_q vsd_sin5[6] = {CTL_Q(0.0), -CTL_K_SQRT3_OVER_2, CTL_K_SQRT3_OVER_2,
+                                  CTL_Q(0.5), CTL_Q(0.5),          CTL_Q(-1.0)};
 
 void ctl_vsd_forward(const ctl_q phase[6], ctl_vsd_t *out)
 {
     /* The rows share terms: with a = i_A/3 - (i_B + i_C)/6, p = (i_D - i_E) sqrt3/6,
      * b = (i_D + i_E)/6 - i_F/3 and q = (i_B - i_C) sqrt3/6:
      * alpha = a + p, x = a - p, beta = b + q, y = b - q. Six multiplies instead of 24. */
-    const ctl_q a = ctl_sub(ctl_mul(phase[0], CTL_Q(1.0 / 3.0)),
-                            ctl_mul(ctl_add(phase[1], phase[2]), CTL_Q(1.0 / 6.0)));
-    const ctl_q p = ctl_mul(ctl_sub(phase[3], phase[4]), CTL_Q(CTL_VSD_SQRT3_2 / 3.0));
-    const ctl_q b = ctl_sub(ctl_mul(ctl_add(phase[3], phase[4]), CTL_Q(1.0 / 6.0)),
-                            ctl_mul(phase[5], CTL_Q(1.0 / 3.0)));
-    const ctl_q q = ctl_mul(ctl_sub(phase[1], phase[2]), CTL_Q(CTL_VSD_SQRT3_2 / 3.0));
+    const ctl_q a = ctl_sub(ctl_mul(phase[0], CTL_K_ONE_THIRD),
+                            ctl_mul(ctl_add(phase[1], phase[2]), CTL_K_ONE_SIXTH));
+    const ctl_q p = ctl_mul(ctl_sub(phase[3], phase[4]), CTL_K_SQRT3_OVER_6);
+    const ctl_q b = ctl_sub(ctl_mul(ctl_add(phase[3], phase[4]), CTL_K_ONE_SIXTH),
+                            ctl_mul(phase[5], CTL_K_ONE_THIRD));
+    const ctl_q q = ctl_mul(ctl_sub(phase[1], phase[2]), CTL_K_SQRT3_OVER_6);
     out->alpha = ctl_add(a, p);
     out->x = ctl_sub(a, p);
     out->beta = ctl_add(b, q);

@@ -72,14 +72,18 @@ static void drive_enter_fault(drive_t *d, drive_fault_t fault)
     drive_latch_fault(d, fault);
 }
 
-static void drive_init_protection(drive_t *d, const ctl_params_t *p)
+static void drive_init_protection(drive_t *d)
 {
-    ctl_protect_limits_t l;
+    ctl_params_t reference;
+    ctl_config_t *fallback = &d->ctl.config[1];
     int16_t i;
-    /* sane scaling even for a parameter set ctl_init is about to reject */
-    const bool usable = p->sample_time_s > 1e-6f && p->sample_time_s < 1e-2f;
-    ctl_protect_default(&l, usable ? p->sample_time_s : 1e-4f, p->pole_pairs, p->inertia_kg_m2);
-    ctl_protect_init(&d->protect, &l);
+    /* Limits and speed scaling for as long as no valid set is in force (a refused init): those
+     * of the reference machine, built into the unused half of the controller's buffer. */
+    ctl_params_default(&reference);
+    (void)ctl_config_build(fallback, &reference);
+    d->fallback_limits = fallback->protect;
+    d->fallback_omega_pu_per_rev_s = fallback->omega_pu_per_rev_s;
+    ctl_protect_init(&d->protect);
     for (i = 0; i < HAL_ADC_PHASES; i++) {
         d->protect_in.i_phase[i] = CTL_Q(0.0);
         d->protect_in.raw_phase[i] = (int16_t)HAL_BOARD_CURRENT_ZERO_COUNTS;
@@ -117,16 +121,15 @@ void drive_init(drive_t *d, const ctl_params_t *p)
         d->offset_sum[i] = 0;
         d->offset_counts[i] = (int16_t)HAL_BOARD_CURRENT_ZERO_COUNTS;
     }
+    /* the board's counts per ampere and volt are exact in binary; one float division each */
     d->current_pu_per_count =
-        ctl_from_float((float)(HAL_BOARD_CURRENT_A_PER_COUNT / CTL_BASE_CURRENT_A));
-    d->vdc_pu_per_count = ctl_from_float((float)(HAL_BOARD_VDC_V_PER_COUNT / CTL_BASE_VOLTAGE_V));
-    d->omega_pu_per_rev_s =
-        ctl_from_float((float)(CTL_TWO_PI / CTL_BASE_OMEGA_RAD_S) * (float)p->pole_pairs);
+        ctl_from_float((float)HAL_BOARD_CURRENT_A_PER_COUNT / CTL_BASE_CURRENT_A_F);
+    d->vdc_pu_per_count = ctl_from_float((float)HAL_BOARD_VDC_V_PER_COUNT / CTL_BASE_VOLTAGE_V_F);
     d->isr_latency_cycles = 0u;
     prof_init((uint32_t)((float)hal_cycles_per_second() * p->sample_time_s + 0.5f),
               hal_cycles_per_second());
     hal_pwm_force_off();
-    drive_init_protection(d, p);
+    drive_init_protection(d);
     if (!ctl_init(&d->ctl, p)) {
         drive_enter_fault(d, DRIVE_FAULT_PARAMS);
         return;
@@ -168,6 +171,19 @@ static void drive_start_calibration(drive_t *d)
     d->state = DRIVE_STATE_CALIBRATE;
 }
 
+/* Speed scaling and protection limits of the parameter set in force (they follow every
+ * applied set); the reference machine's while no valid set was ever in force. */
+static ctl_q drive_omega_scale(const drive_t *d)
+{
+    return d->ctl.initialised ? ctl_config(&d->ctl)->omega_pu_per_rev_s
+                              : d->fallback_omega_pu_per_rev_s;
+}
+
+static const ctl_protect_limits_t *drive_limits(const drive_t *d)
+{
+    return d->ctl.initialised ? &ctl_config(&d->ctl)->protect : &d->fallback_limits;
+}
+
 static void drive_scale_measurements(drive_t *d)
 {
     int16_t i;
@@ -177,7 +193,7 @@ static void drive_scale_measurements(drive_t *d)
     }
     d->meas.vdc = ctl_mul_int(d->vdc_pu_per_count, (int16_t)d->adc.vdc);
     d->meas.theta_e = ctl_from_turn_u32(d->encoder.elec_angle);
-    d->meas.omega_e = ctl_mul_q16(d->encoder.mech_speed_q16, d->omega_pu_per_rev_s);
+    d->meas.omega_e = ctl_mul_q16(d->encoder.mech_speed_q16, drive_omega_scale(d));
 }
 
 uint16_t drive_duty_to_hal(ctl_q duty)
@@ -238,8 +254,8 @@ static uint16_t drive_protect(drive_t *d, bool running)
     in->hw_trip = hal_pwm_hw_trip_seen();
     in->running = running;
     in->currents_calibrated = d->calibrated;
-    return ctl_protect_check(&d->protect, in, d->ctl.diag.torque_ref, d->ctl.applied_vector,
-                             d->ctl.applied_duty);
+    return ctl_protect_check(&d->protect, drive_limits(d), in, d->ctl.diag.torque_ref,
+                             d->ctl.applied_vector, d->ctl.applied_duty);
 }
 
 /* Healthy enough to leave FAULT: no protection condition active, the causes that
@@ -270,6 +286,8 @@ static void drive_control_step(drive_t *d)
         hal_pwm_force_off();
         return;
     }
+    /* a published parameter set takes effect here, at the period start, for everything */
+    (void)ctl_config_take(&d->ctl);
     drive_scale_measurements(d);
 
     if (!fresh && (d->state == DRIVE_STATE_RUN || d->state == DRIVE_STATE_CALIBRATE)) {
@@ -344,19 +362,20 @@ static void drive_control_step(drive_t *d)
 
 void drive_request_run(drive_t *d) { d->run_requested = true; }
 
-bool drive_request_params(drive_t *d, const ctl_params_t *p)
+ctl_param_error_t drive_request_params(drive_t *d, const ctl_params_t *p)
 {
-    if (!ctl_params_valid(p)) {
-        return false;
+    const ctl_param_error_t e = ctl_request_params(&d->ctl, p);
+    if (e == CTL_PARAM_OK) {
+        const bool rescale = p->pole_pairs != d->params_bg.pole_pairs;
+        d->params_bg = *p;
+        if (rescale && d->ctl.loop_mode == CTL_LOOP_SPEED) {
+            drive_set_speed_ref_rpm(d, d->speed_ref_rpm); /* electrical reference follows Pn */
+        }
     }
-    d->params_bg = *p;
-    ctl_request_params(&d->ctl, &d->params_bg);
-    return true;
+    return e;
 }
 
 void drive_trip(drive_t *d, drive_fault_t fault) { drive_enter_fault(d, fault); }
-
-void drive_set_protect_limits(drive_t *d, const ctl_protect_limits_t *l) { d->protect.limits = *l; }
 
 bool drive_read_fault_record(drive_t *d, ctl_fault_record_t *r)
 {
@@ -375,15 +394,15 @@ void drive_request_clear_fault(drive_t *d) { d->clear_requested = true; }
 
 void drive_set_speed_ref_rpm(drive_t *d, float rpm)
 {
-    const float omega_e = rpm * (float)(CTL_TWO_PI / 60.0) * (float)d->params_bg.pole_pairs;
+    const float omega_e = rpm * (CTL_TWO_PI_F / 60.0f) * (float)d->params_bg.pole_pairs;
     d->speed_ref_rpm = rpm;
     ctl_set_loop_mode(&d->ctl, CTL_LOOP_SPEED);
-    ctl_set_speed_ref(&d->ctl, ctl_from_float(omega_e / (float)CTL_BASE_OMEGA_RAD_S));
+    ctl_set_speed_ref(&d->ctl, ctl_from_float(omega_e / CTL_BASE_OMEGA_RAD_S_F));
 }
 
 void drive_set_torque_ref_nm(drive_t *d, float torque_nm)
 {
     d->torque_ref_nm = torque_nm;
     ctl_set_loop_mode(&d->ctl, CTL_LOOP_TORQUE);
-    ctl_set_torque_ref(&d->ctl, ctl_from_float(torque_nm / (float)CTL_BASE_TORQUE_NM));
+    ctl_set_torque_ref(&d->ctl, ctl_from_float(torque_nm / CTL_BASE_TORQUE_NM_F));
 }

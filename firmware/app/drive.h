@@ -77,10 +77,13 @@ typedef struct {
     int32_t offset_sum[HAL_ADC_PHASES];
     int16_t offset_counts[HAL_ADC_PHASES];
     int16_t calibration_samples;
-    /* scaling, per unit per count */
+    /* scaling of the board's ADC, per unit per count (the speed scaling follows the
+     * parameter set in force: ctl_config_t) */
     ctl_q current_pu_per_count;
     ctl_q vdc_pu_per_count;
-    ctl_q omega_pu_per_rev_s; /* electrical per unit per mechanical rev/s */
+    /* while no valid parameter set was ever in force: the reference machine's */
+    ctl_protect_limits_t fallback_limits;
+    ctl_q fallback_omega_pu_per_rev_s;
     /* last step */
     hal_adc_sample_t adc;
     hal_encoder_sample_t encoder;
@@ -114,14 +117,11 @@ void drive_request_clear_fault(drive_t *d);
 void drive_set_speed_ref_rpm(drive_t *d, float rpm);
 void drive_set_torque_ref_nm(drive_t *d, float torque_nm);
 
-/* Queue a controller parameter change (applied by the control core at the
- * start of a step). False, and nothing queued, if the set is invalid.
- * Background side only. */
-bool drive_request_params(drive_t *d, const ctl_params_t *p);
-
-/* Replace the protection thresholds (ctl_protect_default's are set by drive_init).
- * Call before the control ISR is enabled: the limits are not double-buffered. */
-void drive_set_protect_limits(drive_t *d, const ctl_protect_limits_t *l);
+/* Background side only: check a new parameter set and build its configuration (controller,
+ * protection limits, speed scaling) outside the ISR; the ISR switches to it at the start of
+ * its next period, in every state. CTL_PARAM_OK when queued; CTL_PARAM_BUSY while the
+ * previous set waits for that period; else the reason, and the set in force stays. */
+ctl_param_error_t drive_request_params(drive_t *d, const ctl_params_t *p);
 
 /* Oldest unread fault record; false when none. Background side (lock-free with the ISR). */
 bool drive_read_fault_record(drive_t *d, ctl_fault_record_t *r);

@@ -59,7 +59,7 @@ static int16_t float_to_i16(float x)
 void drive_link_status(const drive_t *d, uint16_t rx_errors, uint16_t *out)
 {
     const ctl_diag_t *diag = ctl_diag(&d->ctl);
-    const float torque_scale = (float)(CTL_BASE_TORQUE_NM * 1000.0);
+    const float torque_scale = CTL_BASE_TORQUE_NM_F * 1000.0f;
     uint16_t flags = 0u;
     /* rev/s Q16 -> 0.1 r/min: * 600 / 65536 */
     const int64_t speed_01rpm = ((int64_t)d->encoder.mech_speed_q16 * 600) / 65536;
@@ -70,20 +70,20 @@ void drive_link_status(const drive_t *d, uint16_t rx_errors, uint16_t *out)
     if (hal_pwm_is_off()) {
         flags |= SXL_FLAG_PWM_OFF;
     }
-    if (d->ctl.shadow_pending) {
+    if (ctl_config_pending(&d->ctl)) {
         flags |= SXL_FLAG_PARAMS_PENDING;
     }
     out[SXL_ST_STATE] = (uint16_t)((uint16_t)d->state & 0xFFu);
     out[SXL_ST_FAULT] = (uint16_t)((uint16_t)d->fault & 0xFFu);
     out[SXL_ST_FLAGS] = flags;
-    out[SXL_ST_CONTROLLER] = (uint16_t)((uint16_t)d->ctl.params.controller & 0xFFu);
+    out[SXL_ST_CONTROLLER] = (uint16_t)((uint16_t)ctl_params(&d->ctl)->controller & 0xFFu);
     sxl_put_i32(&out[SXL_ST_SPEED], (int32_t)speed_01rpm);
     sxl_put_i32(&out[SXL_ST_SPEED_REF], float_to_i32(d->speed_ref_rpm * 10.0f));
     sxl_put_i32(&out[SXL_ST_TORQUE], float_to_i32(ctl_to_float(diag->torque_est) * torque_scale));
     sxl_put_i32(&out[SXL_ST_TORQUE_REF],
                 float_to_i32(ctl_to_float(diag->torque_ref) * torque_scale));
     sxl_put_u32(&out[SXL_ST_LAMBDA],
-                (uint32_t)float_to_i32(d->ctl.params.lambda_nm_per_wb * 1000.0f));
+                (uint32_t)float_to_i32(ctl_params(&d->ctl)->lambda_nm_per_wb * 1000.0f));
     sxl_put_u32(&out[SXL_ST_ISR_COUNT], d->isr_count);
     sxl_put_u32(&out[SXL_ST_ISR_MAX], d->isr_cycles_max);
     sxl_put_u16(&out[SXL_ST_RX_ERRORS], rx_errors);
@@ -103,13 +103,13 @@ uint16_t drive_link_fault_record(drive_t *d, uint16_t *out)
         return SXL_FR_HEADER_SIZE;
     }
     {
-        const float amp_10ma = (float)(CTL_BASE_CURRENT_A * 100.0);
-        const float volt_01 = (float)(CTL_BASE_VOLTAGE_V * 10.0);
-        const float torque_mnm = (float)(CTL_BASE_TORQUE_NM * 1000.0);
+        const float amp_10ma = CTL_BASE_CURRENT_A_F * 100.0f;
+        const float volt_01 = CTL_BASE_VOLTAGE_V_F * 10.0f;
+        const float torque_mnm = CTL_BASE_TORQUE_NM_F * 1000.0f;
         /* electrical per unit -> mechanical 0.1 r/min; a set without pole pairs reads as 1 */
         const int16_t pole_pairs = (d->params_bg.pole_pairs > 0) ? d->params_bg.pole_pairs : 1;
         const float speed_01rpm =
-            (float)(CTL_BASE_OMEGA_RAD_S * 600.0 / CTL_TWO_PI) / (float)pole_pairs;
+            (CTL_BASE_OMEGA_RAD_S_F * 600.0f / CTL_TWO_PI_F) / (float)pole_pairs;
         /* turns -> 1/65536 turn, wrapped: the low 16 bits of the saturated count */
         const int32_t theta = float_to_i32(ctl_to_float(r.theta_e) * 65536.0f);
         uint16_t k;
@@ -161,7 +161,14 @@ static uint16_t handle_set_controller(drive_t *d, const sxl_frame_t *req)
     p = d->params_bg;
     p.controller = (ctl_controller_t)req->payload[0];
     p.lambda_nm_per_wb = (float)lambda_milli * 0.001f;
-    return drive_request_params(d, &p) ? SXL_OK : SXL_ERR_VALUE;
+    switch (drive_request_params(d, &p)) {
+    case CTL_PARAM_OK:
+        return SXL_OK;
+    case CTL_PARAM_BUSY:
+        return SXL_ERR_BUSY;
+    default:
+        return SXL_ERR_VALUE;
+    }
 }
 
 void drive_link_handle(drive_t *d, const sxl_frame_t *req, sxl_frame_t *reply, uint16_t rx_errors)

@@ -41,6 +41,7 @@
 #define SXL_ERR_VALUE 2u   /* value out of range or parameters rejected */
 #define SXL_ERR_UNKNOWN 3u /* unknown command */
 #define SXL_ERR_REFUSED 4u /* not allowed in the present state */
+#define SXL_ERR_BUSY 5u    /* the previous parameter set is still being applied: retry */
 
 /* Controller ids of SXL_CMD_SET_CONTROLLER (same values as ctl_controller_t). */
 #define SXL_CONTROLLER_DDC 0u

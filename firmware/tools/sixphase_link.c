@@ -43,8 +43,8 @@ typedef struct {
  * (the drive's log holds 8). */
 #define FAULTS_MAX_RECORDS 256
 static const char *const controller_names[] = {"ddc", "mptc49", "mptc13"};
-static const char *const result_names[] = {"ok", "bad length", "bad value", "unknown command",
-                                           "refused"};
+static const char *const result_names[] = {"ok",      "bad length", "bad value", "unknown command",
+                                           "refused", "busy, retry"};
 
 static int fail(int code, const char *fmt, ...)
 {

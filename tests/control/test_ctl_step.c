@@ -64,6 +64,57 @@ static void test_invalid_parameters_are_rejected(void **state)
     assert_false(ctl_params_valid(&bad));
 }
 
+/* Not a normal number is refused with the field's reason, whatever its range: a denormal
+ * torque limit (5.6e-45) once passed and made the MTPA table position NaN. */
+static void test_non_normal_parameters_are_refused_with_a_reason(void **state)
+{
+    ctl_params_t p;
+    ctl_params_t bad;
+    const float denormal = 5.6e-45f;
+    const float inf = 1.0e38f * 10.0f;
+    const float nan = inf - inf;
+    (void)state;
+    ctl_params_default(&p);
+    bad = p, bad.torque_limit_nm = denormal;
+    assert_int_equal(ctl_params_check(&bad), CTL_PARAM_TORQUE_LIMIT);
+    bad = p, bad.lambda_nm_per_wb = denormal;
+    assert_int_equal(ctl_params_check(&bad), CTL_PARAM_LAMBDA);
+    bad = p, bad.lambda_nm_per_wb = nan;
+    assert_int_equal(ctl_params_check(&bad), CTL_PARAM_LAMBDA);
+    bad = p, bad.resistance_ohm = inf;
+    assert_int_equal(ctl_params_check(&bad), CTL_PARAM_RESISTANCE);
+    bad = p, bad.lq_h = nan;
+    assert_int_equal(ctl_params_check(&bad), CTL_PARAM_INDUCTANCE);
+    bad = p, bad.sample_time_s = 0.02f;
+    assert_int_equal(ctl_params_check(&bad), CTL_PARAM_SAMPLE_TIME);
+    bad = p, bad.sample_time_s = 2.0e-3f; /* R Ts / L too large for Euler */
+    assert_int_equal(ctl_params_check(&bad), CTL_PARAM_MODEL);
+    bad = p, bad.speed_ki_nm_per_rad = -denormal;
+    assert_int_equal(ctl_params_check(&bad), CTL_PARAM_SPEED_GAINS);
+    bad = p, bad.protect.overcurrent_a = nan;
+    assert_int_equal(ctl_params_check(&bad), CTL_PARAM_PROTECTION);
+    bad = p, bad.protect.dc_undervoltage_v = 800.0f; /* above the overvoltage limit */
+    assert_int_equal(ctl_params_check(&bad), CTL_PARAM_PROTECTION);
+    bad = p, bad.protect.adc_stuck_periods = 0;
+    assert_int_equal(ctl_params_check(&bad), CTL_PARAM_PROTECTION);
+    assert_int_equal(ctl_params_check(&p), CTL_PARAM_OK);
+}
+
+/* The per-unit bases are literals (no double expression to fold differently on a 32-bit
+ * double target): each must equal its definition. */
+static void test_per_unit_literals_match_their_definitions(void **state)
+{
+    const double wb = 2.0 * TEST_PI * 150.0;
+    (void)state;
+    assert_near(CTL_BASE_OMEGA_RAD_S / wb, 1.0, 1e-15);
+    assert_near(CTL_BASE_TIME_S * wb, 1.0, 1e-15);
+    assert_near(CTL_BASE_FLUX_WB / (CTL_BASE_VOLTAGE_V / wb), 1.0, 1e-15);
+    assert_near(CTL_BASE_IMPEDANCE_OHM, CTL_BASE_VOLTAGE_V / CTL_BASE_CURRENT_A, 1e-14);
+    assert_near(CTL_BASE_INDUCTANCE_H / (CTL_BASE_IMPEDANCE_OHM / wb), 1.0, 1e-15);
+    assert_near(CTL_BASE_TORQUE_NM / (3.0 * CTL_BASE_FLUX_WB * CTL_BASE_CURRENT_A), 1.0, 1e-15);
+    assert_near(CTL_TWO_PI / (2.0 * TEST_PI), 1.0, 1e-15);
+}
+
 static ctl_meas_t rated_measurement(void)
 {
     ctl_meas_t m;
@@ -95,9 +146,10 @@ static void test_failed_init_commands_all_off(void **state)
     }
 }
 
-/* A parameter change requested between steps takes effect at the start of the next step;
- * an invalid one is refused, counted, and the parameters in force stay. */
-static void test_shadow_parameters(void **state)
+/* A parameter change is built in the background and published; the control step switches to
+ * it at its start. Until then the set in force stays; a second request while one waits is
+ * BUSY; an invalid one is refused with its reason, counted, and the set in force stays. */
+static void test_parameter_hand_off(void **state)
 {
     ctl_params_t p;
     ctl_params_t change;
@@ -110,22 +162,50 @@ static void test_shadow_parameters(void **state)
     change = p;
     change.lambda_nm_per_wb = 20.0f;
     change.controller = CTL_CONTROLLER_MPTC49;
-    ctl_request_params(&c, &change);
-    assert_near((double)c.params.lambda_nm_per_wb, 100.0, 1e-6);
-    assert_int_equal(c.params.controller, CTL_CONTROLLER_DDC);
+    assert_int_equal(ctl_request_params(&c, &change), CTL_PARAM_OK);
+    assert_true(ctl_config_pending(&c));
+    assert_near((double)ctl_params(&c)->lambda_nm_per_wb, 100.0, 1e-6);
+    assert_int_equal(ctl_params(&c)->controller, CTL_CONTROLLER_DDC);
+    assert_int_equal(ctl_request_params(&c, &p), CTL_PARAM_BUSY);
     ctl_step(&c, &m, &cmd);
-    assert_near((double)c.params.lambda_nm_per_wb, 20.0, 1e-6);
-    assert_int_equal(c.params.controller, CTL_CONTROLLER_MPTC49);
+    assert_false(ctl_config_pending(&c));
+    assert_near((double)ctl_params(&c)->lambda_nm_per_wb, 20.0, 1e-6);
+    assert_int_equal(ctl_params(&c)->controller, CTL_CONTROLLER_MPTC49);
     assert_int_equal(ctl_diag(&c)->candidates, CTL_MPTC49_CANDIDATES);
-    assert_near((double)ctl_to_float(c.lambda_pu), 20.0 * CTL_BASE_FLUX_WB / CTL_BASE_TORQUE_NM,
-                1e-5);
+    assert_near((double)ctl_to_float(ctl_config(&c)->lambda),
+                20.0 * CTL_BASE_FLUX_WB / CTL_BASE_TORQUE_NM, 1e-5);
+    assert_false(ctl_config_take(&c)); /* nothing waits: a second take is harmless */
 
     change.duty_levels = 0;
-    ctl_request_params(&c, &change);
+    assert_int_equal(ctl_request_params(&c, &change), CTL_PARAM_DUTY_LEVELS);
+    assert_false(ctl_config_pending(&c));
     ctl_step(&c, &m, &cmd);
-    assert_int_equal(ctl_diag(&c)->params_rejected, 1);
-    assert_int_equal(c.params.duty_levels, 6);
+    assert_int_equal(c.params_rejected, 1);
+    assert_int_equal(c.params_last_error, CTL_PARAM_DUTY_LEVELS);
+    assert_int_equal(ctl_params(&c)->duty_levels, 6);
     assert_true(cmd.enable);
+}
+
+/* The hand-off alternates buffers: the background only ever writes the buffer the ISR does not
+ * read, whatever the sequence of requests and takes. */
+static void test_hand_off_never_writes_the_buffer_in_force(void **state)
+{
+    ctl_params_t p;
+    ctl_t c;
+    int16_t k;
+    (void)state;
+    ctl_params_default(&p);
+    assert_true(ctl_init(&c, &p));
+    for (k = 0; k < 6; k++) {
+        const ctl_config_t *in_force = ctl_config(&c);
+        const ctl_config_t before = *in_force;
+        p.lambda_nm_per_wb = 10.0f * (float)(k + 1);
+        assert_int_equal(ctl_request_params(&c, &p), CTL_PARAM_OK);
+        assert_memory_equal(in_force, &before, sizeof before);
+        assert_true(ctl_config_take(&c));
+        assert_ptr_not_equal(ctl_config(&c), in_force);
+        assert_near((double)ctl_params(&c)->lambda_nm_per_wb, 10.0 * (k + 1), 1e-6);
+    }
 }
 
 /* Leg duties realise "vector for d, zero vector for the rest" with centred pulses. */
@@ -244,8 +324,11 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_default_parameters_are_valid),
         cmocka_unit_test(test_invalid_parameters_are_rejected),
+        cmocka_unit_test(test_non_normal_parameters_are_refused_with_a_reason),
+        cmocka_unit_test(test_per_unit_literals_match_their_definitions),
         cmocka_unit_test(test_failed_init_commands_all_off),
-        cmocka_unit_test(test_shadow_parameters),
+        cmocka_unit_test(test_parameter_hand_off),
+        cmocka_unit_test(test_hand_off_never_writes_the_buffer_in_force),
         cmocka_unit_test(test_command_invariants_for_any_input),
         cmocka_unit_test(test_duty_levels_parameter),
         cmocka_unit_test(test_torque_mode_clamps_reference),

@@ -12,13 +12,15 @@
 #include "test_support.h"
 
 static ctl_protect_t prot;
+static ctl_protect_limits_t limits;
 
 static int setup(void **state)
 {
-    ctl_protect_limits_t l;
+    ctl_protect_settings_t s;
     (void)state;
-    ctl_protect_default(&l, 1.0e-4f, 3, 0.01f);
-    ctl_protect_init(&prot, &l);
+    ctl_protect_settings_default(&s);
+    ctl_protect_limits_build(&limits, &s, 1.0e-4f, 3, 0.01f);
+    ctl_protect_init(&prot);
     return 0;
 }
 
@@ -59,12 +61,12 @@ static int32_t periods_to_detect(modify_fn modify, uint16_t fault, int32_t max_p
     int32_t n;
     for (n = 0; n < 500; n++) {
         const ctl_protect_input_t in = healthy(n);
-        assert_int_equal(ctl_protect_check(&prot, &in, CTL_Q(0.3), 044, CTL_Q(0.6)), 0);
+        assert_int_equal(ctl_protect_check(&prot, &limits, &in, CTL_Q(0.3), 044, CTL_Q(0.6)), 0);
     }
     for (n = 0; n < max_periods; n++) {
         ctl_protect_input_t in = healthy(500 + n);
         modify(&in, n);
-        if ((ctl_protect_check(&prot, &in, CTL_Q(0.3), 044, CTL_Q(0.6)) & fault) != 0u) {
+        if ((ctl_protect_check(&prot, &limits, &in, CTL_Q(0.3), 044, CTL_Q(0.6)) & fault) != 0u) {
             return n + 1;
         }
     }
@@ -197,7 +199,7 @@ static void test_no_false_trip(void **state)
     (void)state;
     for (n = 0; n < 20000; n++) {
         const ctl_protect_input_t in = healthy(n);
-        assert_int_equal(ctl_protect_check(&prot, &in, CTL_Q(0.3), 044, CTL_Q(0.6)), 0);
+        assert_int_equal(ctl_protect_check(&prot, &limits, &in, CTL_Q(0.3), 044, CTL_Q(0.6)), 0);
     }
     assert_int_equal(prot.latched, 0);
 }
@@ -213,26 +215,26 @@ static void test_records_and_latch(void **state)
     in.i_phase[0] = amps(16.0);
     in.overrun = true;
     in.hw_trip = true;
-    f = ctl_protect_check(&prot, &in, CTL_Q(0.3), 044, CTL_Q(0.6));
+    f = ctl_protect_check(&prot, &limits, &in, CTL_Q(0.3), 044, CTL_Q(0.6));
     assert_int_equal(f & (CTL_FAULT_OVERCURRENT | CTL_FAULT_OVERRUN | CTL_FAULT_HW_TRIP),
                      CTL_FAULT_OVERCURRENT | CTL_FAULT_OVERRUN | CTL_FAULT_HW_TRIP);
     assert_int_equal(ctl_protect_log_pending(&prot), 1);
     /* the same faults again: latched already, no new record */
-    (void)ctl_protect_check(&prot, &in, CTL_Q(0.3), 044, CTL_Q(0.6));
+    (void)ctl_protect_check(&prot, &limits, &in, CTL_Q(0.3), 044, CTL_Q(0.6));
     assert_int_equal(ctl_protect_log_pending(&prot), 1);
     /* while a condition is active the latch cannot be cleared */
     assert_false(ctl_protect_clear(&prot));
     in = healthy(1);
-    (void)ctl_protect_check(&prot, &in, CTL_Q(0.3), 044, CTL_Q(0.6));
+    (void)ctl_protect_check(&prot, &limits, &in, CTL_Q(0.3), 044, CTL_Q(0.6));
     assert_true(ctl_protect_clear(&prot));
     assert_int_equal(prot.latched, 0);
     /* fill the log: 8 kept, the rest counted as dropped */
     for (k = 0; k < CTL_PROTECT_LOG_SIZE + 3; k++) {
         in = healthy(2 + k);
         in.overrun = true;
-        (void)ctl_protect_check(&prot, &in, CTL_Q(0.3), 044, CTL_Q(0.6));
+        (void)ctl_protect_check(&prot, &limits, &in, CTL_Q(0.3), 044, CTL_Q(0.6));
         in = healthy(2 + k);
-        (void)ctl_protect_check(&prot, &in, CTL_Q(0.3), 044, CTL_Q(0.6));
+        (void)ctl_protect_check(&prot, &limits, &in, CTL_Q(0.3), 044, CTL_Q(0.6));
         assert_true(ctl_protect_clear(&prot));
     }
     assert_int_equal(ctl_protect_log_pending(&prot), CTL_PROTECT_LOG_SIZE);
@@ -268,11 +270,11 @@ static void test_not_a_number(void **state)
     (void)state;
 #if CTL_MATH_FLOAT
     in.i_phase[3] = (float)NAN;
-    assert_int_equal(ctl_protect_check(&prot, &in, CTL_Q(0.3), 044, CTL_Q(0.6)) &
+    assert_int_equal(ctl_protect_check(&prot, &limits, &in, CTL_Q(0.3), 044, CTL_Q(0.6)) &
                          CTL_FAULT_MEASUREMENT,
                      CTL_FAULT_MEASUREMENT);
 #else
-    assert_int_equal(ctl_protect_check(&prot, &in, CTL_Q(0.3), 044, CTL_Q(0.6)), 0);
+    assert_int_equal(ctl_protect_check(&prot, &limits, &in, CTL_Q(0.3), 044, CTL_Q(0.6)), 0);
 #endif
 }
 

@@ -75,13 +75,9 @@ static void test_flux_ref_constant(void **state)
 {
     ctl_flux_ref_t f;
     (void)state;
-    assert_true(
-        ctl_flux_ref_init(&f, CTL_FLUX_REF_CONSTANT, 0.26f, 0.035f, 0.055f, 0.225f, 3, 7.0f));
+    ctl_flux_ref_init(&f, CTL_FLUX_REF_CONSTANT, 0.26f, 0.035f, 0.055f, 0.225f, 3, 7.0f);
     assert_near((double)ctl_to_float(ctl_flux_ref_run(&f, CTL_Q(0.3))) * CTL_BASE_FLUX_WB, 0.26,
                 1e-6);
-    assert_false(
-        ctl_flux_ref_init(&f, CTL_FLUX_REF_CONSTANT, 0.0f, 0.035f, 0.055f, 0.225f, 3, 7.0f));
-    assert_false(ctl_flux_ref_init(&f, CTL_FLUX_REF_MTPA, 0.26f, 0.035f, 0.055f, 0.225f, 3, 0.0f));
 }
 
 /* MTPA: for a torque T the reference equals the flux of the smallest current that produces T,
@@ -124,7 +120,7 @@ static void test_flux_ref_mtpa(void **state)
     const double torques[] = {0.0, 1.0, 3.5, 5.0, 7.0, -4.0};
     int16_t k;
     (void)state;
-    assert_true(ctl_flux_ref_init(&f, CTL_FLUX_REF_MTPA, 0.26f, 0.035f, 0.055f, 0.225f, 3, 7.0f));
+    ctl_flux_ref_init(&f, CTL_FLUX_REF_MTPA, 0.26f, 0.035f, 0.055f, 0.225f, 3, 7.0f);
     for (k = 0; k < 6; k++) {
         const double t = torques[k];
         const double ref = brute_force_mtpa_flux(fabs(t));

@@ -14,7 +14,7 @@ hal_adc_sample_t mock_adc;
 hal_encoder_sample_t mock_encoder;
 ctl_cmd_t mock_cmd;
 ctl_diag_t mock_diag;
-bool mock_params_valid;
+ctl_param_error_t mock_request_result;
 
 void mock_reset(void)
 {
@@ -29,7 +29,7 @@ void mock_reset(void)
     mock_encoder.elec_angle = 0u;
     mock_encoder.mech_speed_q16 = 0;
     mock_encoder.healthy = true;
-    mock_params_valid = true;
+    mock_request_result = CTL_PARAM_OK;
 }
 
 /* ---- HAL ---- */
@@ -96,26 +96,18 @@ bool hal_pwm_is_off(void) { return mock_rec.pwm_off; }
 bool hal_pwm_hw_trip_seen(void) { return mock_rec.hw_trip; }
 
 /* ---- control core ---- */
-void ctl_params_default(ctl_params_t *p)
-{
-    memset(p, 0, sizeof *p);
-    p->pole_pairs = 3;
-    p->controller = CTL_CONTROLLER_DDC;
-    p->lambda_nm_per_wb = 0.5f;
-    p->sample_time_s = 1e-4f;
-}
-
-bool ctl_params_valid(const ctl_params_t *p)
-{
-    (void)p;
-    return mock_params_valid;
-}
-
+/* Parameter sets and their configurations are real (ctl_params.c, ctl_config.c); the hand-off
+ * follows the real protocol; only the step itself is mocked. */
 bool ctl_init(ctl_t *c, const ctl_params_t *p)
 {
     memset(c, 0, sizeof *c);
-    c->params = *p;
-    return mock_type(bool);
+    if (!mock_type(bool)) {
+        c->params_last_error = CTL_PARAM_MODEL;
+        return false;
+    }
+    (void)ctl_config_build(&c->config[0], p);
+    c->initialised = true;
+    return true;
 }
 
 void ctl_reset(ctl_t *c)
@@ -124,13 +116,36 @@ void ctl_reset(ctl_t *c)
     mock_rec.ctl_reset++;
 }
 
-void ctl_request_params(ctl_t *c, const ctl_params_t *p)
+ctl_param_error_t ctl_request_params(ctl_t *c, const ctl_params_t *p)
 {
-    c->shadow = *p;
-    c->shadow_pending = true;
     mock_rec.request_params++;
     mock_rec.requested = *p;
+    if (mock_request_result != CTL_PARAM_OK) {
+        return mock_request_result;
+    }
+    if (c->config_ready != 0) {
+        return CTL_PARAM_BUSY;
+    }
+    (void)ctl_config_build(&c->config[1 - c->config_active], p);
+    c->config_ready = 1;
+    return CTL_PARAM_OK;
 }
+
+bool ctl_config_take(ctl_t *c)
+{
+    mock_rec.config_take++;
+    if (c->config_ready == 0) {
+        return false;
+    }
+    c->config_active = (int16_t)(1 - c->config_active);
+    c->config_ready = 0;
+    c->initialised = true;
+    return true;
+}
+
+const ctl_config_t *ctl_config(const ctl_t *c) { return &c->config[c->config_active]; }
+const ctl_params_t *ctl_params(const ctl_t *c) { return &ctl_config(c)->params; }
+bool ctl_config_pending(const ctl_t *c) { return c->config_ready != 0; }
 
 void ctl_set_loop_mode(ctl_t *c, ctl_loop_mode_t mode)
 {

@@ -3,8 +3,10 @@
  * application (firmware/app) alone.
  *   hal_adc_read   returns mock() (queue with will_return); on true copies
  *                  mock_adc into the sample
- *   ctl_init       returns mock() (queue with will_return)
- *   ctl_params_valid returns mock_params_valid
+ *   ctl_init       returns mock() (queue with will_return); on true builds the real
+ *                  configuration
+ *   ctl_request_params returns mock_request_result when not CTL_PARAM_OK, else follows
+ *                  the real hand-off (build, publish; ctl_config_take switches)
  *   everything else records calls and arguments in mock_rec
  */
 #ifndef MOCK_HAL_CTL_H
@@ -28,6 +30,7 @@ typedef struct {
     uint32_t ctl_reset;
     uint32_t ctl_step;
     uint32_t request_params;
+    uint32_t config_take;
     ctl_params_t requested;
     ctl_loop_mode_t loop_mode;
     ctl_q speed_ref;
@@ -39,7 +42,7 @@ extern hal_adc_sample_t mock_adc;
 extern hal_encoder_sample_t mock_encoder;
 extern ctl_cmd_t mock_cmd;   /* what ctl_step returns */
 extern ctl_diag_t mock_diag; /* what ctl_diag returns */
-extern bool mock_params_valid;
+extern ctl_param_error_t mock_request_result;
 
 void mock_reset(void);
 

@@ -82,7 +82,7 @@ static void test_status(void **state)
     assert_true(sxl_get_i32(&st[SXL_ST_TORQUE]) >= 1999 && sxl_get_i32(&st[SXL_ST_TORQUE]) <= 2001);
     assert_true(sxl_get_i32(&st[SXL_ST_TORQUE_REF]) >= -1501 &&
                 sxl_get_i32(&st[SXL_ST_TORQUE_REF]) <= -1499);
-    assert_int_equal(sxl_get_u32(&st[SXL_ST_LAMBDA]), 500u);
+    assert_int_equal(sxl_get_u32(&st[SXL_ST_LAMBDA]), 100000u); /* default 100 N*m/Wb */
     assert_int_equal(sxl_get_u32(&st[SXL_ST_ISR_COUNT]), 123456u);
     assert_int_equal(sxl_get_u32(&st[SXL_ST_ISR_MAX]), 4321u);
     assert_int_equal(sxl_get_u16(&st[SXL_ST_RX_ERRORS]), 7u);
@@ -157,11 +157,12 @@ static void test_set_controller(void **state)
     sxl_put_u32(&req.payload[1], 2000001u);
     assert_int_equal(send(SXL_CMD_SET_CONTROLLER), SXL_ERR_VALUE);
     sxl_put_u32(&req.payload[1], 100u);
-    mock_params_valid = false; /* core rejects the set */
+    assert_int_equal(send(SXL_CMD_SET_CONTROLLER), SXL_ERR_BUSY); /* the first one waits */
+    mock_request_result = CTL_PARAM_LAMBDA;                       /* core rejects the set */
     assert_int_equal(send(SXL_CMD_SET_CONTROLLER), SXL_ERR_VALUE);
     req.len = 4u;
     assert_int_equal(send(SXL_CMD_SET_CONTROLLER), SXL_ERR_LENGTH);
-    assert_int_equal(mock_rec.request_params, 1u);
+    assert_int_equal(mock_rec.request_params, 3u);
 }
 
 /* Stage profile over the link: after calibration periods the ISR total has been timed on the

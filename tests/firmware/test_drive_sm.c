@@ -6,8 +6,10 @@
 
 #include <cmocka.h>
 
+#include "ctl_pu.h"
 #include "drive.h"
 #include "mock_hal_ctl.h"
+#include "test_support.h"
 
 static drive_t d;
 
@@ -287,14 +289,37 @@ static void test_request_params(void **state)
     ctl_params_t p = d.params_bg;
     (void)state;
     p.controller = CTL_CONTROLLER_MPTC13;
-    assert_true(drive_request_params(&d, &p));
+    assert_int_equal(drive_request_params(&d, &p), CTL_PARAM_OK);
     assert_int_equal(mock_rec.request_params, 1u);
     assert_int_equal(mock_rec.requested.controller, CTL_CONTROLLER_MPTC13);
-    mock_params_valid = false;
+    mock_request_result = CTL_PARAM_LAMBDA;
     p.controller = CTL_CONTROLLER_MPTC49;
-    assert_false(drive_request_params(&d, &p));
-    assert_int_equal(mock_rec.request_params, 1u);
+    assert_int_equal(drive_request_params(&d, &p), CTL_PARAM_LAMBDA);
     assert_int_equal(d.params_bg.controller, CTL_CONTROLLER_MPTC13);
+}
+
+/* Everything derived from a parameter set follows the set in force, which the ISR takes at
+ * the start of a period in any state (here READY): the speed scaling of the measurements and
+ * the protection limits. */
+static void test_applied_set_rescales_speed_and_limits(void **state)
+{
+    ctl_params_t p = d.params_bg;
+    const double wb = CTL_BASE_OMEGA_RAD_S;
+    (void)state;
+    calibrate();
+    assert_int_equal(d.state, DRIVE_STATE_READY);
+    mock_encoder.mech_speed_q16 = 10 * 65536; /* 10 rev/s = 600 r/min */
+    run_isr(1);
+    assert_near((double)ctl_to_float(d.meas.omega_e), 10.0 * CTL_TWO_PI * 3.0 / wb, 1e-5);
+
+    p.pole_pairs = 2;
+    p.protect.overspeed_rpm = 500.0f;
+    assert_int_equal(drive_request_params(&d, &p), CTL_PARAM_OK);
+    run_isr(1);
+    assert_near((double)ctl_to_float(d.meas.omega_e), 10.0 * CTL_TWO_PI * 2.0 / wb, 1e-5);
+    run_isr(5); /* the new 500 r/min limit, 5-period filter */
+    assert_int_equal(d.state, DRIVE_STATE_FAULT);
+    assert_int_equal(d.fault, DRIVE_FAULT_OVERSPEED);
 }
 
 static void test_duty_conversion(void **state)
@@ -433,6 +458,7 @@ int main(void)
         cmocka_unit_test_setup(test_overrun_and_encoder_faults, setup),
         cmocka_unit_test_setup(test_params_rejected_at_init, setup),
         cmocka_unit_test_setup(test_request_params, setup),
+        cmocka_unit_test_setup(test_applied_set_rescales_speed_and_limits, setup),
         cmocka_unit_test_setup(test_duty_conversion, setup),
         cmocka_unit_test_setup(test_references, setup),
         cmocka_unit_test_setup(test_overcurrent_forces_off_before_any_write, setup),

@@ -10,8 +10,10 @@
 
 #include <cmocka.h>
 
+#include "ctl_pu.h"
 #include "fw.h"
 #include "profile.h"
+#include "test_support.h"
 
 #define R (f28335_host_regs)
 
@@ -146,6 +148,41 @@ static void test_isr_calibrates_then_runs_on_serial_command(void **state)
     assert_int_equal(fw_drive.state, DRIVE_STATE_READY);
 }
 
+/* A parameter change sent in READY takes effect at the next period start, not at the first
+ * RUN period, and everything derived from the set follows it: the controller, the speed
+ * scaling of the measurements and the protection limits. */
+static void test_parameter_change_reaches_everything_at_the_next_period(void **state)
+{
+    sxl_frame_t rep;
+    uint16_t payload[5];
+    ctl_params_t p;
+    const double wb = CTL_BASE_OMEGA_RAD_S;
+    (void)state;
+    assert_true(fw_startup());
+    isr_periods(DRIVE_CALIBRATION_SAMPLES);
+    assert_int_equal(fw_drive.state, DRIVE_STATE_READY);
+
+    payload[0] = SXL_CONTROLLER_MPTC13;
+    sxl_put_u32(&payload[1], 20000u); /* 20 N*m/Wb */
+    assert_int_equal(transact(SXL_CMD_SET_CONTROLLER, payload, 5u, &rep), SXL_RX_FRAME);
+    assert_int_equal(rep.payload[0], SXL_OK);
+    isr_periods(1);
+    assert_int_equal(fw_drive.state, DRIVE_STATE_READY);
+    assert_false(ctl_config_pending(&fw_drive.ctl));
+    assert_int_equal(ctl_params(&fw_drive.ctl)->controller, CTL_CONTROLLER_MPTC13);
+    assert_true(ctl_params(&fw_drive.ctl)->lambda_nm_per_wb == 20.0f);
+
+    p = fw_drive.params_bg;
+    p.pole_pairs = 2;
+    p.protect.overspeed_rpm = 1000.0f;
+    assert_int_equal(drive_request_params(&fw_drive, &p), CTL_PARAM_OK);
+    isr_periods(1);
+    assert_near((double)ctl_to_float(ctl_config(&fw_drive.ctl)->protect.overspeed),
+                1000.0 * 2.0 * CTL_TWO_PI / 60.0 / wb, 1e-6);
+    assert_near((double)ctl_to_float(ctl_config(&fw_drive.ctl)->omega_pu_per_rev_s),
+                CTL_TWO_PI * 2.0 / wb, 1e-6);
+}
+
 static void test_overrun_is_a_fault(void **state)
 {
     (void)state;
@@ -208,6 +245,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test_setup(test_startup_configures_everything, setup),
         cmocka_unit_test_setup(test_isr_calibrates_then_runs_on_serial_command, setup),
+        cmocka_unit_test_setup(test_parameter_change_reaches_everything_at_the_next_period, setup),
         cmocka_unit_test_setup(test_overrun_is_a_fault, setup),
         cmocka_unit_test_setup(test_malformed_frames_counted, setup),
         cmocka_unit_test_setup(test_unexpected_interrupt_and_startup_failure, setup),

@@ -105,7 +105,6 @@ int LLVMFuzzerTestOneInput(const unsigned char *data, size_t size)
     static ctl_protect_t prot;
     stream_t s;
     ctl_params_t p;
-    ctl_protect_limits_t limits;
     int32_t steps = 0;
     s.p = data;
     s.left = size;
@@ -113,8 +112,7 @@ int LLVMFuzzerTestOneInput(const unsigned char *data, size_t size)
     if (!ctl_init(&c, &p)) {
         abort(); /* the defaults must always be valid */
     }
-    ctl_protect_default(&limits, p.sample_time_s, p.pole_pairs, 0.01f);
-    ctl_protect_init(&prot, &limits);
+    ctl_protect_init(&prot);
     while (s.left > 0u && steps < 2000) {
         const uint32_t tag = take32(&s) % 8u;
         if (tag == 0u) {
@@ -127,7 +125,7 @@ int LLVMFuzzerTestOneInput(const unsigned char *data, size_t size)
             q.torque_limit_nm = take_float(&s);
             q.speed_kp_nm_per_rad_s = take_float(&s);
             q.lq_h = take_float(&s);
-            ctl_request_params(&c, &q);
+            (void)ctl_request_params(&c, &q);
         } else if (tag == 1u) {
             ctl_set_loop_mode(&c, (take32(&s) & 1u) ? CTL_LOOP_TORQUE : CTL_LOOP_SPEED);
             ctl_set_speed_ref(&c, take_q(&s));
@@ -157,7 +155,8 @@ int LLVMFuzzerTestOneInput(const unsigned char *data, size_t size)
             in.hw_trip = false;
             in.running = true;
             in.currents_calibrated = (tag & 2u) != 0u;
-            (void)ctl_protect_check(&prot, &in, ctl_diag(&c)->torque_ref, cmd.vector, cmd.duty);
+            (void)ctl_protect_check(&prot, &ctl_config(&c)->protect, &in, ctl_diag(&c)->torque_ref,
+                                    cmd.vector, cmd.duty);
             if ((prot.latched & (uint16_t)~0x3FFFu) != 0u ||
                 ctl_protect_log_pending(&prot) > CTL_PROTECT_LOG_SIZE) {
                 abort();

@@ -33,7 +33,7 @@ uint32_t bench_run(int32_t reps);
 uint32_t flt_bench_run(int32_t reps);
 
 /* The protection check (ctl_protect_check) over every prepared point, `reps` times, as the
- * drive runs it each period while running: limits of ctl_protect_default, raw ADC words
+ * drive runs it each period while running: the default settings' limits, raw ADC words
  * rebuilt from the currents with the board's scaling. Returns a checksum; only this is
  * measured. */
 uint32_t bench_protect_run(int32_t reps);

@@ -81,20 +81,22 @@ uint32_t bench_run(int32_t reps)
 
 uint32_t bench_protect_run(int32_t reps)
 {
+    ctl_protect_settings_t settings;
     ctl_protect_limits_t l;
     ctl_protect_input_t in;
     uint32_t checksum = 0u;
     int32_t r;
     size_t i;
     int16_t k;
-    ctl_protect_default(&l, 1e-4f, 3, 0.01f);
+    ctl_protect_settings_default(&settings);
+    ctl_protect_limits_build(&l, &settings, 1e-4f, 3, 0.01f);
     in.encoder_healthy = true;
     in.overrun = false;
     in.hw_trip = false;
     in.running = true;
     in.currents_calibrated = true;
     for (r = 0; r < reps; r++) {
-        ctl_protect_init(&protect_state, &l);
+        ctl_protect_init(&protect_state);
         for (i = 0; i < count; i++) {
             for (k = 0; k < 6; k++) {
                 in.i_phase[k] = meas[i].i_phase[k];
@@ -106,7 +108,7 @@ uint32_t bench_protect_run(int32_t reps)
             in.omega_e = meas[i].omega_e;
             in.torque_est = torque_ref[i];
             checksum = checksum * 31u +
-                       ctl_protect_check(&protect_state, &in, torque_ref[i], 0, CTL_Q(0.0));
+                       ctl_protect_check(&protect_state, &l, &in, torque_ref[i], 0, CTL_Q(0.0));
         }
     }
     return checksum;

@@ -1,0 +1,101 @@
+/*
+ * The parameter set: everything a user sets, at init or at run time, in SI units. The
+ * control step never reads it; it reads the derived configuration (ctl_config.h) built
+ * from it outside the ISR.
+ *
+ * Every set is checked before anything is derived from it: a field that is not a normal
+ * number (NaN, infinite, denormal) or lies outside its stated range refuses the whole set
+ * with one reason, and the set in force stays.
+ */
+#ifndef CTL_PARAMS_H
+#define CTL_PARAMS_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "ctl_flux_ref.h"
+#include "ctl_protect.h"
+
+#define CTL_DUTY_LEVELS_MAX 11 /* = CTL_DDC_LEVELS_MAX */
+
+typedef enum {
+    CTL_CONTROLLER_DDC = 0,    /* the paper's discrete-duty MPTC */
+    CTL_CONTROLLER_MPTC49 = 1, /* conventional MPTC, 48 vectors + zero */
+    CTL_CONTROLLER_MPTC13 = 2  /* conventional MPTC, 12 largest + zero */
+} ctl_controller_t;
+
+/* How the discrete-duty method picks between the two alpha-beta directions
+ * of a sector (see docs/design.md). */
+typedef enum {
+    CTL_DDC_DIRECTION_FLUX_ERROR = 0, /* DTC reading: flux error sign picks 75/105 deg */
+    CTL_DDC_DIRECTION_XY_TABLE = 1    /* paper's table 2 literally: x-y sector picks one of four */
+} ctl_ddc_direction_t;
+
+typedef struct {
+    /* machine */
+    float resistance_ohm;
+    float ld_h;
+    float lq_h;
+    float l_xy_h; /* x-y (leakage) inductance */
+    float pm_flux_wb;
+    int16_t pole_pairs;
+    float inertia_kg_m2; /* used by the protection's stopped-encoder check */
+    /* control */
+    float sample_time_s;
+    ctl_controller_t controller;
+    float lambda_nm_per_wb; /* flux weight of the cost */
+    int16_t duty_levels;    /* DDC: levels k/(n-1), k = 0..n-1; paper: 6 */
+    ctl_ddc_direction_t ddc_direction;
+    /* improvement over the paper (docs/improvements.md), on by default; false = the paper */
+    bool ddc_torque_guard; /* flux weighting moves the duty at most one level from the
+                            * level that best meets the torque reference */
+    ctl_flux_ref_mode_t flux_ref_mode;
+    float flux_ref_wb; /* used when flux_ref_mode is constant */
+    /* speed loop */
+    float speed_kp_nm_per_rad_s; /* per mechanical rad/s */
+    float speed_ki_nm_per_rad;   /* per mechanical rad */
+    float torque_limit_nm;
+    /* protection thresholds (docs/faults.md) */
+    ctl_protect_settings_t protect;
+} ctl_params_t;
+
+/* Why a parameter set was refused: X(code, text), one list. */
+#define CTL_PARAM_ERRORS(X)                                                                        \
+    X(CTL_PARAM_OK, "accepted")                                                                    \
+    X(CTL_PARAM_BUSY, "the previous set has not reached the control step yet")                     \
+    X(CTL_PARAM_CONTROLLER, "unknown controller")                                                  \
+    X(CTL_PARAM_DDC_DIRECTION, "unknown DDC direction reading")                                    \
+    X(CTL_PARAM_DUTY_LEVELS, "duty levels outside 2..11")                                          \
+    X(CTL_PARAM_LAMBDA, "flux weight outside 0..2000 N*m/Wb")                                      \
+    X(CTL_PARAM_RESISTANCE, "stator resistance outside 0..1000 ohm")                               \
+    X(CTL_PARAM_INDUCTANCE, "an inductance outside 1 uH..10 H")                                    \
+    X(CTL_PARAM_PM_FLUX, "magnet flux outside 0.1 mWb..10 Wb")                                     \
+    X(CTL_PARAM_POLE_PAIRS, "pole pairs outside 1..64")                                            \
+    X(CTL_PARAM_INERTIA, "inertia outside 1e-6..1000 kg*m^2")                                      \
+    X(CTL_PARAM_SAMPLE_TIME, "sample time outside 1 us..10 ms")                                    \
+    X(CTL_PARAM_MODEL, "the discrete model does not fit: sample time too long for L/R")            \
+    X(CTL_PARAM_FLUX_REF, "flux reference mode unknown or constant flux outside 1 mWb..10 Wb")     \
+    X(CTL_PARAM_SPEED_GAINS, "speed gains negative or too large for the number format")            \
+    X(CTL_PARAM_TORQUE_LIMIT, "torque limit outside 1 mN*m..500 N*m")                              \
+    X(CTL_PARAM_PROTECTION, "a protection threshold is out of range")
+
+#define CTL_PARAM_ERROR_ENUM(code, text) code,
+typedef enum { CTL_PARAM_ERRORS(CTL_PARAM_ERROR_ENUM) CTL_PARAM_ERROR_COUNT } ctl_param_error_t;
+#undef CTL_PARAM_ERROR_ENUM
+
+/* The paper's machine and controller with the brief's assumed values. */
+void ctl_params_default(ctl_params_t *p);
+
+/* CTL_PARAM_OK when every field is usable, else the first reason found. */
+ctl_param_error_t ctl_params_check(const ctl_params_t *p);
+
+static inline bool ctl_params_valid(const ctl_params_t *p)
+{
+    return ctl_params_check(p) == CTL_PARAM_OK;
+}
+
+/* A speed-loop gain (per mechanical rad/s or rad) in per unit: torque per unit per
+ * electrical per-unit speed. */
+float ctl_speed_gain_pu(float gain_si, int16_t pole_pairs);
+
+#endif /* CTL_PARAMS_H */

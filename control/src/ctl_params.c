@@ -1,0 +1,114 @@
+#include "ctl_params.h"
+
+#include "ctl_machine.h"
+#include "ctl_predict.h"
+#include "ctl_pu.h"
+
+void ctl_params_default(ctl_params_t *p)
+{
+    p->resistance_ohm = CTL_FLOAT_LITERAL(CTL_MACHINE_R_OHM);
+    p->ld_h = CTL_FLOAT_LITERAL(CTL_MACHINE_LD_H);
+    p->lq_h = CTL_FLOAT_LITERAL(CTL_MACHINE_LQ_H);
+    p->l_xy_h = CTL_FLOAT_LITERAL(CTL_MACHINE_LXY_H);
+    p->pm_flux_wb = CTL_FLOAT_LITERAL(CTL_MACHINE_PSI_F_WB);
+    p->pole_pairs = CTL_MACHINE_POLE_PAIRS;
+    p->inertia_kg_m2 = CTL_FLOAT_LITERAL(CTL_MACHINE_INERTIA_KG_M2);
+    p->sample_time_s = 1.0e-4f;
+    p->controller = CTL_CONTROLLER_DDC;
+    p->lambda_nm_per_wb = 100.0f;
+    p->duty_levels = 6;
+    p->ddc_direction = CTL_DDC_DIRECTION_FLUX_ERROR;
+    p->ddc_torque_guard = true; /* improvement (docs/improvements.md); false = the paper */
+    p->flux_ref_mode = CTL_FLUX_REF_MTPA;
+    p->flux_ref_wb = 0.26f;
+    p->speed_kp_nm_per_rad_s = 1.5f;
+    p->speed_ki_nm_per_rad = 60.0f;
+    p->torque_limit_nm = 7.0f;
+    ctl_protect_settings_default(&p->protect);
+}
+
+float ctl_speed_gain_pu(float gain_si, int16_t pole_pairs)
+{
+    return gain_si * CTL_BASE_OMEGA_RAD_S_F / ((float)pole_pairs * CTL_BASE_TORQUE_NM_F);
+}
+
+static ctl_param_error_t check_machine(const ctl_params_t *p)
+{
+    ctl_model_t model;
+    if (!ctl_float_in_range(p->resistance_ohm, 0.0f, 1000.0f)) {
+        return CTL_PARAM_RESISTANCE;
+    }
+    if (!ctl_float_in_range(p->ld_h, 1.0e-6f, 10.0f) ||
+        !ctl_float_in_range(p->lq_h, 1.0e-6f, 10.0f) ||
+        !ctl_float_in_range(p->l_xy_h, 1.0e-6f, 10.0f)) {
+        return CTL_PARAM_INDUCTANCE;
+    }
+    if (!ctl_float_in_range(p->pm_flux_wb, 1.0e-4f, 10.0f)) {
+        return CTL_PARAM_PM_FLUX;
+    }
+    if (p->pole_pairs < 1 || p->pole_pairs > 64) {
+        return CTL_PARAM_POLE_PAIRS;
+    }
+    if (!ctl_float_in_range(p->inertia_kg_m2, 1.0e-6f, 1000.0f)) {
+        return CTL_PARAM_INERTIA;
+    }
+    if (!ctl_float_in_range(p->sample_time_s, 1.0e-6f, 1.0e-2f)) {
+        return CTL_PARAM_SAMPLE_TIME;
+    }
+    if (!ctl_model_init(&model, p->resistance_ohm, p->ld_h, p->lq_h, p->l_xy_h, p->pm_flux_wb,
+                        p->pole_pairs, p->sample_time_s)) {
+        return CTL_PARAM_MODEL;
+    }
+    return CTL_PARAM_OK;
+}
+
+static ctl_param_error_t check_control(const ctl_params_t *p)
+{
+    float kp;
+    float ki_ts;
+    if (!(p->controller == CTL_CONTROLLER_DDC || p->controller == CTL_CONTROLLER_MPTC49 ||
+          p->controller == CTL_CONTROLLER_MPTC13)) {
+        return CTL_PARAM_CONTROLLER;
+    }
+    if (!(p->ddc_direction == CTL_DDC_DIRECTION_FLUX_ERROR ||
+          p->ddc_direction == CTL_DDC_DIRECTION_XY_TABLE)) {
+        return CTL_PARAM_DDC_DIRECTION;
+    }
+    if (p->duty_levels < 2 || p->duty_levels > CTL_DUTY_LEVELS_MAX) {
+        return CTL_PARAM_DUTY_LEVELS;
+    }
+    if (!ctl_float_in_range(p->lambda_nm_per_wb, 0.0f, 2000.0f)) {
+        return CTL_PARAM_LAMBDA;
+    }
+    if (!(p->flux_ref_mode == CTL_FLUX_REF_MTPA ||
+          (p->flux_ref_mode == CTL_FLUX_REF_CONSTANT &&
+           ctl_float_in_range(p->flux_ref_wb, 1.0e-3f, 10.0f)))) {
+        return CTL_PARAM_FLUX_REF;
+    }
+    if (!ctl_float_in_range(p->torque_limit_nm, 1.0e-3f, 500.0f)) {
+        return CTL_PARAM_TORQUE_LIMIT;
+    }
+    if (!ctl_float_in_range(p->speed_kp_nm_per_rad_s, 0.0f, 1.0e4f) ||
+        !ctl_float_in_range(p->speed_ki_nm_per_rad, 0.0f, 1.0e6f)) {
+        return CTL_PARAM_SPEED_GAINS;
+    }
+    /* per-unit gains must stay well inside the Q24 range (|x| < 128) */
+    kp = ctl_speed_gain_pu(p->speed_kp_nm_per_rad_s, p->pole_pairs);
+    ki_ts = ctl_speed_gain_pu(p->speed_ki_nm_per_rad, p->pole_pairs) * p->sample_time_s;
+    if (!(kp < 100.0f && ki_ts < 100.0f)) {
+        return CTL_PARAM_SPEED_GAINS;
+    }
+    return CTL_PARAM_OK;
+}
+
+ctl_param_error_t ctl_params_check(const ctl_params_t *p)
+{
+    ctl_param_error_t e = check_machine(p);
+    if (e == CTL_PARAM_OK) {
+        e = check_control(p);
+    }
+    if (e == CTL_PARAM_OK && !ctl_protect_settings_valid(&p->protect)) {
+        e = CTL_PARAM_PROTECTION;
+    }
+    return e;
+}
