@@ -6,12 +6,18 @@
  * them directly (hal/f28335/include/f28335_regs.h holds the base addresses).
  *
  *   code start   BEGIN 0x33FFF6 (boot-to-flash entry) -> codestart.asm
- *   .text        FLASHC, FLASHB (split as needed)
- *   constants    FLASHA: .cinit, .pinit, .econst, .switch
- *   ramfuncs     loaded to FLASHD, run from L0..L2 (copied by fw_ramfuncs_copy):
- *                the control ISR path and the flash wait-state set-up
- *   .stack       M1 (the C28x stack must lie below 0x10000)
+ *   ramfuncs     loaded to FLASHD, run from L0..L3 (copied by fw_ramfuncs_copy): the
+ *                code of the whole per-period path - control ISR, drive step, control
+ *                step, protection, the drivers they call and the run-time library
+ *                routines the compiler calls from them - and the flash wait-state set-up
+ *   ramconsts    loaded to FLASHA, run from L4..L7 (copied likewise): the constant
+ *                tables of that path. Nothing of a control period waits on flash.
+ *   .text        FLASHC, FLASHB (start-up, background loop, parameter builds)
+ *   constants    FLASHA: .cinit, .pinit, .econst, .switch of everything else
+ *   .stack       M0 + M1, 0x700 words (tools/check_stack.sh sizes it: background plus a
+ *                nested control interrupt, with margin; the stack must lie below 0x10000)
  *   .ebss        L4..L7
+ * docs/porting.md section 7 has the RAM budget (tools/check_target_memory.sh).
  *
  * The CSM password locations (0x33FFF8..0x33FFFF) are left erased (0xFFFF):
  * never program them to all zeros, that locks the device for good.
@@ -20,7 +26,7 @@
 MEMORY
 {
 PAGE 0 :   /* program */
-   RAML0L2    : origin = 0x008000, length = 0x003000   /* L0, L1, L2 SARAM: ramfuncs run here */
+   RAML0L3    : origin = 0x008000, length = 0x004000   /* L0..L3 SARAM: ramfuncs run here */
    OTP        : origin = 0x380400, length = 0x000400
    FLASHH     : origin = 0x300000, length = 0x008000
    FLASHG     : origin = 0x308000, length = 0x008000
@@ -39,21 +45,55 @@ PAGE 0 :   /* program */
 
 PAGE 1 :   /* data */
    BOOT_RSVD  : origin = 0x000000, length = 0x000050   /* boot ROM stack */
-   RAMM0      : origin = 0x000050, length = 0x0003B0
-   RAMM1      : origin = 0x000400, length = 0x000400
-   RAML3      : origin = 0x00B000, length = 0x001000
+   RAMM0M1    : origin = 0x000050, length = 0x0007B0   /* M0 and M1 SARAM: the stack */
    RAML4L7    : origin = 0x00C000, length = 0x004000   /* L4..L7 SARAM */
 }
 
 SECTIONS
 {
    codestart  : > BEGIN,   PAGE = 0
-   ramfuncs   : LOAD = FLASHD,
-                RUN = RAML0L2,
+   /* Object names match both CMake's (ctl.c.obj) and CCS's (ctl.obj) naming. */
+   ramfuncs   : {
+                   *(ramfuncs)
+                   *fw_isr.*obj(.text)
+                   *drive.*obj(.text)
+                   *profile.*obj(.text)
+                   *ctl.*obj(.text)
+                   *ctl_q.*obj(.text)
+                   *ctl_vsd.*obj(.text)
+                   *ctl_ddc.*obj(.text)
+                   *ctl_mptc.*obj(.text)
+                   *ctl_speed_pi.*obj(.text)
+                   *ctl_flux_ref.*obj(.text)
+                   *ctl_protect.*obj(.text)
+                   *ctl_barrier.*obj(.text)
+                   *f28335_pwm.*obj(.text)
+                   *f28335_adc.*obj(.text)
+                   *f28335_eqep.*obj(.text)
+                   *f28335_cycles.*obj(.text)
+                   *f28335_gpio.*obj(.text)
+                   -lrts2800_fpu32.lib(.text)
+                }
+                LOAD = FLASHD,
+                RUN = RAML0L3,
                 LOAD_START(_RamfuncsLoadStart),
                 LOAD_END(_RamfuncsLoadEnd),
                 RUN_START(_RamfuncsRunStart),
                 PAGE = 0
+   /* The constant tables of the same path, copied to data RAM beside .ebss. */
+   ramconsts  : {
+                   *ctl_tables.*obj(.econst)
+                   *ctl_q.*obj(.econst)
+                   *ctl_vsd.*obj(.econst)
+                   *drive.*obj(.econst)
+                   *f28335_adc.*obj(.econst)
+                }
+                LOAD = FLASHA,
+                RUN = RAML4L7,
+                LOAD_START(_RamconstsLoadStart),
+                LOAD_END(_RamconstsLoadEnd),
+                RUN_START(_RamconstsRunStart),
+                PAGE = 1
 
    .text      : >> FLASHC | FLASHB, PAGE = 0
    .cinit     : > FLASHA,  PAGE = 0
@@ -61,10 +101,10 @@ SECTIONS
    .econst    : > FLASHA,  PAGE = 0
    .switch    : > FLASHA,  PAGE = 0
 
-   .stack     : > RAMM1,   PAGE = 1
+   .stack     : > RAMM0M1, PAGE = 1
    .ebss      : > RAML4L7, PAGE = 1
-   .esysmem   : > RAMM0,   PAGE = 1
-   .cio       : > RAMM0,   PAGE = 1
+   .esysmem   : > RAML4L7, PAGE = 1   /* empty: no heap */
+   .cio       : > RAML4L7, PAGE = 1   /* empty: no C I/O */
 
    /* Boot ROM reset vector; not loaded (the boot ROM owns 0x3FFFC0). */
    .reset     : > RESET,   PAGE = 0, TYPE = DSECT

@@ -49,7 +49,8 @@ bool fw_startup(void);
 /* One pass of the background loop: watchdog, serial link. */
 void fw_background_step(void);
 
-/* Copy the ramfuncs section from its flash load address to RAM. */
+/* Copy the ramfuncs (per-period code) and ramconsts (its tables) sections from their flash
+ * load addresses to RAM. */
 void fw_ramfuncs_copy(void);
 /* Word copy used by it: n 16-bit words. */
 void fw_copy_words(uint16_t *dst, const uint16_t *src, uint32_t n);

@@ -2,7 +2,8 @@
  * Start-up sequence. Order matters:
  *   1. interrupts off, watchdog off (the code-start stub already disabled it)
  *   2. PLL to 150 MHz, peripheral clocks
- *   3. ramfuncs copied to RAM, then flash wait states set from RAM
+ *   3. ramfuncs (per-period code) and ramconsts (its tables) copied to RAM, then the
+ *      flash wait states set from RAM
  *   4. cycle counter, PIE with every vector on fw_unexpected_isr
  *   5. PWM configured with the outputs tripped off, then ADC, encoder, SCI
  *   6. drive_init: INIT -> CALIBRATE (PWM stays off while offsets average)
@@ -25,10 +26,15 @@ fw_state_t fw_state;
 extern uint16_t RamfuncsLoadStart;
 extern uint16_t RamfuncsLoadEnd;
 extern uint16_t RamfuncsRunStart;
+extern uint16_t RamconstsLoadStart;
+extern uint16_t RamconstsLoadEnd;
+extern uint16_t RamconstsRunStart;
 #else
-/* Host: a stand-in section so the copy runs and can be checked. */
+/* Host: stand-in sections so the copies run and can be checked. */
 uint16_t fw_host_ramfuncs_load[4] = {0x1234u, 0x5678u, 0x9ABCu, 0xDEF0u};
 uint16_t fw_host_ramfuncs_run[4];
+uint16_t fw_host_ramconsts_load[3] = {0x0BADu, 0xCAFEu, 0xF00Du};
+uint16_t fw_host_ramconsts_run[3];
 #endif
 
 void fw_copy_words(uint16_t *dst, const uint16_t *src, uint32_t n)
@@ -42,10 +48,13 @@ void fw_copy_words(uint16_t *dst, const uint16_t *src, uint32_t n)
 void fw_ramfuncs_copy(void)
 {
 #if F28335_TARGET
-    const uint32_t n = (uint32_t)((uintptr_t)&RamfuncsLoadEnd - (uintptr_t)&RamfuncsLoadStart);
-    fw_copy_words(&RamfuncsRunStart, &RamfuncsLoadStart, n);
+    fw_copy_words(&RamfuncsRunStart, &RamfuncsLoadStart,
+                  (uint32_t)((uintptr_t)&RamfuncsLoadEnd - (uintptr_t)&RamfuncsLoadStart));
+    fw_copy_words(&RamconstsRunStart, &RamconstsLoadStart,
+                  (uint32_t)((uintptr_t)&RamconstsLoadEnd - (uintptr_t)&RamconstsLoadStart));
 #else
     fw_copy_words(fw_host_ramfuncs_run, fw_host_ramfuncs_load, 4u);
+    fw_copy_words(fw_host_ramconsts_run, fw_host_ramconsts_load, 3u);
 #endif
 }
 

@@ -19,6 +19,8 @@
 
 extern uint16_t fw_host_ramfuncs_load[4];
 extern uint16_t fw_host_ramfuncs_run[4];
+extern uint16_t fw_host_ramconsts_load[3];
+extern uint16_t fw_host_ramconsts_run[3];
 
 static int setup(void **state)
 {
@@ -93,6 +95,9 @@ static void test_startup_configures_everything(void **state)
     assert_int_equal(R.sysctrl.WDCR, WDCR_ENABLE_DIV64);
     for (i = 0; i < 4; i++) {
         assert_int_equal(fw_host_ramfuncs_run[i], fw_host_ramfuncs_load[i]);
+    }
+    for (i = 0; i < 3; i++) {
+        assert_int_equal(fw_host_ramconsts_run[i], fw_host_ramconsts_load[i]);
     }
     /* peripherals */
     assert_int_equal(R.epwm[0].TBPRD, 7500u);

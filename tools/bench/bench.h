@@ -4,6 +4,7 @@
 #ifndef BENCH_H
 #define BENCH_H
 
+#include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
 
@@ -39,8 +40,18 @@ uint32_t flt_bench_run(int32_t reps);
 uint32_t bench_protect_run(int32_t reps);
 uint32_t flt_bench_protect_run(int32_t reps);
 
+/* Background work of a run-time parameter change, not measured: builds variant k of the set
+ * (lambda, DDC direction reading, torque guard, flux reference mode and torque limit vary; the
+ * controller stays) and publishes it; the next step takes it. Returns the ctl_param_error_t. */
+int16_t bench_request_change(int16_t k);
+int16_t flt_bench_request_change(int16_t k);
+/* A published set waits for the next step. */
+bool bench_change_pending(void);
+bool flt_bench_change_pending(void);
+
 /* One step at prepared point i (i < the prepared count) after bench_setup; for tools that
  * look at single steps (ctl-opcount). Returns a word of the command. */
 uint32_t bench_step(size_t i);
+uint32_t flt_bench_step(size_t i);
 
 #endif /* BENCH_H */

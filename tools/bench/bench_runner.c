@@ -42,17 +42,33 @@ size_t bench_prepare(const bench_point_t *points, size_t n)
     return count;
 }
 
+static ctl_params_t setup_params;
+
 int16_t bench_setup(int16_t controller)
 {
-    ctl_params_t p;
-    ctl_params_default(&p);
-    p.controller = (ctl_controller_t)controller;
-    if (!ctl_init(&controller_state, &p)) {
+    ctl_params_default(&setup_params);
+    setup_params.controller = (ctl_controller_t)controller;
+    if (!ctl_init(&controller_state, &setup_params)) {
         return -1;
     }
     ctl_set_loop_mode(&controller_state, CTL_LOOP_TORQUE);
     return 0;
 }
+
+int16_t bench_request_change(int16_t k)
+{
+    static const float lambdas[4] = {20.0f, 100.0f, 200.0f, 50.0f};
+    ctl_params_t p = setup_params;
+    p.lambda_nm_per_wb = lambdas[k % 4];
+    p.ddc_direction =
+        ((k / 4) % 2 == 0) ? CTL_DDC_DIRECTION_FLUX_ERROR : CTL_DDC_DIRECTION_XY_TABLE;
+    p.ddc_torque_guard = ((k / 8) % 2) == 0;
+    p.flux_ref_mode = ((k / 16) % 2 == 0) ? CTL_FLUX_REF_MTPA : CTL_FLUX_REF_CONSTANT;
+    p.torque_limit_nm = 7.0f + 0.25f * (float)(k % 5); /* rebuilds the MTPA table's span */
+    return (int16_t)ctl_request_params(&controller_state, &p);
+}
+
+bool bench_change_pending(void) { return ctl_config_pending(&controller_state); }
 
 /* One control step at prepared point i; a word of its command for the checksum. */
 static uint32_t step_at(size_t i)

@@ -5,7 +5,12 @@
  * configuration's measured loop is collected alone and dumped under its own name, which
  * gives repeatable instruction counts; tools/bench/run_benchmark.py does that.
  *
- * usage: ctl-bench [--reps N] [--vdc V] TRACE.csv...
+ * With --worst-step each configuration is replayed one step at a time instead, every step
+ * collected and dumped on its own (run under callgrind with --combine-dumps=yes), with a
+ * parameter change requested in the background every CHANGE_EVERY steps, so the steps that
+ * take a new set are among those measured.
+ *
+ * usage: ctl-bench [--reps N] [--vdc V] [--worst-step] TRACE.csv...
  */
 #define _POSIX_C_SOURCE 200809L
 
@@ -42,9 +47,37 @@ static int parse_positive(const char *flag, const char *text, double *out)
     return 0;
 }
 
+static const char *const controller_names[3] = {"ddc", "mptc49", "mptc13"};
+
+/* Parameter changes during the per-step replay: one every this many steps. */
+#define CHANGE_EVERY 500u
+
+/* Every step measured alone; dump label "w-<config>-<step>-<1 if it took a new set>". */
+static void worst_step_replay(int16_t controller, int arith, size_t n)
+{
+    char label[64];
+    int16_t change = 0;
+    size_t i;
+    for (i = 0; i < n; i++) {
+        bool applies;
+        if (i % CHANGE_EVERY == CHANGE_EVERY / 2u) {
+            (void)(arith ? flt_bench_request_change(change) : bench_request_change(change));
+            change++;
+        }
+        applies = arith ? flt_bench_change_pending() : bench_change_pending();
+        snprintf(label, sizeof label, "w-%s_%s-%zu-%d", controller_names[controller],
+                 arith ? "float" : "fixed", i, applies ? 1 : 0);
+        CALLGRIND_TOGGLE_COLLECT;
+        (void)(arith ? flt_bench_step(i) : bench_step(i));
+        CALLGRIND_TOGGLE_COLLECT;
+        CALLGRIND_DUMP_STATS_AT(label);
+    }
+}
+
 int main(int argc, char **argv)
 {
-    static const char *names[3] = {"ddc", "mptc49", "mptc13"};
+    const char *const *names = controller_names;
+    bool worst_step = false;
     double reps_d = 5.0;
     double vdc = 540.0;
     size_t n = 0;
@@ -60,10 +93,12 @@ int main(int argc, char **argv)
             if (parse_positive("--vdc", argv[++a], &vdc) != 0) {
                 return 2;
             }
+        } else if (strcmp(argv[a], "--worst-step") == 0) {
+            worst_step = true;
         } else if (argv[a][0] == '-') {
             fprintf(stderr,
                     "ctl-bench: unknown option '%s' (usage: ctl-bench [--reps N] [--vdc V] "
-                    "TRACE.csv...)\n",
+                    "[--worst-step] TRACE.csv...)\n",
                     argv[a]);
             return 2;
         } else {
@@ -80,9 +115,23 @@ int main(int argc, char **argv)
                         "TRACE.csv...)\n");
         return 2;
     }
-    (void)bench_prepare(points, n);
+    n = bench_prepare(points, n);
     (void)flt_bench_prepare(points, n);
     printf("points %zu reps %d\n", n, (int)reps_d);
+    if (worst_step) {
+        for (controller = 0; controller < 3; controller++) {
+            int arith;
+            for (arith = 0; arith < 2; arith++) {
+                if ((arith ? flt_bench_setup(controller) : bench_setup(controller)) != 0) {
+                    fprintf(stderr, "ctl-bench: controller %s did not initialise\n",
+                            names[controller]);
+                    return 1;
+                }
+                worst_step_replay(controller, arith, n);
+            }
+        }
+        return 0;
+    }
     for (controller = 0; controller < 3; controller++) {
         int arith;
         for (arith = 0; arith < 2; arith++) {

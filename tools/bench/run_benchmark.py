@@ -25,6 +25,9 @@ CYCLES = {
     "float": {"add": 2, "mul": 2, "div": 15, "sqrt": 25, "sin": 20},
 }
 OVERHEAD = 1.5  # loads, stores, branches and calls around the counted arithmetic
+# No DDC step, the one that takes a new parameter set included, may cost more than this times
+# the mean DDC step of its arithmetic (the ISR budget must hold for every period).
+WORST_STEP_BUDGET = 1.5
 CPU_HZ = 150e6
 PERIOD_US = 100.0
 
@@ -92,6 +95,40 @@ def instruction_counts(bench, traces, work):
     return counts, profiles
 
 
+def worst_steps(bench, traces, work):
+    """Instructions of every single step (one callgrind dump each, combined in one file), with
+    a parameter change taken every CHANGE_EVERY steps: mean, worst, worst of the taking steps."""
+    out = os.path.join(work, "callgrind.steps")
+    if os.path.exists(out):
+        os.remove(out)
+    run(["valgrind", "--tool=callgrind", "--collect-atstart=no", "--combine-dumps=yes",
+         "--callgrind-out-file=" + out, bench, "--worst-step"] + traces)
+    steps = {}
+    label = None
+    with open(out) as f:
+        for line in f:
+            if line.startswith("desc: Trigger: Client Request: w-"):
+                label = line.rsplit(": ", 1)[1].strip()
+            elif line.startswith("summary: ") and label:
+                _, config, index, applies = label.split("-")
+                steps.setdefault(config, []).append((int(line.split()[1]), int(index), applies == "1"))
+                label = None
+    os.remove(out)
+    result = {}
+    for config, rows in steps.items():
+        worst = max(rows)
+        taking = [r for r in rows if r[2]]
+        result[config] = {
+            "steps": len(rows), "mean": sum(r[0] for r in rows) / len(rows),
+            "worst": worst[0], "worst_step": worst[1], "worst_takes": worst[2],
+            "taking": len(taking), "taking_worst": max(taking)[0] if taking else 0,
+        }
+    missing = [c for c in CONFIGS if c not in result]
+    if missing:
+        fail("no per-step dumps for " + ", ".join(missing))
+    return result
+
+
 def op_counts(tool, traces):
     out = run([tool] + traces)
     counts = {}
@@ -110,23 +147,11 @@ def freestanding_sizes(root, work):
     return {s[0]: (int(s[1]), int(s[2]), int(s[3])) for s in sizes}
 
 
-def stack_depth(root, work):
-    """Worst-case stack of the ISR path on a 32-bit Arm build (-fcallgraph-info=su)."""
-    out_dir = os.path.join(work, "stack")
-    os.makedirs(out_dir, exist_ok=True)
-    srcs = [os.path.join(root, "control", "src", f)
-            for f in sorted(os.listdir(os.path.join(root, "control", "src"))) if f.endswith(".c")]
-    srcs += [os.path.join(root, "firmware", "app", f) for f in ("drive.c", "profile.c")]
-    cis = []
-    for src in srcs:
-        obj = os.path.join(out_dir, os.path.basename(src)[:-2] + ".o")
-        run(["arm-none-eabi-gcc", "-std=c99", "-ffreestanding", "-mcpu=cortex-m4", "-mthumb", "-O2",
-             "-fcallgraph-info=su", "-I", os.path.join(root, "control", "include"),
-             "-I", os.path.join(root, "hal", "include"), "-I", os.path.join(root, "firmware", "app"),
-             "-c", src, "-o", obj], cwd=out_dir)
-        cis.append(obj[:-2] + ".ci")
-    return run([sys.executable, os.path.join(root, "tools", "stack_depth.py"), "drive_control_isr"]
-               + cis).strip().splitlines()
+def target_memory(root, work):
+    """Stack (background + nested ISR) and RAM budget of the F28335 image on the 32-bit proxy
+    build (tools/check_target_memory.sh, which CI also runs on its own)."""
+    return run([os.path.join(root, "tools", "check_target_memory.sh"),
+                os.path.join(work, "memory")]).strip().splitlines()
 
 
 def machine():
@@ -151,6 +176,8 @@ def main():
     ap.add_argument("--out", required=True)
     ap.add_argument("--flags", default="-O3 (CMake Release)")
     ap.add_argument("--work")
+    ap.add_argument("--budget", type=float, default=WORST_STEP_BUDGET,
+                    help="fail if a DDC step costs more than this times the mean DDC step")
     a = ap.parse_args()
     for p in (a.sim, a.bench, a.opcount_fixed, a.opcount_float):
         if not os.access(p, os.X_OK):
@@ -161,8 +188,9 @@ def main():
     traces = record_traces(a.sim, work)
     points, ns = wall_times(a.bench, traces)
     counts, profiles = instruction_counts(a.bench, traces, work)
+    worst = worst_steps(a.bench, traces, work)
     sizes = freestanding_sizes(root, work)
-    stack = stack_depth(root, work)
+    memory = target_memory(root, work)
     ops = {"fixed": op_counts(a.opcount_fixed, traces), "float": op_counts(a.opcount_float, traces)}
     per_step = {c: counts[c] / points for c in CONFIGS}
 
@@ -205,6 +233,25 @@ def main():
     w("Here: DDC / MPTC-49 = **%.3f** in fixed point and **%.3f** in float (aim: at most 0.25)."
       % (per_step["ddc_fixed"] / per_step["mptc49_fixed"],
          per_step["ddc_float"] / per_step["mptc49_float"]))
+    w("")
+    w("## Worst single step, parameter changes included")
+    w("")
+    w("Every step of the same replay measured on its own (callgrind, one dump per step), with a")
+    w("run-time parameter change requested in the background every 500 steps (lambda, DDC")
+    w("direction reading, torque guard, flux reference mode and torque limit vary, so the MTPA")
+    w("table is rebuilt each time); the step after each request takes the new set. The set is")
+    w("built outside the ISR (ctl_request_params) and the step only switches buffers")
+    w("(ctl_config_take). Budget: no DDC step above %.1f times the mean DDC step of its" % a.budget)
+    w("arithmetic (`run_benchmark.py` fails otherwise; CI runs it).")
+    w("")
+    w("| configuration | steps | mean | worst | worst / mean | steps taking a new set | worst of those |")
+    w("|---|---|---|---|---|---|---|")
+    for c in CONFIGS:
+        r = worst[c]
+        w("| %s | %d | %.0f | %d (step %d%s) | %.3f | %d | %d |" % (
+            c, r["steps"], r["mean"], r["worst"], r["worst_step"],
+            ", takes a new set" if r["worst_takes"] else "", r["worst"] / r["mean"], r["taking"],
+            r["taking_worst"]))
     w("")
     w("## Protection check per period")
     w("")
@@ -278,21 +325,30 @@ def main():
             t, d, b = sizes[k]
             w("| %s | %d bytes | %d | %d |" % (k, t, d, b))
     w("")
-    w("## Stack depth of the ISR path")
+    w("## Stack and RAM of the F28335 image")
     w("")
-    w("From `drive_control_isr` through the drive, the control core and the profiler, on the")
-    w("same freestanding Arm build compiled with `-fcallgraph-info=su` (tools/stack_depth.py;")
-    w("no recursion and no variable-size frames anywhere, so the depth is bounded). The")
-    w("deepest path is a period in which a queued parameter set is applied (MTPA table")
-    w("rebuilt); the C28x counts 16-bit words, so the figure there differs but the path is the")
-    w("same.")
+    w("`tools/check_target_memory.sh` (CI runs it and fails if anything does not fit): the")
+    w("target's C sources compiled for a 32-bit Arm proxy with `-fcallgraph-info=su`; the")
+    w("deepest background path (from `main`, parameter builds included) plus the deepest")
+    w("control interrupt nested on top of it, converted to C28x words with margin, against the")
+    w("stack the TI link reserves; and the per-period code and tables the flash linker file")
+    w("copies to RAM, against L0..L3 and L4..L7. No recursion and no variable-size frames")
+    w("anywhere, so the depth is bounded. Figures in proxy bytes unless stated:")
     w("")
-    for line in stack:
-        w("- " + line)
+    w("```")
+    for line in memory:
+        w(line)
+    w("```")
     w("")
     os.makedirs(os.path.dirname(os.path.abspath(a.out)), exist_ok=True)
     with open(a.out, "w") as f:
         f.write("\n".join(L) + "\n")
+    for arith in ("fixed", "float"):
+        r = worst["ddc_" + arith]
+        if r["worst"] > a.budget * r["mean"]:
+            fail("DDC %s: step %d costs %d instructions, %.2f times the mean %.0f (budget %.1f)"
+                 % (arith, r["worst_step"], r["worst"], r["worst"] / r["mean"], r["mean"],
+                    a.budget))
     print("run_benchmark: wrote %s (DDC/MPTC-49 fixed %.3f, float %.3f)" % (
         a.out, per_step["ddc_fixed"] / per_step["mptc49_fixed"],
         per_step["ddc_float"] / per_step["mptc49_float"]))

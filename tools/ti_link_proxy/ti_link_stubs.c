@@ -14,7 +14,10 @@ volatile uint16_t IFR;
 /* __asm(" EALLOW") and the other single-instruction intrinsics. */
 void f28335_proxy_intrinsic(const char *instruction) { (void)instruction; }
 
-/* Symbols of the linker command files (ramfuncs load and run addresses). */
+/* Symbols of the linker command files (ramfuncs and ramconsts load and run addresses). */
 uint16_t RamfuncsLoadStart;
 uint16_t RamfuncsLoadEnd;
 uint16_t RamfuncsRunStart;
+uint16_t RamconstsLoadStart;
+uint16_t RamconstsLoadEnd;
+uint16_t RamconstsRunStart;
