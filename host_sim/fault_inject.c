@@ -28,7 +28,7 @@ static const sim_fault_info_t fault_table[SIM_FAULT_COUNT] = {
     {"encoder-jump", "position reading slips a quarter electrical turn", DRIVE_FAULT_ENCODER, 1.0},
     {"encoder-index", "encoder interface reports a counting error (lost index)",
      DRIVE_FAULT_ENCODER, 1.0},
-    {"adc-rail", "DC-link voltage channel reads 0 counts (sensor supply lost)",
+    {"adc-rail", "DC-link voltage channel reads full scale (sensor output shorted to its supply)",
      DRIVE_FAULT_ADC_RAIL, 1.0},
     {"adc-stuck", "ADC result registers stop updating while conversions are still flagged",
      DRIVE_FAULT_ADC_STUCK, 10.0},
@@ -117,7 +117,7 @@ void sim_fault_adc(sim_fault_state_t *s, hal_adc_sample_t *a)
     }
     switch (s->kind) {
     case SIM_FAULT_ADC_RAIL:
-        a->vdc = 0u;
+        a->vdc = 4095u;
         break;
     case SIM_FAULT_ADC_STUCK:
         *a = s->frozen_adc;

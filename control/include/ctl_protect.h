@@ -57,7 +57,8 @@ typedef struct {
     int16_t overspeed_periods;
     float current_sum_a; /* |i_a + i_b + i_c| limit per three-phase set */
     int16_t current_sum_periods;
-    int16_t adc_rail_low_counts;  /* a phase-current word at or below: at the rail */
+    int16_t adc_rail_low_counts;  /* a phase-current word at or below: at the rail (the DC
+                                   * link's 0 counts is 0 V, a link that is off) */
     int16_t adc_rail_high_counts; /* any word at or above: at the rail */
     int16_t adc_rail_periods;
     int16_t adc_stuck_periods;      /* identical word this long while current flows */

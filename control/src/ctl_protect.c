@@ -206,7 +206,10 @@ static uint16_t check_adc(ctl_protect_t *p, const ctl_protect_limits_t *l,
         rail = rail || in->raw_phase[k] <= l->adc_rail_low || in->raw_phase[k] >= l->adc_rail_high;
         flowing = flowing || ctl_abs(in->i_phase[k]) > l->stuck_min_current;
     }
-    rail = rail || in->raw_vdc <= l->adc_rail_low || in->raw_vdc >= l->adc_rail_high;
+    /* The DC link's channel is unipolar: 0 counts is 0 V, a link that is off (bring-up, a
+     * drive waiting for its supply), which the under-voltage check judges. Only its top
+     * rail means the sensor chain left its range. */
+    rail = rail || in->raw_vdc >= l->adc_rail_high;
     if (filtered(rail, &p->n_rail, l->adc_rail_periods)) {
         f |= CTL_FAULT_ADC_RAIL;
     }

@@ -13,9 +13,12 @@ static const struct {
 } drive_fault_map[] = {
     {CTL_FAULT_HW_TRIP, DRIVE_FAULT_HW_TRIP},
     {CTL_FAULT_OVERCURRENT, DRIVE_FAULT_OVERCURRENT},
+    /* a channel at its rail first: the value it stands for is unknown, and the sensor chain
+     * is the first thing to look at (a DC-link channel at full scale also reads as
+     * overvoltage) */
+    {CTL_FAULT_ADC_RAIL, DRIVE_FAULT_ADC_RAIL},
     {CTL_FAULT_DC_OVERVOLTAGE, DRIVE_FAULT_DC_OVERVOLTAGE},
     {CTL_FAULT_MEASUREMENT, DRIVE_FAULT_MEASUREMENT},
-    {CTL_FAULT_ADC_RAIL, DRIVE_FAULT_ADC_RAIL},
     {CTL_FAULT_ADC_MISSING, DRIVE_FAULT_ADC_MISSING},
     {CTL_FAULT_ADC_STUCK, DRIVE_FAULT_ADC_STUCK},
     {CTL_FAULT_CURRENT_SUM, DRIVE_FAULT_CURRENT_SUM},
@@ -112,6 +115,7 @@ void drive_init(drive_t *d, const ctl_params_t *p)
     d->isr_count = 0;
     d->calibrated = false;
     d->run_refused = 0u;
+    d->run_refusal = DRIVE_RUN_ACCEPTED;
     d->params_bg = *p;
     d->speed_ref_rpm = 0.0f;
     d->torque_ref_nm = 0.0f;
@@ -227,6 +231,48 @@ static void drive_run_step(drive_t *d)
 
 static void drive_control_step(drive_t *d);
 
+drive_run_refusal_t drive_run_check(const drive_t *d)
+{
+    if (d->state != DRIVE_STATE_READY) {
+        return DRIVE_RUN_REFUSED_STATE;
+    }
+    if (!d->encoder.healthy) {
+        return DRIVE_RUN_REFUSED_ENCODER;
+    }
+    if (d->meas.vdc < drive_limits(d)->dc_undervoltage) {
+        return DRIVE_RUN_REFUSED_UNDERVOLTAGE;
+    }
+    return DRIVE_RUN_ACCEPTED;
+}
+
+static void drive_refuse_run(drive_t *d, drive_run_refusal_t why)
+{
+    d->run_refusal = why;
+    if (d->run_refused < UINT16_MAX) {
+        d->run_refused++;
+    }
+}
+
+/* READY: a run request starts the drive when nothing stands against it. */
+static void drive_ready_step(drive_t *d)
+{
+    drive_run_refusal_t why;
+    if (!d->run_requested) {
+        return;
+    }
+    d->run_requested = false;
+    why = drive_run_check(d);
+    if (why != DRIVE_RUN_ACCEPTED) {
+        drive_refuse_run(d, why);
+        return;
+    }
+    d->stop_requested = false;
+    ctl_reset(&d->ctl);
+    d->state = DRIVE_STATE_RUN;
+    hal_pwm_enable();
+    drive_run_step(d);
+}
+
 void drive_control_isr(drive_t *d)
 {
     prof_begin(d->isr_latency_cycles);
@@ -305,7 +351,7 @@ static void drive_control_step(drive_t *d)
     if (d->run_requested && d->state != DRIVE_STATE_READY) {
         d->run_requested = false; /* refused, not deferred */
         if (d->state != DRIVE_STATE_RUN) {
-            d->run_refused++;
+            drive_refuse_run(d, DRIVE_RUN_REFUSED_STATE);
         }
     }
     if (d->clear_requested && d->state != DRIVE_STATE_FAULT) {
@@ -317,18 +363,7 @@ static void drive_control_step(drive_t *d)
         drive_calibrate(d);
         break;
     case DRIVE_STATE_READY:
-        if (d->run_requested && !d->encoder.healthy) {
-            d->run_requested = false;
-            d->run_refused++;
-        }
-        if (d->run_requested) {
-            d->run_requested = false;
-            d->stop_requested = false;
-            ctl_reset(&d->ctl);
-            d->state = DRIVE_STATE_RUN;
-            hal_pwm_enable();
-            drive_run_step(d);
-        }
+        drive_ready_step(d);
         break;
     case DRIVE_STATE_RUN:
         if (d->stop_requested) {

@@ -16,8 +16,10 @@
  *         never calibrated successfully).
  * A run request is acted on in READY only: made in any other state it is
  * refused (dropped and counted), never deferred. READY -> RUN also needs a
- * healthy encoder. Likewise a clear request outside FAULT is dropped, so it
- * can never clear a later fault.
+ * healthy encoder and a DC link above the under-voltage limit: with the link
+ * off the drive calibrates and waits in READY, and a run request is refused
+ * with that reason (drive_run_check). Likewise a clear request outside FAULT
+ * is dropped, so it can never clear a later fault.
  */
 #ifndef DRIVE_H
 #define DRIVE_H
@@ -64,6 +66,16 @@ typedef enum {
 
 #define DRIVE_FAULT_COUNT 17
 
+/* Why a run request was refused (the last reason is kept and reported over the link). */
+typedef enum {
+    DRIVE_RUN_ACCEPTED = 0,
+    DRIVE_RUN_REFUSED_STATE = 1,       /* not in READY: calibrating, faulted or running */
+    DRIVE_RUN_REFUSED_ENCODER = 2,     /* encoder not healthy: index not seen yet */
+    DRIVE_RUN_REFUSED_UNDERVOLTAGE = 3 /* DC link below the under-voltage limit (or off) */
+} drive_run_refusal_t;
+
+#define DRIVE_RUN_REFUSAL_COUNT 4
+
 typedef struct {
     ctl_t ctl;
     ctl_protect_t protect;
@@ -91,11 +103,12 @@ typedef struct {
     ctl_cmd_t cmd;
     uint32_t isr_count;
     /* bookkeeping for the background side (commands, telemetry) */
-    bool calibrated;        /* offsets calibrated successfully at least once */
-    uint16_t run_refused;   /* run requests dropped (wrong state, encoder) */
-    ctl_params_t params_bg; /* last parameter set requested (background copy) */
-    float speed_ref_rpm;    /* last speed reference set */
-    float torque_ref_nm;    /* last torque reference set */
+    bool calibrated;                 /* offsets calibrated successfully at least once */
+    uint16_t run_refused;            /* run requests dropped (wrong state, encoder, DC link) */
+    drive_run_refusal_t run_refusal; /* reason of the last refused run request */
+    ctl_params_t params_bg;          /* last parameter set requested (background copy) */
+    float speed_ref_rpm;             /* last speed reference set */
+    float torque_ref_nm;             /* last torque reference set */
     /* ISR timing, filled by the platform's ISR wrapper (0 where unused) */
     uint32_t isr_cycles_last;
     uint32_t isr_cycles_max;
@@ -109,6 +122,10 @@ void drive_init(drive_t *d, const ctl_params_t *p);
 
 /* One control period: sample, state machine, control step, PWM write. */
 void drive_control_isr(drive_t *d);
+
+/* Why a run request would be refused now (DRIVE_RUN_ACCEPTED if it would not): READY, a
+ * healthy encoder and a DC link at or above the under-voltage limit are needed. */
+drive_run_refusal_t drive_run_check(const drive_t *d);
 
 /* Background-side commands, acted on by the next ISR. */
 void drive_request_run(drive_t *d);

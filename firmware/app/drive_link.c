@@ -10,6 +10,8 @@
 #define DRIVE_LINK_ASSERT(name, cond) typedef char drive_link_assert_##name[(cond) ? 1 : -1]
 DRIVE_LINK_ASSERT(fault_names, (int32_t)SXL_FAULT_NAME_COUNT == (int32_t)DRIVE_FAULT_COUNT);
 DRIVE_LINK_ASSERT(state_names, (int32_t)SXL_STATE_NAME_COUNT == (int32_t)DRIVE_STATE_FAULT + 1);
+DRIVE_LINK_ASSERT(run_refusal_names,
+                  (int32_t)SXL_RUN_REFUSAL_NAME_COUNT == (int32_t)DRIVE_RUN_REFUSAL_COUNT);
 DRIVE_LINK_ASSERT(fault_bits, SXL_FAULT_BIT_COUNT == 16u);
 DRIVE_LINK_ASSERT(bit_overcurrent, CTL_FAULT_OVERCURRENT == 0x0001);
 DRIVE_LINK_ASSERT(bit_dc_overvoltage, CTL_FAULT_DC_OVERVOLTAGE == 0x0002);
@@ -89,6 +91,7 @@ void drive_link_status(const drive_t *d, uint16_t rx_errors, uint16_t *out)
     sxl_put_u16(&out[SXL_ST_RX_ERRORS], rx_errors);
     sxl_put_u16(&out[SXL_ST_FAULTS], drive_faults_latched(d));
     sxl_put_u16(&out[SXL_ST_RECORDS], ctl_protect_log_pending(&d->protect));
+    out[SXL_ST_RUN_REFUSAL] = (uint16_t)((uint16_t)d->run_refusal & 0xFFu);
 }
 
 uint16_t drive_link_fault_record(drive_t *d, uint16_t *out)
@@ -242,10 +245,14 @@ void drive_link_handle(drive_t *d, const sxl_frame_t *req, sxl_frame_t *reply, u
     case SXL_CMD_RUN:
         if (req->len != 0u) {
             result = SXL_ERR_LENGTH;
-        } else if (d->state != DRIVE_STATE_READY || !d->encoder.healthy) {
-            result = SXL_ERR_REFUSED;
         } else {
-            drive_request_run(d);
+            const drive_run_refusal_t why = drive_run_check(d);
+            if (why != DRIVE_RUN_ACCEPTED) {
+                d->run_refusal = why; /* the status says why */
+                result = SXL_ERR_REFUSED;
+            } else {
+                drive_request_run(d);
+            }
         }
         break;
     case SXL_CMD_STOP:

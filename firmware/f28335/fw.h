@@ -21,6 +21,15 @@
 /* Electrical angle of the encoder index relative to the d axis (2^32 = one
  * turn): measure it on the machine (docs/porting.md) and set it here. */
 #define FW_ENCODER_OFFSET ((uint32_t)0u)
+/* Bench images only (docs/porting.md section 8): build with -DFW_BENCH_DC_UNDERVOLTAGE_V=0
+ * to check the gate signals with the DC link off, or with a lower value for a bench supply.
+ * The default, 350 V, refuses RUN and trips below it (docs/faults.md). */
+#if defined(FW_BENCH_DC_UNDERVOLTAGE_V)
+#define FW_DC_UNDERVOLTAGE_OVERRIDE 1
+#else
+#define FW_DC_UNDERVOLTAGE_OVERRIDE 0
+#define FW_BENCH_DC_UNDERVOLTAGE_V 0.0f
+#endif
 /* ISR time limit in CPU cycles: 80 % of the 15000-cycle period at 10 kHz,
  * leaving room for the conversion time before the interrupt and the latency. */
 #define FW_ISR_BUDGET_CYCLES ((uint32_t)12000u)

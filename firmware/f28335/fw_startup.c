@@ -72,6 +72,9 @@ bool fw_startup(void)
     f28335_pie_init(fw_unexpected_isr);
 
     ctl_params_default(&p);
+    if (FW_DC_UNDERVOLTAGE_OVERRIDE) {
+        p.protect.dc_undervoltage_v = (float)FW_BENCH_DC_UNDERVOLTAGE_V;
+    }
     if (!hal_pwm_init(FW_PWM_HZ, FW_DEAD_TIME_NS)) {
         hal_ok = false;
     }

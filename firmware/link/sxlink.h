@@ -19,7 +19,9 @@
 #define SXL_SOF 0xA5u
 #define SXL_MAX_PAYLOAD 48u
 #define SXL_MAX_FRAME (SXL_MAX_PAYLOAD + 5u)
-#define SXL_VERSION 2u /* 2: fault fields in the status, SXL_CMD_GET_FAULT_RECORD */
+#define SXL_VERSION                                                                                \
+    3u /* 2: fault fields in the status, SXL_CMD_GET_FAULT_RECORD;                                 \
+        * 3: reason of the last refused run in the status */
 
 /* Commands (host -> drive). A reply carries CMD | SXL_REPLY and starts with
  * a result byte. */
@@ -49,21 +51,24 @@
 #define SXL_CONTROLLER_MPTC13 2u
 
 /* Status payload (after the result byte), offsets in bytes. */
-#define SXL_ST_STATE 0u       /* uint8 drive_state_t */
-#define SXL_ST_FAULT 1u       /* uint8 drive_fault_t */
-#define SXL_ST_FLAGS 2u       /* uint8 SXL_FLAG_* */
-#define SXL_ST_CONTROLLER 3u  /* uint8 controller in force */
-#define SXL_ST_SPEED 4u       /* int32 measured speed, 0.1 r/min */
-#define SXL_ST_SPEED_REF 8u   /* int32 speed reference, 0.1 r/min */
-#define SXL_ST_TORQUE 12u     /* int32 torque estimate, mN*m */
-#define SXL_ST_TORQUE_REF 16u /* int32 torque reference, mN*m */
-#define SXL_ST_LAMBDA 20u     /* uint32 lambda in force, 0.001 N*m/Wb */
-#define SXL_ST_ISR_COUNT 24u  /* uint32 control periods since start */
-#define SXL_ST_ISR_MAX 28u    /* uint32 longest ISR, CPU cycles */
-#define SXL_ST_RX_ERRORS 32u  /* uint16 malformed frames received */
-#define SXL_ST_FAULTS 34u     /* uint16 latched ctl_fault_t mask (protocol 2) */
-#define SXL_ST_RECORDS 36u    /* uint16 fault records not yet read (protocol 2) */
-#define SXL_ST_SIZE 38u
+#define SXL_ST_STATE 0u        /* uint8 drive_state_t */
+#define SXL_ST_FAULT 1u        /* uint8 drive_fault_t */
+#define SXL_ST_FLAGS 2u        /* uint8 SXL_FLAG_* */
+#define SXL_ST_CONTROLLER 3u   /* uint8 controller in force */
+#define SXL_ST_SPEED 4u        /* int32 measured speed, 0.1 r/min */
+#define SXL_ST_SPEED_REF 8u    /* int32 speed reference, 0.1 r/min */
+#define SXL_ST_TORQUE 12u      /* int32 torque estimate, mN*m */
+#define SXL_ST_TORQUE_REF 16u  /* int32 torque reference, mN*m */
+#define SXL_ST_LAMBDA 20u      /* uint32 lambda in force, 0.001 N*m/Wb */
+#define SXL_ST_ISR_COUNT 24u   /* uint32 control periods since start */
+#define SXL_ST_ISR_MAX 28u     /* uint32 longest ISR, CPU cycles */
+#define SXL_ST_RX_ERRORS 32u   /* uint16 malformed frames received */
+#define SXL_ST_FAULTS 34u      /* uint16 latched ctl_fault_t mask (protocol 2) */
+#define SXL_ST_RECORDS 36u     /* uint16 fault records not yet read (protocol 2) */
+#define SXL_ST_RUN_REFUSAL 38u /* uint8 drive_run_refusal_t of the last refused run (protocol 3)   \
+                                */
+#define SXL_ST_SIZE 39u
+#define SXL_ST_SIZE_V2 38u /* protocol 2 ended at records */
 #define SXL_ST_SIZE_V1 34u /* protocol 1 ended at rx_errors: readers accept the shorter block */
 /* Profile payload (reply to SXL_CMD_GET_PROFILE, after the result byte); cycles of the
  * ISR's counter, see firmware/app/profile.h. */
@@ -153,9 +158,11 @@ int16_t sxl_get_i16(const uint16_t *p);
 
 /* Names (sxlink_names.c), upper case as in the firmware's enums; "?" out of range. Plain
  * numbers, no firmware headers, so host programs can use them. */
-#define SXL_STATE_NAME_COUNT 5u  /* drive_state_t: INIT .. FAULT */
-#define SXL_FAULT_NAME_COUNT 17u /* drive_fault_t: NONE .. MEASUREMENT (= DRIVE_FAULT_COUNT) */
-#define SXL_FAULT_BIT_COUNT 16u  /* ctl_fault_t bits 0..15 */
+#define SXL_STATE_NAME_COUNT 5u       /* drive_state_t: INIT .. FAULT */
+#define SXL_FAULT_NAME_COUNT 17u      /* drive_fault_t: NONE .. MEASUREMENT (= DRIVE_FAULT_COUNT) */
+#define SXL_FAULT_BIT_COUNT 16u       /* ctl_fault_t bits 0..15 */
+#define SXL_RUN_REFUSAL_NAME_COUNT 4u /* drive_run_refusal_t: NONE .. UNDERVOLTAGE */
+const char *sxl_run_refusal_name(uint16_t reason);
 const char *sxl_state_name(uint16_t state);
 const char *sxl_fault_name(uint16_t code);
 /* Name of ctl_fault_t bit number bit (0 = OVERCURRENT .. 15 = PLATFORM), not of a mask. */

@@ -16,6 +16,14 @@ static const char *const fault_bit_names[SXL_FAULT_BIT_COUNT] = {
     "ADC_STUCK",   "ADC_OFFSET",     "OVERRUN",         "CURRENT_SUM", "OPEN_PHASE", "HW_TRIP",
     "PARAMS",      "MEASUREMENT",    "ADC_MISSING",     "PLATFORM"};
 
+static const char *const run_refusal_names[SXL_RUN_REFUSAL_NAME_COUNT] = {
+    "NONE", "NOT_READY", "ENCODER", "UNDERVOLTAGE"};
+
+const char *sxl_run_refusal_name(uint16_t reason)
+{
+    return (reason < SXL_RUN_REFUSAL_NAME_COUNT) ? run_refusal_names[reason] : "?";
+}
+
 const char *sxl_state_name(uint16_t state)
 {
     return (state < SXL_STATE_NAME_COUNT) ? state_names[state] : "?";

@@ -270,10 +270,13 @@ static int print_reply(const sxl_frame_t *r)
                (unsigned long)sxl_get_u32(&st[SXL_ST_ISR_COUNT]),
                (unsigned long)sxl_get_u32(&st[SXL_ST_ISR_MAX]),
                (unsigned)sxl_get_u16(&st[SXL_ST_RX_ERRORS]));
-        if (r->len >= 1u + SXL_ST_SIZE) {
+        if (r->len >= 1u + SXL_ST_SIZE_V2) {
             char mask[256];
             (void)sxl_fault_mask_str(sxl_get_u16(&st[SXL_ST_FAULTS]), mask, (uint16_t)sizeof mask);
             printf(" faults=%s fault_records=%u", mask, (unsigned)sxl_get_u16(&st[SXL_ST_RECORDS]));
+        }
+        if (r->len >= 1u + SXL_ST_SIZE) {
+            printf(" last_run_refusal=%s", sxl_run_refusal_name(st[SXL_ST_RUN_REFUSAL]));
         }
         printf("\n");
         return 0;

@@ -109,6 +109,19 @@ static void rail(ctl_protect_input_t *in, int32_t n)
     (void)n;
     in->raw_phase[5] = 4095;
 }
+static void dc_link_rail(ctl_protect_input_t *in, int32_t n)
+{
+    (void)n;
+    in->raw_vdc = 4095;
+}
+/* a DC link that is off: 0 V, 0 counts, at standstill */
+static void dc_link_off(ctl_protect_input_t *in, int32_t n)
+{
+    (void)n;
+    in->raw_vdc = 0;
+    in->vdc = CTL_Q(0.0);
+    in->running = false;
+}
 static ctl_q frozen_theta;
 static void stopped_encoder(ctl_protect_input_t *in, int32_t n)
 {
@@ -161,6 +174,11 @@ static void test_detection_latency_of_each_fault(void **state)
     assert_int_equal(periods_to_detect(sum_error_uncalibrated, CTL_FAULT_CURRENT_SUM, 100), -1);
     setup(NULL);
     assert_int_equal(periods_to_detect(rail, CTL_FAULT_ADC_RAIL, 10), 3);
+    setup(NULL);
+    assert_int_equal(periods_to_detect(dc_link_rail, CTL_FAULT_ADC_RAIL, 10), 3);
+    setup(NULL);
+    /* bring-up with the link off: no fault of any kind, the drive may calibrate and wait */
+    assert_int_equal(periods_to_detect(dc_link_off, 0xFFFFu, 2000), -1);
     setup(NULL);
     assert_int_equal(periods_to_detect(unhealthy_encoder, CTL_FAULT_ENCODER, 10), 1);
     setup(NULL);

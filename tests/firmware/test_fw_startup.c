@@ -22,22 +22,26 @@ extern uint16_t fw_host_ramfuncs_run[4];
 extern uint16_t fw_host_ramconsts_load[3];
 extern uint16_t fw_host_ramconsts_run[3];
 
+/* DC-link word the emulated conversions return (counts; 2765 = 540 V). */
+static uint16_t dc_link_counts;
+
 static int setup(void **state)
 {
     (void)state;
+    dc_link_counts = 2765u;
     f28335_host_regs_reset();
     R.gpiodata.GPADAT = (uint32_t)1u << F28335_PWM_TRIP_GPIO; /* TZ1 inactive */
     return 0;
 }
 
-/* One end of conversion: zero current on every phase, 540 V DC link. */
+/* One end of conversion: zero current on every phase, the DC link at dc_link_counts. */
 static void adc_sequence_done(void)
 {
     int i;
     for (i = 0; i < 6; i++) {
         R.adc.ADCRESULT[i] = (uint16_t)(2048u << 4);
     }
-    R.adc.ADCRESULT[6] = (uint16_t)(2765u << 4);
+    R.adc.ADCRESULT[6] = (uint16_t)(dc_link_counts << 4);
     R.adc.ADCST = ADC_ST_INT_SEQ1;
 }
 
@@ -188,6 +192,101 @@ static void test_parameter_change_reaches_everything_at_the_next_period(void **s
                 CTL_TWO_PI * 2.0 / wb, 1e-6);
 }
 
+static uint16_t status_field(uint16_t offset)
+{
+    sxl_frame_t rep;
+    assert_int_equal(transact(SXL_CMD_GET_STATUS, NULL, 0u, &rep), SXL_RX_FRAME);
+    assert_int_equal(rep.payload[0], SXL_OK);
+    return rep.payload[1u + offset];
+}
+
+static uint16_t command(uint16_t cmd)
+{
+    sxl_frame_t rep;
+    assert_int_equal(transact(cmd, NULL, 0u, &rep), SXL_RX_FRAME);
+    return rep.payload[0];
+}
+
+static void assert_outputs_forced_off(void)
+{
+    int i;
+    for (i = 0; i < 6; i++) {
+        assert_int_equal(R.epwm[i].TZFRC & EPWM_TZ_OST, EPWM_TZ_OST);
+        R.epwm[i].TZFRC = 0u; /* re-armed: the next force shows again */
+    }
+}
+
+/* The bring-up of docs/porting.md section 8, step by step, on the firmware as flashed. */
+static void test_bring_up_steps_of_the_porting_guide(void **state)
+{
+    ctl_params_t bench;
+    (void)state;
+    /* 1. DC link off, gate drivers unpowered: calibrate, then wait in READY, no fault. */
+    dc_link_counts = 0u;
+    assert_true(fw_startup());
+    isr_periods(1);
+    assert_int_equal(status_field(SXL_ST_STATE), DRIVE_STATE_CALIBRATE);
+    isr_periods(DRIVE_CALIBRATION_SAMPLES - 1);
+    assert_int_equal(status_field(SXL_ST_STATE), DRIVE_STATE_READY);
+    assert_int_equal(status_field(SXL_ST_FAULT), DRIVE_FAULT_NONE);
+    assert_int_equal(drive_faults_latched(&fw_drive), 0u);
+    assert_outputs_forced_off();
+    isr_periods(2000); /* and it stays there */
+    assert_int_equal(fw_drive.state, DRIVE_STATE_READY);
+
+    /* 2. One turn of the shaft: the index is seen, the encoder reads healthy. */
+    R.eqep1.QEPSTS = EQEP_STS_FIMF;
+    isr_periods(1);
+    assert_int_equal(status_field(SXL_ST_FLAGS) & SXL_FLAG_ENCODER_OK, SXL_FLAG_ENCODER_OK);
+
+    /* 3. run with the link off: refused with the reason, outputs stay off. */
+    assert_int_equal(command(SXL_CMD_RUN), SXL_ERR_REFUSED);
+    assert_int_equal(status_field(SXL_ST_RUN_REFUSAL), DRIVE_RUN_REFUSED_UNDERVOLTAGE);
+    isr_periods(5);
+    assert_int_equal(fw_drive.state, DRIVE_STATE_READY);
+    assert_int_equal(R.epwm[0].TZCLR & EPWM_TZ_OST, 0u);
+    /* ... the gate check on the bench image (FW_BENCH_DC_UNDERVOLTAGE_V=0: the same set) */
+    bench = fw_drive.params_bg;
+    bench.protect.dc_undervoltage_v = 0.0f;
+    assert_int_equal(drive_request_params(&fw_drive, &bench), CTL_PARAM_OK);
+    isr_periods(1);
+    assert_int_equal(command(SXL_CMD_RUN), SXL_OK);
+    isr_periods(3);
+    assert_int_equal(fw_drive.state, DRIVE_STATE_RUN);
+    assert_int_equal(R.epwm[0].TZCLR & EPWM_TZ_OST, EPWM_TZ_OST); /* pulses out */
+    assert_int_equal(command(SXL_CMD_STOP), SXL_OK);
+    isr_periods(1);
+    assert_int_equal(fw_drive.state, DRIVE_STATE_READY);
+    assert_outputs_forced_off();
+    /* GPIO12 low: hardware trip, all outputs off, no clear while it stays low */
+    assert_int_equal(command(SXL_CMD_RUN), SXL_OK);
+    isr_periods(2);
+    R.gpiodata.GPADAT = 0u;
+    isr_periods(1);
+    assert_int_equal(status_field(SXL_ST_FAULT), DRIVE_FAULT_HW_TRIP);
+    assert_outputs_forced_off();
+    assert_int_equal(command(SXL_CMD_CLEAR_FAULT), SXL_OK);
+    isr_periods(2);
+    assert_int_equal(fw_drive.state, DRIVE_STATE_FAULT);
+    R.gpiodata.GPADAT = (uint32_t)1u << F28335_PWM_TRIP_GPIO;
+    assert_int_equal(command(SXL_CMD_CLEAR_FAULT), SXL_OK);
+    isr_periods(2);
+    assert_int_equal(fw_drive.state, DRIVE_STATE_READY);
+
+    /* 5. Back to the normal limits: 300 V refuses RUN, 540 V runs. */
+    bench.protect.dc_undervoltage_v = 350.0f;
+    assert_int_equal(drive_request_params(&fw_drive, &bench), CTL_PARAM_OK);
+    dc_link_counts = 1536u; /* 300 V */
+    isr_periods(1);
+    assert_int_equal(command(SXL_CMD_RUN), SXL_ERR_REFUSED);
+    assert_int_equal(status_field(SXL_ST_RUN_REFUSAL), DRIVE_RUN_REFUSED_UNDERVOLTAGE);
+    dc_link_counts = 2765u; /* 540 V */
+    isr_periods(1);
+    assert_int_equal(command(SXL_CMD_RUN), SXL_OK);
+    isr_periods(2);
+    assert_int_equal(fw_drive.state, DRIVE_STATE_RUN);
+}
+
 static void test_overrun_is_a_fault(void **state)
 {
     (void)state;
@@ -251,6 +350,7 @@ int main(void)
         cmocka_unit_test_setup(test_startup_configures_everything, setup),
         cmocka_unit_test_setup(test_isr_calibrates_then_runs_on_serial_command, setup),
         cmocka_unit_test_setup(test_parameter_change_reaches_everything_at_the_next_period, setup),
+        cmocka_unit_test_setup(test_bring_up_steps_of_the_porting_guide, setup),
         cmocka_unit_test_setup(test_overrun_is_a_fault, setup),
         cmocka_unit_test_setup(test_malformed_frames_counted, setup),
         cmocka_unit_test_setup(test_unexpected_interrupt_and_startup_failure, setup),
