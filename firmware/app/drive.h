@@ -4,10 +4,12 @@
  * the ADC interrupt; the simulator calls it through the simulated HAL, so
  * the simulated loop is the firmware's loop.
  *
- * Protection (ctl_protect) runs every period in every state after INIT, before the
- * control step: a fault forces the PWM off in that same period, before any new
- * command reaches the compare registers, latches a code and appends a record to
- * the fault log, which survives a clear until it is read.
+ * Protection (ctl_protect) runs in every period that brings a fresh conversion, in
+ * every state after INIT, before the control step: a fault forces the PWM off in that
+ * same period, before any new command reaches the compare registers, latches a code
+ * and appends a record to the fault log, which survives a clear until it is read. A
+ * period without a fresh conversion is ADC_MISSING in CALIBRATE and RUN; in READY and
+ * FAULT it checks only the hardware trip input.
  *
  * States: INIT -> CALIBRATE (PWM off, ADC offsets averaged) -> READY
  *         READY -> RUN on a run command; RUN -> READY on stop;
