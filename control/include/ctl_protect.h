@@ -6,12 +6,16 @@
  *
  * Filters count consecutive control periods a condition holds; a condition that
  * clears resets its counter. Several faults in one period are all latched and go
- * into one record (its mask has every bit); a full log keeps the oldest records
- * (the root cause) and counts what it had to drop.
+ * into one record (its mask has every bit). A full log keeps the oldest records (the
+ * root cause) and counts what it had to drop, except that the first record after a
+ * clear (a new root cause) always goes in: it replaces the newest record held.
  *
  * The log is a single-producer single-consumer ring: the control ISR only advances
  * log_write, the background reader only advances log_read (16-bit stores, atomic on
- * C28x), so a record is read while the ISR may append without a critical section.
+ * C28x), so a record is read while the ISR may append without a critical section. A
+ * compiler barrier (ctl_barrier.h) orders each record's fields before the index that
+ * publishes or frees it. The ISR replaces the newest record only when the log is full,
+ * where the reader, copying the oldest, cannot be on it.
  */
 #ifndef CTL_PROTECT_H
 #define CTL_PROTECT_H
@@ -40,6 +44,9 @@
 #define CTL_FAULT_PLATFORM ((uint16_t)0x8000u)    /* a peripheral failed to initialise */
 
 #define CTL_PROTECT_LOG_SIZE 8
+/* A current channel counts as converting if its word changed within this many periods
+ * (sensor noise moves a live 12-bit word every few periods even at zero current). */
+#define CTL_PROTECT_ALIVE_PERIODS 1000
 #define CTL_PROTECT_OPEN_PHASE_WINDOW                                                              \
     400 /* periods: 40 ms at 10 kHz, > 1 electrical period at 300 r/min */
 
@@ -140,6 +147,7 @@ typedef struct {
     int16_t n_rail;
     int16_t n_stuck[7];
     int16_t last_raw[7];
+    int16_t word_age[6];  /* periods since each current channel's word last changed */
     ctl_q expected_speed; /* electrical speed the torque should have built up without counts */
     ctl_q expected_angle; /* and the angle (turns) it should have turned through */
     ctl_q last_theta;
@@ -148,9 +156,10 @@ typedef struct {
     int16_t open_count;
     /* log */
     ctl_fault_record_t log[CTL_PROTECT_LOG_SIZE];
-    volatile uint16_t log_write; /* records appended (ISR side), modulo 2^16 */
-    volatile uint16_t log_read;  /* records read (background side), modulo 2^16 */
-    volatile uint16_t log_dropped;
+    volatile uint16_t log_write;   /* records appended (ISR side), modulo 2^16 */
+    volatile uint16_t log_read;    /* records read (background side), modulo 2^16 */
+    volatile uint16_t log_dropped; /* saturates at 65535 */
+    bool episode_recorded;         /* the first fault since the last clear has a record */
 } ctl_protect_t;
 
 /* Settings of the reference drive: 15 A, 720 V / 350 V, 2000 r/min, ... */
@@ -176,6 +185,11 @@ void ctl_protect_raise(ctl_protect_t *p, uint16_t faults, const ctl_protect_inpu
 
 /* Clear the latch if no fault condition is active; true on success. The log is kept. */
 bool ctl_protect_clear(ctl_protect_t *p);
+
+/* Every current channel's word changed within CTL_PROTECT_ALIVE_PERIODS: the converter runs.
+ * Judged in every state (the ADC converts with the outputs off), so a latched ADC_STUCK can
+ * be re-verified at standstill before a clear. */
+bool ctl_protect_converter_alive(const ctl_protect_t *p);
 
 /* Oldest unread record; false when the log is empty. Background side. */
 bool ctl_protect_read_record(ctl_protect_t *p, ctl_fault_record_t *r);

@@ -1,5 +1,6 @@
 #include "ctl_protect.h"
 
+#include "ctl_barrier.h"
 #include "ctl_constants.h"
 #include "ctl_pu.h"
 
@@ -111,12 +112,17 @@ static void reset_filters(ctl_protect_t *p)
 
 void ctl_protect_init(ctl_protect_t *p)
 {
+    int16_t k;
     p->latched = 0u;
     p->active = 0u;
     p->period = 0u;
     p->log_write = 0u;
     p->log_read = 0u;
     p->log_dropped = 0u;
+    p->episode_recorded = false;
+    for (k = 0; k < 6; k++) {
+        p->word_age[k] = 0;
+    }
     reset_filters(p);
 }
 
@@ -216,9 +222,15 @@ static uint16_t check_adc(ctl_protect_t *p, const ctl_protect_limits_t *l,
     /* Phase currents ripple every period while the inverter switches: a frozen word is a
      * dead converter or multiplexer. */
     for (k = 0; k < 6; k++) {
-        const bool same = in->running && flowing && in->raw_phase[k] == p->last_raw[k];
+        const bool unchanged = in->raw_phase[k] == p->last_raw[k];
+        const bool same = in->running && flowing && unchanged;
         if (filtered(same, &p->n_stuck[k], l->adc_stuck_periods)) {
             f |= CTL_FAULT_ADC_STUCK;
+        }
+        if (!unchanged) {
+            p->word_age[k] = 0;
+        } else if (p->word_age[k] < INT16_MAX) {
+            p->word_age[k]++;
         }
         p->last_raw[k] = in->raw_phase[k];
     }
@@ -264,17 +276,17 @@ static uint16_t check_open_phase(ctl_protect_t *p, const ctl_protect_limits_t *l
     return f;
 }
 
-static void record(ctl_protect_t *p, uint16_t faults, const ctl_protect_input_t *in,
-                   ctl_q torque_ref, int16_t vector, ctl_q duty)
+static void drop_one(ctl_protect_t *p)
 {
-    const uint16_t w = p->log_write;
-    ctl_fault_record_t *r;
-    int16_t k;
-    if ((uint16_t)(w - p->log_read) >= (uint16_t)CTL_PROTECT_LOG_SIZE) {
-        p->log_dropped++; /* keep the oldest: the first fault is the root cause */
-        return;
+    if (p->log_dropped < UINT16_MAX) {
+        p->log_dropped++;
     }
-    r = &p->log[w % (uint16_t)CTL_PROTECT_LOG_SIZE];
+}
+
+static void fill_record(ctl_fault_record_t *r, const ctl_protect_t *p, uint16_t faults,
+                        const ctl_protect_input_t *in, ctl_q torque_ref, int16_t vector, ctl_q duty)
+{
+    int16_t k;
     r->faults = faults;
     r->period = p->period;
     for (k = 0; k < 6; k++) {
@@ -287,7 +299,31 @@ static void record(ctl_protect_t *p, uint16_t faults, const ctl_protect_input_t 
     r->torque_ref = torque_ref;
     r->vector = vector;
     r->duty = duty;
-    p->log_write = (uint16_t)(w + 1u); /* publish only once the record is complete */
+}
+
+static void record(ctl_protect_t *p, uint16_t faults, const ctl_protect_input_t *in,
+                   ctl_q torque_ref, int16_t vector, ctl_q duty)
+{
+    const uint16_t w = p->log_write;
+    const bool full = (uint16_t)(w - p->log_read) >= (uint16_t)CTL_PROTECT_LOG_SIZE;
+    if (full && p->episode_recorded) {
+        drop_one(p); /* keep the oldest: the first fault of this episode is recorded */
+        return;
+    }
+    if (full) {
+        /* A new root cause since the last clear: it replaces the newest record. The reader
+         * copies the oldest, eight slots away, so the slot is the ISR's alone. */
+        drop_one(p);
+        fill_record(&p->log[(uint16_t)(w - 1u) % (uint16_t)CTL_PROTECT_LOG_SIZE], p, faults, in,
+                    torque_ref, vector, duty);
+        p->episode_recorded = true;
+        return;
+    }
+    fill_record(&p->log[w % (uint16_t)CTL_PROTECT_LOG_SIZE], p, faults, in, torque_ref, vector,
+                duty);
+    p->episode_recorded = true;
+    CTL_COMPILER_BARRIER();            /* the record is complete ... */
+    p->log_write = (uint16_t)(w + 1u); /* ... before it is published */
 }
 
 uint16_t ctl_protect_check(ctl_protect_t *p, const ctl_protect_limits_t *l,
@@ -358,6 +394,7 @@ bool ctl_protect_clear(ctl_protect_t *p)
         return false;
     }
     p->latched = 0u;
+    p->episode_recorded = false;
     reset_filters(p);
     return true;
 }
@@ -368,12 +405,25 @@ bool ctl_protect_read_record(ctl_protect_t *p, ctl_fault_record_t *r)
     if (rd == p->log_write) {
         return false;
     }
+    CTL_COMPILER_BARRIER(); /* nothing of the record is read before the index */
     *r = p->log[rd % (uint16_t)CTL_PROTECT_LOG_SIZE];
-    p->log_read = (uint16_t)(rd + 1u); /* frees the slot only after the copy */
+    CTL_COMPILER_BARRIER();            /* the copy is complete ... */
+    p->log_read = (uint16_t)(rd + 1u); /* ... before the slot is freed */
     return true;
 }
 
 uint16_t ctl_protect_log_pending(const ctl_protect_t *p)
 {
     return (uint16_t)(p->log_write - p->log_read);
+}
+
+bool ctl_protect_converter_alive(const ctl_protect_t *p)
+{
+    int16_t k;
+    for (k = 0; k < 6; k++) {
+        if (p->word_age[k] >= CTL_PROTECT_ALIVE_PERIODS) {
+            return false;
+        }
+    }
+    return true;
 }

@@ -65,7 +65,11 @@ static void drive_latch_fault(drive_t *d, drive_fault_t fault)
         d->state = DRIVE_STATE_FAULT;
     }
     d->run_requested = false;
-    d->clear_requested = false;
+    if (d->clear_requested) {
+        /* a clear pending in a faulty period is refused, and the status says by what */
+        d->clear_blocked = d->protect.active | drive_fault_to_mask(fault);
+        d->clear_requested = false;
+    }
 }
 
 /* A fault found outside the protection's periodic check: logged there too. */
@@ -116,6 +120,7 @@ void drive_init(drive_t *d, const ctl_params_t *p)
     d->calibrated = false;
     d->run_refused = 0u;
     d->run_refusal = DRIVE_RUN_ACCEPTED;
+    d->clear_blocked = 0u;
     d->params_bg = *p;
     d->speed_ref_rpm = 0.0f;
     d->torque_ref_nm = 0.0f;
@@ -304,22 +309,49 @@ static uint16_t drive_protect(drive_t *d, bool running)
                              d->ctl.applied_vector, d->ctl.applied_duty);
 }
 
-/* Healthy enough to leave FAULT: no protection condition active, the causes that
- * need a look at the hardware re-checked. Every drive fault is latched in the
- * protection's mask (drive_enter_fault), so the mask alone says what happened. */
-static bool drive_may_clear(drive_t *d)
+uint16_t drive_clear_blockers(const drive_t *d, bool fresh)
 {
     const uint16_t latched = d->protect.latched;
-    if ((latched & (CTL_FAULT_PARAMS | CTL_FAULT_PLATFORM)) != 0u) {
-        return false; /* not clearable: needs new parameters or a restart */
+    uint16_t blocking = d->protect.active; /* found in this period's check */
+    blocking |= latched & (CTL_FAULT_PARAMS | CTL_FAULT_PLATFORM); /* new parameters or a restart */
+    if (!fresh) {
+        blocking |= CTL_FAULT_ADC_MISSING; /* nothing was evaluated in this period */
     }
     if (hal_pwm_hw_trip_seen()) {
-        return false;
+        blocking |= CTL_FAULT_HW_TRIP;
     }
+    /* the checks that run only while the motor turns, re-verified at standstill */
     if ((latched & CTL_FAULT_ENCODER) != 0u && !d->encoder.healthy) {
-        return false;
+        blocking |= CTL_FAULT_ENCODER;
     }
-    return ctl_protect_clear(&d->protect);
+    if ((latched & CTL_FAULT_DC_UNDERVOLTAGE) != 0u &&
+        d->meas.vdc < drive_limits(d)->dc_undervoltage) {
+        blocking |= CTL_FAULT_DC_UNDERVOLTAGE;
+    }
+    if ((latched & CTL_FAULT_ADC_STUCK) != 0u && !ctl_protect_converter_alive(&d->protect)) {
+        blocking |= CTL_FAULT_ADC_STUCK;
+    }
+    return blocking;
+}
+
+/* FAULT: a clear request leaves it only when nothing stands against it in this period. */
+static void drive_fault_step(drive_t *d, bool fresh)
+{
+    hal_pwm_force_off();
+    if (!d->clear_requested) {
+        return;
+    }
+    d->clear_requested = false;
+    d->clear_blocked = drive_clear_blockers(d, fresh);
+    if (d->clear_blocked != 0u || !ctl_protect_clear(&d->protect)) {
+        return;
+    }
+    d->fault = DRIVE_FAULT_NONE;
+    if (d->calibrated) {
+        d->state = DRIVE_STATE_READY;
+    } else {
+        drive_start_calibration(d);
+    }
 }
 
 static void drive_control_step(drive_t *d)
@@ -336,14 +368,17 @@ static void drive_control_step(drive_t *d)
     (void)ctl_config_take(&d->ctl);
     drive_scale_measurements(d);
 
-    if (!fresh && (d->state == DRIVE_STATE_RUN || d->state == DRIVE_STATE_CALIBRATE)) {
-        drive_enter_fault(d, DRIVE_FAULT_ADC_MISSING);
-    } else if (fresh) {
+    if (fresh) {
         /* stale words would fake a stuck converter: check fresh conversions only */
         faults = drive_protect(d, d->state == DRIVE_STATE_RUN);
-    } else if (hal_pwm_hw_trip_seen()) {
-        /* nothing new to check; the hardware trip is a pin, not a conversion */
-        drive_enter_fault(d, DRIVE_FAULT_HW_TRIP);
+    } else {
+        /* The ADC converts every period whatever the state (ePWM1 starts it with the outputs
+         * off too): a period without a conversion is a fault in READY and FAULT as well, and
+         * nothing of it can be checked except the trip pin. */
+        drive_enter_fault(d, DRIVE_FAULT_ADC_MISSING);
+        if (hal_pwm_hw_trip_seen()) {
+            drive_enter_fault(d, DRIVE_FAULT_HW_TRIP);
+        }
     }
     if (faults != 0u) {
         drive_latch_fault(d, drive_fault_from_mask(faults));
@@ -375,18 +410,7 @@ static void drive_control_step(drive_t *d)
         drive_run_step(d);
         break;
     case DRIVE_STATE_FAULT:
-        hal_pwm_force_off();
-        if (d->clear_requested) {
-            d->clear_requested = false;
-            if (drive_may_clear(d)) {
-                d->fault = DRIVE_FAULT_NONE;
-                if (d->calibrated) {
-                    d->state = DRIVE_STATE_READY;
-                } else {
-                    drive_start_calibration(d);
-                }
-            }
-        }
+        drive_fault_step(d, fresh);
         break;
     case DRIVE_STATE_INIT:
     default:

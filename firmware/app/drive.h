@@ -8,14 +8,15 @@
  * every state after INIT, before the control step: a fault forces the PWM off in that
  * same period, before any new command reaches the compare registers, latches a code
  * and appends a record to the fault log, which survives a clear until it is read. A
- * period without a fresh conversion is ADC_MISSING in CALIBRATE and RUN; in READY and
- * FAULT it checks only the hardware trip input.
+ * period without a fresh conversion is ADC_MISSING in every state after INIT (the ADC
+ * converts with the outputs off too), and such a period never clears a fault.
  *
  * States: INIT -> CALIBRATE (PWM off, ADC offsets averaged) -> READY
  *         READY -> RUN on a run command; RUN -> READY on stop;
  *         any -> FAULT (PWM forced off, latched) ; FAULT -> READY on a clear
- *         command when healthy (FAULT -> CALIBRATE if the offsets were
- *         never calibrated successfully).
+ *         command when nothing stands against it in that period
+ *         (drive_clear_blockers; FAULT -> CALIBRATE if the offsets were never
+ *         calibrated successfully).
  * A run request is acted on in READY only: made in any other state it is
  * refused (dropped and counted), never deferred. READY -> RUN also needs a
  * healthy encoder and a DC link above the under-voltage limit: with the link
@@ -108,6 +109,7 @@ typedef struct {
     bool calibrated;                 /* offsets calibrated successfully at least once */
     uint16_t run_refused;            /* run requests dropped (wrong state, encoder, DC link) */
     drive_run_refusal_t run_refusal; /* reason of the last refused run request */
+    uint16_t clear_blocked;          /* ctl_fault_t conditions that refused the last clear */
     ctl_params_t params_bg;          /* last parameter set requested (background copy) */
     float speed_ref_rpm;             /* last speed reference set */
     float torque_ref_nm;             /* last torque reference set */
@@ -124,6 +126,14 @@ void drive_init(drive_t *d, const ctl_params_t *p);
 
 /* One control period: sample, state machine, control step, PWM write. */
 void drive_control_isr(drive_t *d);
+
+/* What stands against leaving FAULT in this period, as ctl_fault_t bits (0: a clear may go
+ * ahead). Judged on the period's own evaluation, never on an older one: a period without a
+ * fresh conversion blocks (ADC_MISSING); so does any condition active in this period's check,
+ * the trip pin, a parameter or platform fault, and a latched fault of a check that runs only
+ * while the motor turns if it can be seen to persist at standstill (encoder unhealthy, DC link
+ * below the under-voltage limit, a current channel whose word stopped changing). */
+uint16_t drive_clear_blockers(const drive_t *d, bool fresh);
 
 /* Why a run request would be refused now (DRIVE_RUN_ACCEPTED if it would not): READY, a
  * healthy encoder and a DC link at or above the under-voltage limit are needed. */

@@ -92,6 +92,7 @@ void drive_link_status(const drive_t *d, uint16_t rx_errors, uint16_t *out)
     sxl_put_u16(&out[SXL_ST_FAULTS], drive_faults_latched(d));
     sxl_put_u16(&out[SXL_ST_RECORDS], ctl_protect_log_pending(&d->protect));
     out[SXL_ST_RUN_REFUSAL] = (uint16_t)((uint16_t)d->run_refusal & 0xFFu);
+    sxl_put_u16(&out[SXL_ST_CLEAR_BLOCKED], d->clear_blocked);
 }
 
 uint16_t drive_link_fault_record(drive_t *d, uint16_t *out)

@@ -19,9 +19,9 @@
 #define SXL_SOF 0xA5u
 #define SXL_MAX_PAYLOAD 48u
 #define SXL_MAX_FRAME (SXL_MAX_PAYLOAD + 5u)
-#define SXL_VERSION                                                                                \
-    3u /* 2: fault fields in the status, SXL_CMD_GET_FAULT_RECORD;                                 \
-        * 3: reason of the last refused run in the status */
+/* Protocol version. 2: fault fields in the status, SXL_CMD_GET_FAULT_RECORD; 3: why the last
+ * run or clear was refused, in the status, and the result SXL_ERR_BUSY. */
+#define SXL_VERSION 3u
 
 /* Commands (host -> drive). A reply carries CMD | SXL_REPLY and starts with
  * a result byte. */
@@ -51,23 +51,25 @@
 #define SXL_CONTROLLER_MPTC13 2u
 
 /* Status payload (after the result byte), offsets in bytes. */
-#define SXL_ST_STATE 0u        /* uint8 drive_state_t */
-#define SXL_ST_FAULT 1u        /* uint8 drive_fault_t */
-#define SXL_ST_FLAGS 2u        /* uint8 SXL_FLAG_* */
-#define SXL_ST_CONTROLLER 3u   /* uint8 controller in force */
-#define SXL_ST_SPEED 4u        /* int32 measured speed, 0.1 r/min */
-#define SXL_ST_SPEED_REF 8u    /* int32 speed reference, 0.1 r/min */
-#define SXL_ST_TORQUE 12u      /* int32 torque estimate, mN*m */
-#define SXL_ST_TORQUE_REF 16u  /* int32 torque reference, mN*m */
-#define SXL_ST_LAMBDA 20u      /* uint32 lambda in force, 0.001 N*m/Wb */
-#define SXL_ST_ISR_COUNT 24u   /* uint32 control periods since start */
-#define SXL_ST_ISR_MAX 28u     /* uint32 longest ISR, CPU cycles */
-#define SXL_ST_RX_ERRORS 32u   /* uint16 malformed frames received */
-#define SXL_ST_FAULTS 34u      /* uint16 latched ctl_fault_t mask (protocol 2) */
-#define SXL_ST_RECORDS 36u     /* uint16 fault records not yet read (protocol 2) */
-#define SXL_ST_RUN_REFUSAL 38u /* uint8 drive_run_refusal_t of the last refused run (protocol 3)   \
-                                */
-#define SXL_ST_SIZE 39u
+#define SXL_ST_STATE 0u       /* uint8 drive_state_t */
+#define SXL_ST_FAULT 1u       /* uint8 drive_fault_t */
+#define SXL_ST_FLAGS 2u       /* uint8 SXL_FLAG_* */
+#define SXL_ST_CONTROLLER 3u  /* uint8 controller in force */
+#define SXL_ST_SPEED 4u       /* int32 measured speed, 0.1 r/min */
+#define SXL_ST_SPEED_REF 8u   /* int32 speed reference, 0.1 r/min */
+#define SXL_ST_TORQUE 12u     /* int32 torque estimate, mN*m */
+#define SXL_ST_TORQUE_REF 16u /* int32 torque reference, mN*m */
+#define SXL_ST_LAMBDA 20u     /* uint32 lambda in force, 0.001 N*m/Wb */
+#define SXL_ST_ISR_COUNT 24u  /* uint32 control periods since start */
+#define SXL_ST_ISR_MAX 28u    /* uint32 longest ISR, CPU cycles */
+#define SXL_ST_RX_ERRORS 32u  /* uint16 malformed frames received */
+#define SXL_ST_FAULTS 34u     /* uint16 latched ctl_fault_t mask (protocol 2) */
+#define SXL_ST_RECORDS 36u    /* uint16 fault records not yet read (protocol 2) */
+/* protocol 3: uint8 drive_run_refusal_t of the last refused run; uint16 ctl_fault_t conditions
+ * that refused the last clear */
+#define SXL_ST_RUN_REFUSAL 38u
+#define SXL_ST_CLEAR_BLOCKED 39u
+#define SXL_ST_SIZE 41u
 #define SXL_ST_SIZE_V2 38u /* protocol 2 ended at records */
 #define SXL_ST_SIZE_V1 34u /* protocol 1 ended at rx_errors: readers accept the shorter block */
 /* Profile payload (reply to SXL_CMD_GET_PROFILE, after the result byte); cycles of the

@@ -276,7 +276,11 @@ static int print_reply(const sxl_frame_t *r)
             printf(" faults=%s fault_records=%u", mask, (unsigned)sxl_get_u16(&st[SXL_ST_RECORDS]));
         }
         if (r->len >= 1u + SXL_ST_SIZE) {
-            printf(" last_run_refusal=%s", sxl_run_refusal_name(st[SXL_ST_RUN_REFUSAL]));
+            char blocked[256];
+            (void)sxl_fault_mask_str(sxl_get_u16(&st[SXL_ST_CLEAR_BLOCKED]), blocked,
+                                     (uint16_t)sizeof blocked);
+            printf(" last_run_refusal=%s last_clear_blocked_by=%s",
+                   sxl_run_refusal_name(st[SXL_ST_RUN_REFUSAL]), blocked);
         }
         printf("\n");
         return 0;

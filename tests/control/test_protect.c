@@ -270,6 +270,52 @@ static void test_records_and_latch(void **state)
     assert_false(ctl_protect_read_record(&prot, &r));
 }
 
+/* A full log still records a fault that is new since the last clear (it replaces the newest
+ * record; the oldest, the first root cause, stays); the drop counter saturates. */
+static void test_full_log_keeps_a_new_root_cause(void **state)
+{
+    ctl_protect_input_t in;
+    ctl_fault_record_t r;
+    int32_t k;
+    (void)state;
+    for (k = 0; k < 9; k++) { /* nine over-voltage episodes, each cleared, nothing read */
+        in = healthy(k);
+        in.vdc = ctl_from_float((float)(760.0 / CTL_BASE_VOLTAGE_V));
+        in.raw_vdc = 3891;
+        (void)ctl_protect_check(&prot, &limits, &in, CTL_Q(0.3), 044, CTL_Q(0.6));
+        (void)ctl_protect_check(&prot, &limits, &in, CTL_Q(0.3), 044, CTL_Q(0.6));
+        (void)ctl_protect_check(&prot, &limits, &in, CTL_Q(0.3), 044, CTL_Q(0.6));
+        in = healthy(k);
+        (void)ctl_protect_check(&prot, &limits, &in, CTL_Q(0.3), 044, CTL_Q(0.6));
+        assert_true(ctl_protect_clear(&prot));
+    }
+    in = healthy(100);
+    in.hw_trip = true;
+    assert_int_equal(ctl_protect_check(&prot, &limits, &in, CTL_Q(0.3), 044, CTL_Q(0.6)),
+                     CTL_FAULT_HW_TRIP);
+    assert_int_equal(ctl_protect_log_pending(&prot), CTL_PROTECT_LOG_SIZE);
+    assert_int_equal(prot.log_dropped, 2);
+    assert_true(ctl_protect_read_record(&prot, &r));
+    assert_int_equal(r.faults, CTL_FAULT_DC_OVERVOLTAGE); /* the first root cause */
+    for (k = 1; k < CTL_PROTECT_LOG_SIZE; k++) {
+        assert_true(ctl_protect_read_record(&prot, &r));
+    }
+    assert_int_equal(r.faults, CTL_FAULT_HW_TRIP); /* the new one, newest */
+    assert_false(ctl_protect_read_record(&prot, &r));
+
+    /* 70000 more episodes with a full log: the counter stops at its maximum */
+    in = healthy(101);
+    (void)ctl_protect_check(&prot, &limits, &in, CTL_Q(0.3), 044, CTL_Q(0.6));
+    for (k = 0; k < CTL_PROTECT_LOG_SIZE; k++) {
+        ctl_protect_raise(&prot, (uint16_t)(1u << k), &in);
+    }
+    for (k = 0; k < 70000; k++) {
+        assert_true(ctl_protect_clear(&prot));
+        ctl_protect_raise(&prot, CTL_FAULT_ADC_OFFSET, &in);
+    }
+    assert_int_equal(prot.log_dropped, UINT16_MAX);
+}
+
 static void test_raise_from_outside(void **state)
 {
     const ctl_protect_input_t in = healthy(0);
@@ -304,6 +350,7 @@ int main(void)
         cmocka_unit_test_setup(test_open_phase, setup),
         cmocka_unit_test_setup(test_no_false_trip, setup),
         cmocka_unit_test_setup(test_records_and_latch, setup),
+        cmocka_unit_test_setup(test_full_log_keeps_a_new_root_cause, setup),
         cmocka_unit_test_setup(test_raise_from_outside, setup),
         cmocka_unit_test_setup(test_not_a_number, setup),
     };

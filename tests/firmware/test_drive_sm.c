@@ -226,6 +226,91 @@ static void test_missing_conversion_faults_in_run(void **state)
     assert_true(mock_rec.pwm_off);
 }
 
+/* n control periods without a conversion (a dead ADC) */
+static void run_isr_without_conversion(int n)
+{
+    int i;
+    for (i = 0; i < n; i++) {
+        will_return(hal_adc_read, false);
+        drive_control_isr(&d);
+    }
+}
+
+/* n periods in which the current words move by one count, as a live converter's do */
+static void run_isr_live_words(int n)
+{
+    int i;
+    int k;
+    for (i = 0; i < n; i++) {
+        for (k = 0; k < HAL_ADC_PHASES; k++) {
+            mock_adc.phase[k] = (uint16_t)(2048 + (i & 1));
+        }
+        run_isr(1);
+    }
+}
+
+/* A dead ADC is a fault in READY too, and a clear is never judged on an older period's
+ * check: without a fresh conversion the drive stays in FAULT, with the reason. */
+static void test_dead_adc_faults_in_ready_and_blocks_the_clear(void **state)
+{
+    (void)state;
+    calibrate();
+    assert_int_equal(d.state, DRIVE_STATE_READY);
+    run_isr_without_conversion(1);
+    assert_int_equal(d.state, DRIVE_STATE_FAULT);
+    assert_int_equal(d.fault, DRIVE_FAULT_ADC_MISSING);
+    drive_request_clear_fault(&d);
+    run_isr_without_conversion(1);
+    assert_int_equal(d.state, DRIVE_STATE_FAULT);
+    assert_int_equal(d.clear_blocked & CTL_FAULT_ADC_MISSING, CTL_FAULT_ADC_MISSING);
+    drive_request_run(&d);
+    run_isr_without_conversion(1000);
+    assert_int_equal(d.state, DRIVE_STATE_FAULT);
+    assert_true(mock_rec.pwm_off);
+    assert_int_equal(mock_rec.enable, 0u);
+    /* the converter back: a clear in a period with a fresh, clean check succeeds */
+    drive_request_clear_fault(&d);
+    run_isr(1);
+    assert_int_equal(d.state, DRIVE_STATE_READY);
+    assert_int_equal(d.clear_blocked, 0u);
+}
+
+/* A fault of a check that runs only while the motor turns is re-verified before a clear:
+ * an under-voltage cannot be cleared while the link is still low, a stuck converter not
+ * while its words stay frozen. */
+static void test_running_only_faults_block_the_clear_while_present(void **state)
+{
+    (void)state;
+    calibrate();
+    mock_cmd.enable = true;
+    drive_request_run(&d);
+    run_isr(1);
+    mock_adc.vdc = 1536u; /* 300 V */
+    run_isr(10);
+    assert_int_equal(d.state, DRIVE_STATE_FAULT);
+    assert_int_equal(d.fault, DRIVE_FAULT_DC_UNDERVOLTAGE);
+    drive_request_clear_fault(&d);
+    run_isr(1);
+    assert_int_equal(d.state, DRIVE_STATE_FAULT);
+    assert_int_equal(d.clear_blocked, CTL_FAULT_DC_UNDERVOLTAGE);
+    mock_adc.vdc = 2765u; /* 540 V */
+    drive_request_clear_fault(&d);
+    run_isr(1);
+    assert_int_equal(d.state, DRIVE_STATE_READY);
+
+    /* a converter whose words froze while current flowed */
+    drive_trip(&d, DRIVE_FAULT_ADC_STUCK);
+    run_isr(CTL_PROTECT_ALIVE_PERIODS); /* the mock's words do not move */
+    drive_request_clear_fault(&d);
+    run_isr(1);
+    assert_int_equal(d.state, DRIVE_STATE_FAULT);
+    assert_int_equal(d.clear_blocked, CTL_FAULT_ADC_STUCK);
+    run_isr_live_words(2);
+    drive_request_clear_fault(&d);
+    run_isr_live_words(1);
+    assert_int_equal(d.state, DRIVE_STATE_READY);
+}
+
 static void test_overrun_and_encoder_faults(void **state)
 {
     (void)state;
@@ -458,6 +543,8 @@ int main(void)
         cmocka_unit_test_setup(test_overrun_and_encoder_faults, setup),
         cmocka_unit_test_setup(test_params_rejected_at_init, setup),
         cmocka_unit_test_setup(test_request_params, setup),
+        cmocka_unit_test_setup(test_dead_adc_faults_in_ready_and_blocks_the_clear, setup),
+        cmocka_unit_test_setup(test_running_only_faults_block_the_clear_while_present, setup),
         cmocka_unit_test_setup(test_applied_set_rescales_speed_and_limits, setup),
         cmocka_unit_test_setup(test_duty_conversion, setup),
         cmocka_unit_test_setup(test_references, setup),
