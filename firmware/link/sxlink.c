@@ -1,7 +1,5 @@
 #include "sxlink.h"
 
-enum { RX_SOF = 0, RX_LEN, RX_BODY, RX_CRC_HI, RX_CRC_LO };
-
 uint16_t sxl_crc16_byte(uint16_t crc, uint16_t byte)
 {
     uint16_t i;
@@ -51,15 +49,9 @@ uint16_t sxl_encode(uint16_t cmd, const uint16_t *payload, uint16_t len, uint16_
     return total;
 }
 
-void sxl_decoder_reset(sxl_decoder_t *d)
-{
-    d->state = RX_SOF;
-    d->len = 0u;
-    d->count = 0u;
-    d->crc_rx = 0u;
-}
+void sxl_decoder_reset(sxl_decoder_t *d) { d->n = 0u; }
 
-bool sxl_decoder_idle(const sxl_decoder_t *d) { return d->state == RX_SOF; }
+bool sxl_decoder_idle(const sxl_decoder_t *d) { return d->n == 0u; }
 
 void sxl_decoder_init(sxl_decoder_t *d)
 {
@@ -67,62 +59,95 @@ void sxl_decoder_init(sxl_decoder_t *d)
     d->errors = 0u;
 }
 
-static sxl_rx_t rx_error(sxl_decoder_t *d, sxl_rx_t e)
+static void count_error(sxl_decoder_t *d)
 {
-    sxl_decoder_reset(d);
-    d->errors++;
-    return e;
+    if (d->errors < UINT16_MAX) {
+        d->errors++;
+    }
+}
+
+static bool length_valid(uint16_t len) { return len != 0u && len <= SXL_MAX_PAYLOAD + 1u; }
+
+/* Drop the held bytes before index k, then anything up to the next start byte. */
+static void drop_before(sxl_decoder_t *d, uint16_t k)
+{
+    uint16_t i;
+    while (k < d->n && d->held[k] != SXL_SOF) {
+        k++;
+    }
+    for (i = 0u; k + i < d->n; i++) {
+        d->held[i] = d->held[k + i];
+    }
+    d->n = i;
+}
+
+/* The frame starting at held[start] ends with the last held byte and checks out. */
+static bool frame_ends_here(const sxl_decoder_t *d, uint16_t start)
+{
+    uint16_t len;
+    uint16_t crc;
+    if (d->held[start] != SXL_SOF || (uint16_t)(d->n - start) < 5u) {
+        return false;
+    }
+    len = d->held[start + 1u];
+    if (!length_valid(len) || (uint16_t)(d->n - start) != (uint16_t)(len + 4u)) {
+        return false;
+    }
+    crc = sxl_crc16(&d->held[start + 1u], (uint16_t)(len + 1u), 0xFFFFu);
+    return crc == (uint16_t)((d->held[d->n - 2u] << 8) | d->held[d->n - 1u]);
+}
+
+static void take_frame(sxl_decoder_t *d, uint16_t start, sxl_frame_t *out)
+{
+    uint16_t i;
+    out->cmd = d->held[start + 2u];
+    out->len = (uint16_t)(d->held[start + 1u] - 1u);
+    for (i = 0u; i < out->len; i++) {
+        out->payload[i] = d->held[start + 3u + i];
+    }
+    d->n = 0u;
+}
+
+/* Give up held starts that can no longer begin a frame: an impossible length, or a frame
+ * complete by its length (it was checked when its last byte came) that did not check out. */
+static sxl_rx_t drop_dead_starts(sxl_decoder_t *d)
+{
+    sxl_rx_t result = SXL_RX_NONE;
+    while (d->n >= 2u) {
+        const uint16_t len = d->held[1];
+        if (length_valid(len) && d->n < (uint16_t)(len + 4u)) {
+            break; /* still waiting for its bytes */
+        }
+        result = length_valid(len) ? SXL_RX_ERR_CRC : SXL_RX_ERR_LENGTH;
+        count_error(d);
+        drop_before(d, 1u);
+    }
+    return result;
 }
 
 sxl_rx_t sxl_decoder_push(sxl_decoder_t *d, uint16_t byte, sxl_frame_t *out)
 {
+    uint16_t start;
     if (byte > 0xFFu) {
-        return rx_error(d, SXL_RX_ERR_BYTE);
-    }
-    switch (d->state) {
-    case RX_SOF:
-        if (byte == SXL_SOF) {
-            d->state = RX_LEN;
-        }
-        return SXL_RX_NONE;
-    case RX_LEN:
-        if (byte == 0u || byte > SXL_MAX_PAYLOAD + 1u) {
-            return rx_error(d, SXL_RX_ERR_LENGTH);
-        }
-        d->len = byte;
-        d->count = 0u;
-        d->state = RX_BODY;
-        return SXL_RX_NONE;
-    case RX_BODY:
-        d->body[d->count] = byte;
-        d->count++;
-        if (d->count >= d->len) {
-            d->state = RX_CRC_HI;
-        }
-        return SXL_RX_NONE;
-    case RX_CRC_HI:
-        d->crc_rx = (uint16_t)(byte << 8);
-        d->state = RX_CRC_LO;
-        return SXL_RX_NONE;
-    case RX_CRC_LO: {
-        uint16_t crc = sxl_crc16_byte(0xFFFFu, d->len);
-        uint16_t i;
-        crc = sxl_crc16(d->body, d->len, crc);
-        d->crc_rx = (uint16_t)(d->crc_rx | byte);
-        if (crc != d->crc_rx) {
-            return rx_error(d, SXL_RX_ERR_CRC);
-        }
-        out->cmd = d->body[0];
-        out->len = (uint16_t)(d->len - 1u);
-        for (i = 0u; i < out->len; i++) {
-            out->payload[i] = d->body[1u + i];
-        }
         sxl_decoder_reset(d);
-        return SXL_RX_FRAME;
+        count_error(d);
+        return SXL_RX_ERR_BYTE;
     }
-    default:
-        return rx_error(d, SXL_RX_ERR_LENGTH);
+    if (d->n == 0u && byte != SXL_SOF) {
+        return SXL_RX_NONE; /* line noise between frames */
     }
+    d->held[d->n] = byte;
+    d->n++;
+    for (start = 0u; start < d->n; start++) {
+        if (frame_ends_here(d, start)) {
+            if (start > 0u) {
+                count_error(d); /* a false start before it */
+            }
+            take_frame(d, start, out);
+            return SXL_RX_FRAME;
+        }
+    }
+    return drop_dead_starts(d);
 }
 
 void sxl_put_u16(uint16_t *p, uint16_t v)

@@ -124,13 +124,16 @@ typedef enum {
     SXL_RX_ERR_BYTE = 4    /* value above 255 pushed: decoder reset */
 } sxl_rx_t;
 
+/* Receiver. It holds the bytes from the earliest start byte that may still begin a frame
+ * on, and never commits to a start: a frame is recognised the moment its last byte arrives,
+ * wherever it starts in what is held (its length field and CRC check), so noise before a
+ * frame, a stray start byte or a bad length never costs the frame that follows. A start
+ * whose frame is complete but fails its CRC, or whose length field is impossible, is given
+ * up (counted in errors) and the search goes on from the byte after it. */
 typedef struct {
-    uint16_t state;
-    uint16_t len;   /* LEN field */
-    uint16_t count; /* body bytes received */
-    uint16_t crc_rx;
-    uint16_t body[SXL_MAX_PAYLOAD + 1u]; /* CMD, PAYLOAD */
-    uint16_t errors;
+    uint16_t held[SXL_MAX_FRAME]; /* held[0] is a start byte when n > 0 */
+    uint16_t n;
+    uint16_t errors; /* saturates at 65535 */
 } sxl_decoder_t;
 
 uint16_t sxl_crc16(const uint16_t *bytes, uint16_t n, uint16_t crc);
@@ -146,6 +149,10 @@ void sxl_decoder_init(sxl_decoder_t *d);
 void sxl_decoder_reset(sxl_decoder_t *d);
 /* True while no frame is partially received. */
 bool sxl_decoder_idle(const sxl_decoder_t *d);
+/* One received byte. SXL_RX_FRAME: a frame ended with this byte, in *out. Otherwise the
+ * last start given up with this byte (SXL_RX_ERR_*), or SXL_RX_NONE. Bounded work per byte:
+ * at most SXL_MAX_FRAME starts are looked at, and only one whose length ends here is
+ * checksummed. */
 sxl_rx_t sxl_decoder_push(sxl_decoder_t *d, uint16_t byte, sxl_frame_t *out);
 
 /* Little-endian payload fields (the caller checks the payload length). */

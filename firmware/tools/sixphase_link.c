@@ -184,11 +184,14 @@ static int write_all(int fd, const uint16_t *frame, uint16_t n)
     return 0;
 }
 
-/* Wait for the reply to cmd; 0 and *reply filled on success. */
+/* Wait for the reply to cmd; 0 and *reply filled on success. Noise and malformed frames are
+ * skipped (the decoder resynchronises on the next frame), and so is a stale reply to an
+ * earlier request that timed out; only the deadline ends the wait. */
 static int read_reply(int fd, uint16_t cmd, long timeout_ms, sxl_frame_t *reply)
 {
     sxl_decoder_t dec;
     const long deadline = now_ms() + timeout_ms;
+    unsigned stale = 0u;
     sxl_decoder_init(&dec);
     for (;;) {
         unsigned char buf[64];
@@ -197,7 +200,10 @@ static int read_reply(int fd, uint16_t cmd, long timeout_ms, sxl_frame_t *reply)
         ssize_t r;
         ssize_t i;
         if (left <= 0) {
-            return fail(EXIT_IO, "no reply within %ld ms", timeout_ms);
+            return fail(EXIT_IO,
+                        "no reply within %ld ms (%u malformed frames, %u stale replies "
+                        "skipped)",
+                        timeout_ms, (unsigned)dec.errors, stale);
         }
         if (poll(&p, 1, (int)left) < 0 && errno != EINTR) {
             return fail(EXIT_IO, "poll failed: %s", strerror(errno));
@@ -208,19 +214,13 @@ static int read_reply(int fd, uint16_t cmd, long timeout_ms, sxl_frame_t *reply)
         }
         for (i = 0; i < r; i++) {
             const sxl_rx_t res = sxl_decoder_push(&dec, (uint16_t)buf[i], reply);
-            if (res == SXL_RX_ERR_CRC) {
-                return fail(EXIT_IO, "reply with a CRC error");
+            if (res != SXL_RX_FRAME) {
+                continue;
             }
-            if (res == SXL_RX_ERR_LENGTH) {
-                return fail(EXIT_IO, "reply with a bad length field");
-            }
-            if (res == SXL_RX_FRAME) {
-                if (reply->cmd != (uint16_t)(cmd | SXL_REPLY) || reply->len < 1u) {
-                    return fail(EXIT_IO, "unexpected reply 0x%02X to command 0x%02X",
-                                (unsigned)reply->cmd, (unsigned)cmd);
-                }
+            if (reply->cmd == (uint16_t)(cmd | SXL_REPLY) && reply->len >= 1u) {
                 return 0;
             }
+            stale++;
         }
     }
 }
@@ -379,21 +379,31 @@ static void print_frame(const uint16_t *frame, uint16_t n)
     }
 }
 
+/* A "busy" reply (a parameter set still on its way to the control ISR, which takes it within
+ * a control period) is sent again this many times, this far apart. */
+#define BUSY_RETRIES 5
+#define BUSY_RETRY_US 2000
+
 /* Send one request and wait for its reply; 0 on success. */
 static int exchange(int fd, const options_t *o, uint16_t cmd, const uint16_t *payload, uint16_t len,
                     sxl_frame_t *reply)
 {
     uint16_t frame[SXL_MAX_FRAME];
     const uint16_t flen = sxl_encode(cmd, payload, len, frame, (uint16_t)SXL_MAX_FRAME);
-    int rc;
+    int attempt;
     if (flen == 0u) {
         return fail(EXIT_USAGE, "cannot encode the request");
     }
-    rc = write_all(fd, frame, flen);
-    if (rc != 0) {
-        return rc;
+    for (attempt = 0;; attempt++) {
+        int rc = write_all(fd, frame, flen);
+        if (rc == 0) {
+            rc = read_reply(fd, cmd, o->timeout_ms, reply);
+        }
+        if (rc != 0 || reply->payload[0] != SXL_ERR_BUSY || attempt == BUSY_RETRIES) {
+            return rc;
+        }
+        usleep(BUSY_RETRY_US);
     }
-    return read_reply(fd, cmd, o->timeout_ms, reply);
 }
 
 /* Read the fault log until the drive reports it empty. */

@@ -156,6 +156,77 @@ static void test_bad_length_and_bytes(void **state)
     }
 }
 
+/* A stray start byte, or a start byte with a plausible length, before a frame never costs
+ * that frame: it is recognised when its last byte arrives. */
+static void test_false_start_before_a_frame(void **state)
+{
+    uint16_t buf[2u + 6u * SXL_MAX_FRAME];
+    const uint16_t payload[4] = {0x98u, 0x3Au, 0u, 0u};
+    sxl_decoder_t d;
+    sxl_frame_t f;
+    int frames;
+    uint16_t n = 0u;
+    int k;
+    (void)state;
+    buf[n++] = SXL_SOF; /* one stray start byte */
+    n = (uint16_t)(n + sxl_encode(SXL_CMD_SET_SPEED, payload, 4u, &buf[n], SXL_MAX_FRAME));
+    sxl_decoder_init(&d);
+    assert_int_equal(push_all(&d, buf, n, &f, &frames), SXL_RX_FRAME);
+    assert_int_equal(frames, 1);
+    assert_int_equal(f.cmd, SXL_CMD_SET_SPEED);
+    /* "A5 30" announces 48 bytes: the five 9-byte frames behind it still come through, each
+     * as its last byte arrives */
+    n = 0u;
+    buf[n++] = SXL_SOF;
+    buf[n++] = 0x30u;
+    for (k = 0; k < 5; k++) {
+        n = (uint16_t)(n + sxl_encode(SXL_CMD_SET_SPEED, payload, 4u, &buf[n], SXL_MAX_FRAME));
+    }
+    sxl_decoder_init(&d);
+    assert_int_equal(push_all(&d, buf, 2u + 9u, &f, &frames), SXL_RX_FRAME);
+    assert_int_equal(frames, 1);
+    assert_int_equal(push_all(&d, &buf[11], (uint16_t)(n - 11u), &f, &frames), SXL_RX_FRAME);
+    assert_int_equal(frames, 4);
+    assert_int_equal(d.errors, 1u); /* the false start, counted */
+}
+
+static uint32_t lcg = 12345u;
+static uint16_t random_byte(void)
+{
+    lcg = lcg * 1664525u + 1013904223u;
+    return (uint16_t)(lcg >> 24);
+}
+
+/* 10 000 trials of 1..16 random bytes before each of three frames: none is lost. */
+static void test_no_frame_lost_after_noise(void **state)
+{
+    const uint16_t payload[5] = {1u, 0x20u, 0x4Eu, 0u, 0u};
+    uint16_t frame[SXL_MAX_FRAME];
+    const uint16_t len = sxl_encode(SXL_CMD_SET_CONTROLLER, payload, 5u, frame, SXL_MAX_FRAME);
+    long lost = 0;
+    long trial;
+    (void)state;
+    for (trial = 0; trial < 10000; trial++) {
+        sxl_decoder_t d;
+        sxl_frame_t f;
+        int k;
+        sxl_decoder_init(&d);
+        for (k = 0; k < 3; k++) {
+            const int noise = 1 + (int)(random_byte() % 16u);
+            int frames;
+            int i;
+            for (i = 0; i < noise; i++) {
+                (void)sxl_decoder_push(&d, random_byte(), &f);
+            }
+            (void)push_all(&d, frame, len, &f, &frames);
+            if (frames != 1 || f.cmd != SXL_CMD_SET_CONTROLLER || f.len != 5u) {
+                lost++;
+            }
+        }
+    }
+    assert_int_equal(lost, 0);
+}
+
 static void test_fields(void **state)
 {
     uint16_t b[4];
@@ -259,6 +330,8 @@ int main(void)
         cmocka_unit_test(test_noise_before_frame_and_back_to_back),
         cmocka_unit_test(test_crc_error_and_recovery),
         cmocka_unit_test(test_bad_length_and_bytes),
+        cmocka_unit_test(test_false_start_before_a_frame),
+        cmocka_unit_test(test_no_frame_lost_after_noise),
         cmocka_unit_test(test_fields),
         cmocka_unit_test(test_i16_fields),
         cmocka_unit_test(test_names),
