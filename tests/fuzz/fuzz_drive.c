@@ -1,0 +1,290 @@
+/*
+ * Fuzz target for the whole drive as the board sees it (libFuzzer entry point): arbitrary
+ * serial bytes and CRC-valid request frames through the frame decoder and drive_link_handle,
+ * run-time parameter sets, interleaved with control periods that carry arbitrary ADC words,
+ * encoder samples, missing conversions and hardware trips, on the drive application and the
+ * fixed-point control core over the simulator HAL. After every step:
+ *   - the PWM is off in every state but RUN;
+ *   - FAULT is left only through a clear request, RUN entered only from READY on a run
+ *     request;
+ *   - every reply encodes, and decodes back to itself;
+ *   - the fault log holds at most its size, its records come out in order, each with a
+ *     fault bit set and a period not in the future;
+ *   - the refusal fields name known reasons.
+ * A violation aborts (libFuzzer reports it); the sanitizers catch the rest.
+ *
+ * The first input byte chooses the start: power-up (INIT -> CALIBRATE) or a snapshot taken
+ * once after a clean calibration, so short inputs reach READY, RUN and FAULT.
+ */
+#include <stddef.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "drive.h"
+#include "drive_link.h"
+#include "hal_sim.h"
+#include "profile.h"
+#include "sxlink.h"
+
+int LLVMFuzzerTestOneInput(const unsigned char *data, size_t size);
+
+typedef struct {
+    const unsigned char *p;
+    size_t left;
+} stream_t;
+
+static uint16_t take8(stream_t *s)
+{
+    uint16_t v = 0u;
+    if (s->left > 0u) {
+        v = *s->p;
+        s->p++;
+        s->left--;
+    }
+    return v;
+}
+
+static uint16_t take16(stream_t *s)
+{
+    const uint16_t hi = take8(s);
+    return (uint16_t)((uint16_t)(hi << 8) | take8(s));
+}
+
+static uint32_t take32(stream_t *s)
+{
+    uint32_t v = 0u;
+    int16_t k;
+    for (k = 0; k < 4; k++) {
+        v = (v << 8) | take8(s);
+    }
+    return v;
+}
+
+static float take_float(stream_t *s)
+{
+    const uint32_t bits = take32(s);
+    float f;
+    memcpy(&f, &bits, sizeof f);
+    return f;
+}
+
+static drive_t drive;
+static sxl_decoder_t rx;
+static uint32_t last_record_period; /* records must come out in order */
+
+static void check(int condition)
+{
+    if (!condition) {
+        abort();
+    }
+}
+
+/* The reply must encode, and the encoded frame decode back to it. */
+static void check_reply(const sxl_frame_t *reply)
+{
+    uint16_t bytes[SXL_MAX_FRAME];
+    sxl_decoder_t dec;
+    sxl_frame_t back;
+    sxl_rx_t r = SXL_RX_NONE;
+    uint16_t i;
+    const uint16_t n =
+        sxl_encode(reply->cmd, reply->payload, reply->len, bytes, (uint16_t)SXL_MAX_FRAME);
+    check(n > 0u);
+    sxl_decoder_init(&dec);
+    for (i = 0u; i < n; i++) {
+        r = sxl_decoder_push(&dec, bytes[i], &back);
+    }
+    check(r == SXL_RX_FRAME && back.cmd == reply->cmd && back.len == reply->len);
+    check(memcmp(back.payload, reply->payload, reply->len * sizeof reply->payload[0]) == 0);
+}
+
+/* A fault record read over the link: in order, a fault bit set, not from the future. */
+static void check_fault_record(const sxl_frame_t *reply)
+{
+    if (reply->cmd != (SXL_CMD_GET_FAULT_RECORD | SXL_REPLY) || reply->payload[0] != SXL_OK ||
+        reply->payload[1u + SXL_FR_PRESENT] == 0u) {
+        return;
+    }
+    {
+        const uint32_t period = sxl_get_u32(&reply->payload[1u + SXL_FR_PERIOD]);
+        check(sxl_get_u16(&reply->payload[1u + SXL_FR_FAULTS]) != 0u);
+        check(period >= last_record_period && period <= drive.protect.period);
+        last_record_period = period;
+    }
+}
+
+static void serve_byte(uint16_t byte)
+{
+    sxl_frame_t req;
+    sxl_frame_t reply;
+    if (sxl_decoder_push(&rx, byte, &req) != SXL_RX_FRAME) {
+        return;
+    }
+    drive_link_handle(&drive, &req, &reply, rx.errors);
+    check_reply(&reply);
+    check_fault_record(&reply);
+}
+
+static void serial_noise(stream_t *s)
+{
+    const uint16_t n = (uint16_t)(take8(s) % 24u + 1u);
+    uint16_t i;
+    for (i = 0u; i < n; i++) {
+        serve_byte(take8(s));
+    }
+}
+
+static void serial_frame(stream_t *s)
+{
+    static const uint16_t commands[] = {
+        SXL_CMD_PING,        SXL_CMD_GET_STATUS,    SXL_CMD_GET_PROFILE, SXL_CMD_GET_FAULT_RECORD,
+        SXL_CMD_SET_SPEED,   SXL_CMD_SET_TORQUE,    SXL_CMD_RUN,         SXL_CMD_STOP,
+        SXL_CMD_CLEAR_FAULT, SXL_CMD_SET_CONTROLLER};
+    const uint16_t pick = take8(s);
+    const uint16_t cmd = (pick < 240u) ? commands[pick % 10u] : take8(s);
+    const uint16_t len = (uint16_t)(take8(s) % (SXL_MAX_PAYLOAD + 1u));
+    uint16_t payload[SXL_MAX_PAYLOAD];
+    uint16_t bytes[SXL_MAX_FRAME];
+    uint16_t i;
+    uint16_t n;
+    for (i = 0u; i < len; i++) {
+        payload[i] = take8(s);
+    }
+    n = sxl_encode(cmd, payload, len, bytes, (uint16_t)SXL_MAX_FRAME);
+    for (i = 0u; i < n; i++) {
+        serve_byte(bytes[i]);
+    }
+}
+
+static void parameter_set(stream_t *s)
+{
+    ctl_params_t p = drive.params_bg;
+    p.lambda_nm_per_wb = take_float(s);
+    p.torque_limit_nm = take_float(s);
+    p.sample_time_s = (take8(s) & 1u) ? take_float(s) : p.sample_time_s;
+    p.pole_pairs = (int16_t)(take8(s) % 8u);
+    p.protect.dc_undervoltage_v = take_float(s);
+    p.controller = (ctl_controller_t)(take8(s) % 4u);
+    (void)drive_request_params(&drive, &p);
+}
+
+/* The ISR's view of one period: ADC words, the encoder, the trip pin. */
+static void period_inputs(stream_t *s, uint16_t flags)
+{
+    hal_adc_sample_t adc;
+    hal_encoder_sample_t enc;
+    int16_t k;
+    for (k = 0; k < HAL_ADC_PHASES; k++) {
+        /* quiet: near mid scale as a healthy idle drive reads; else any 12-bit word */
+        adc.phase[k] =
+            (flags & 8u) ? (uint16_t)(2040u + take8(s) % 16u) : (uint16_t)(take16(s) & 0xFFFu);
+    }
+    adc.vdc = (flags & 8u) ? (uint16_t)(2700u + take8(s)) : (uint16_t)((take32(s)) & 0xFFFu);
+    enc.elec_angle = take32(s);
+    enc.mech_speed_q16 = (int32_t)(int16_t)take16(s);
+    enc.healthy = (flags & 4u) != 0u;
+    hal_sim_post_encoder(&enc);
+    if ((flags & 1u) != 0u) {
+        hal_sim_post_adc(&adc);
+    }
+    hal_sim_bus.hw_trip = (flags & 2u) != 0u;
+}
+
+static void control_periods(stream_t *s)
+{
+    const uint16_t flags = take8(s);
+    const uint16_t repeat = (uint16_t)(take8(s) % 16u + 1u);
+    uint16_t r;
+    period_inputs(s, flags);
+    for (r = 0u; r < repeat; r++) {
+        const drive_state_t before = drive.state;
+        const bool run_asked = drive.run_requested;
+        const bool clear_asked = drive.clear_requested;
+        if (r > 0u && (flags & 1u) != 0u) {
+            hal_sim_bus.adc_fresh = true; /* the same words again, freshly converted */
+        }
+        drive_control_isr(&drive);
+        check(drive.state == DRIVE_STATE_RUN || hal_sim_bus.forced_off);
+        check(!(before == DRIVE_STATE_FAULT && drive.state != DRIVE_STATE_FAULT) || clear_asked);
+        check(!(drive.state == DRIVE_STATE_RUN && before != DRIVE_STATE_RUN) ||
+              (before == DRIVE_STATE_READY && run_asked));
+        check(ctl_protect_log_pending(&drive.protect) <= CTL_PROTECT_LOG_SIZE);
+        check((drive.state == DRIVE_STATE_FAULT) == (drive.fault != DRIVE_FAULT_NONE));
+        check((int32_t)drive.run_refusal < DRIVE_RUN_REFUSAL_COUNT);
+    }
+}
+
+static void power_up(void)
+{
+    ctl_params_t p;
+    hal_sim_reset();
+    (void)hal_pwm_init(10000u, 2000u);
+    (void)hal_adc_init();
+    (void)hal_encoder_init(2500u, 3u, 0u);
+    ctl_params_default(&p);
+    drive_init(&drive, &p);
+}
+
+/* READY after a clean calibration, taken once and copied for every input that asks. */
+static void calibrated_start(void)
+{
+    static drive_t snapshot;
+    static hal_sim_bus_t bus;
+    static prof_t profile;
+    static bool taken;
+    if (!taken) {
+        hal_adc_sample_t adc;
+        hal_encoder_sample_t enc = {0u, 0, true};
+        int16_t k;
+        int32_t n;
+        power_up();
+        for (k = 0; k < HAL_ADC_PHASES; k++) {
+            adc.phase[k] = 2048u;
+        }
+        adc.vdc = 2765u;
+        for (n = 0; n < DRIVE_CALIBRATION_SAMPLES; n++) {
+            adc.phase[0] = (uint16_t)(2048 + (n & 1)); /* a live converter */
+            hal_sim_post_adc(&adc);
+            hal_sim_post_encoder(&enc);
+            drive_control_isr(&drive);
+        }
+        check(drive.state == DRIVE_STATE_READY);
+        snapshot = drive;
+        bus = hal_sim_bus;
+        profile = drive_profile;
+        taken = true;
+    }
+    drive = snapshot;
+    hal_sim_bus = bus;
+    drive_profile = profile;
+}
+
+int LLVMFuzzerTestOneInput(const unsigned char *data, size_t size)
+{
+    stream_t s;
+    int32_t steps = 0;
+    s.p = data;
+    s.left = size;
+    if ((take8(&s) & 1u) != 0u) {
+        calibrated_start();
+    } else {
+        power_up();
+    }
+    sxl_decoder_init(&rx);
+    last_record_period = 0u;
+    while (s.left > 0u && steps < 4000) {
+        const uint16_t tag = (uint16_t)(take8(&s) % 5u);
+        if (tag == 0u) {
+            serial_noise(&s);
+        } else if (tag == 1u) {
+            serial_frame(&s);
+        } else if (tag == 2u) {
+            parameter_set(&s);
+        } else {
+            control_periods(&s);
+        }
+        steps++;
+    }
+    return 0;
+}
