@@ -1,8 +1,11 @@
-/* Command-line parsing, see cli.h. */
+/* Command-line parsing, see cli.h. One table of options; each option is parsed, range-checked
+ * and stored the same way, and checked once against the others at the end. */
 #include "cli.h"
 
+#include <ctype.h>
 #include <errno.h>
 #include <math.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -27,6 +30,7 @@ void sim_cli_usage(FILE *f)
         "                   [--quiet]\n"
         "                   [--fault-time S]\n"
         "  sixphase-sim reproduce --out DIR [--jobs N] [--quiet]\n"
+        "numbers are plain decimals (1500, -0.5, 2e-6); each option at most once\n"
         "fault scenarios (rated operation, the fault at 0.25 s; docs/faults.md):\n");
     {
         int k;
@@ -37,49 +41,191 @@ void sim_cli_usage(FILE *f)
     }
 }
 
-static int cli_bad(char *err, size_t len, const char *opt, const char *val)
+typedef enum {
+    OPT_SET_BOOL, /* flag: the bool field := flag_value */
+    OPT_SET_INT,  /* flag: the int field := flag_value */
+    OPT_IDEAL,    /* flag: every non-ideality off */
+    OPT_NUMBER,   /* decimal number in [lo, hi] into a double */
+    OPT_INTEGER,  /* decimal integer in [lo, hi] into an int */
+    OPT_SEED,     /* unsigned 64-bit integer */
+    OPT_CHOICE,   /* one of choices[], its index into an int */
+    OPT_SCENARIO, /* a scenario or fault-<name> */
+    OPT_DIRECTORY /* a path */
+} opt_kind_t;
+
+#define OPT_RUN 1u
+#define OPT_REPRODUCE 2u
+
+typedef struct {
+    const char *name;
+    opt_kind_t kind;
+    unsigned where; /* OPT_RUN and/or OPT_REPRODUCE */
+    size_t field;   /* offset in sim_cli_t */
+    int group;      /* options of one group set the same thing: at most one of them */
+    double lo, hi;  /* OPT_NUMBER, OPT_INTEGER */
+    int flag_value; /* OPT_SET_BOOL, OPT_SET_INT */
+    const char *const *choices;
+} opt_t;
+
+static const char *const controllers[] = {"ddc", "mptc49", "mptc13", NULL};
+static const char *const ariths[] = {"fixed", "float", NULL};
+static const char *const directions[] = {"flux-error", "xy-table", NULL};
+static const char *const flux_refs[] = {"constant", "mtpa", NULL};
+
+#define F(member) offsetof(sim_cli_t, member)
+#define FLAG(n, k, m, g, v)                                                                        \
+    {                                                                                              \
+        n, k, OPT_RUN, F(m), g, 0.0, 0.0, v, NULL                                                  \
+    }
+#define NUM(n, m, g, lo, hi)                                                                       \
+    {                                                                                              \
+        n, OPT_NUMBER, OPT_RUN, F(m), g, lo, hi, 0, NULL                                           \
+    }
+#define CHOICE(n, m, g, list)                                                                      \
+    {                                                                                              \
+        n, OPT_CHOICE, OPT_RUN, F(m), g, 0.0, 0.0, 0, list                                         \
+    }
+
+enum {
+    G_QUIET = 1,
+    G_OUT,
+    G_JOBS,
+    G_CONTROLLER,
+    G_SCENARIO,
+    G_ARITH,
+    G_DIRECTION,
+    G_FLUX_REF,
+    G_GUARD,
+    G_LAMBDA,
+    G_FS,
+    G_SPEED,
+    G_LOAD,
+    G_DURATION,
+    G_SEED,
+    G_LEVELS,
+    G_TORQUE_LIMIT,
+    G_FAULT_TIME,
+    G_TRIP,
+    G_FINE_RATE,
+    G_LXY,
+    G_VDC,
+    G_DEAD_TIME,
+    G_PSI5,
+    G_PSI7,
+    G_STEP,
+    G_PROTECT,
+    G_FINE,
+    G_IDEAL
+};
+
+static const opt_t options[] = {
+    {"--quiet", OPT_SET_INT, OPT_RUN | OPT_REPRODUCE, F(quiet), G_QUIET, 0.0, 0.0, 1, NULL},
+    {"--out", OPT_DIRECTORY, OPT_RUN | OPT_REPRODUCE, F(cfg.out_dir), G_OUT, 0.0, 0.0, 0, NULL},
+    {"--jobs", OPT_INTEGER, OPT_REPRODUCE, F(jobs), G_JOBS, 1.0, 64.0, 0, NULL},
+    CHOICE("--controller", cfg.controller, G_CONTROLLER, controllers),
+    {"--scenario", OPT_SCENARIO, OPT_RUN, F(cfg.scenario), G_SCENARIO, 0.0, 0.0, 0, NULL},
+    CHOICE("--arith", cfg.arith, G_ARITH, ariths),
+    CHOICE("--ddc-direction", cfg.ddc_direction, G_DIRECTION, directions),
+    CHOICE("--flux-ref", cfg.flux_ref_mode, G_FLUX_REF, flux_refs),
+    FLAG("--ddc-torque-guard", OPT_SET_INT, cfg.ddc_torque_guard, G_GUARD, 1),
+    FLAG("--paper-ddc", OPT_SET_INT, cfg.ddc_torque_guard, G_GUARD, 0),
+    NUM("--lambda", cfg.lambda, G_LAMBDA, 0.0, 10000.0),
+    NUM("--fs", cfg.fs_hz, G_FS, 1000.0, 100000.0),
+    NUM("--speed", cfg.speed_rpm, G_SPEED, -6000.0, 6000.0),
+    NUM("--load", cfg.load_nm, G_LOAD, -50.0, 50.0),
+    NUM("--duration", cfg.duration_s, G_DURATION, 0.01, 100.0),
+    {"--seed", OPT_SEED, OPT_RUN, F(cfg.seed), G_SEED, 0.0, 0.0, 0, NULL},
+    {"--duty-levels", OPT_INTEGER, OPT_RUN, F(cfg.duty_levels), G_LEVELS, 2.0, 11.0, 0, NULL},
+    NUM("--torque-limit", cfg.torque_limit_nm, G_TORQUE_LIMIT, 0.1, 50.0),
+    NUM("--fault-time", cfg.fault_time_s, G_FAULT_TIME, 0.001, 100.0),
+    NUM("--trip-current", cfg.trip_current_a, G_TRIP, 0.1, 1000.0),
+    NUM("--fine-rate", cfg.fine_rate_hz, G_FINE_RATE, 10000.0, 10e6),
+    NUM("--lxy", cfg.plant.lxy_h, G_LXY, 1e-4, 1.0),
+    NUM("--vdc", cfg.plant.vdc_v, G_VDC, 50.0, 1500.0),
+    NUM("--dead-time", cfg.plant.dead_time_s, G_DEAD_TIME, 0.0, 20e-6),
+    NUM("--psi5", cfg.plant.psi5_wb, G_PSI5, 0.0, 0.1),
+    NUM("--psi7", cfg.plant.psi7_wb, G_PSI7, 0.0, 0.1),
+    NUM("--plant-step", cfg.plant.max_step_s, G_STEP, 1e-7, 1e-4),
+    FLAG("--no-protect", OPT_SET_BOOL, cfg.protect, G_PROTECT, 0),
+    FLAG("--no-fine", OPT_SET_BOOL, cfg.write_fine, G_FINE, 0),
+    FLAG("--no-dead-time", OPT_SET_BOOL, cfg.plant.dead_time_on, G_IDEAL + 1, 0),
+    FLAG("--no-harmonics", OPT_SET_BOOL, cfg.plant.harmonics_on, G_IDEAL + 2, 0),
+    FLAG("--no-adc-offset", OPT_SET_BOOL, cfg.plant.adc_offset_on, G_IDEAL + 3, 0),
+    FLAG("--no-adc-gain", OPT_SET_BOOL, cfg.plant.adc_gain_on, G_IDEAL + 4, 0),
+    FLAG("--no-adc-noise", OPT_SET_BOOL, cfg.plant.adc_noise_on, G_IDEAL + 5, 0),
+    FLAG("--no-encoder-quant", OPT_SET_BOOL, cfg.plant.encoder_quant_on, G_IDEAL + 6, 0),
+    {"--ideal", OPT_IDEAL, OPT_RUN, 0u, G_IDEAL, 0.0, 0.0, 0, NULL},
+};
+
+#define OPTION_COUNT ((int)(sizeof options / sizeof options[0]))
+#define GROUP_LIMIT (G_IDEAL + 8)
+
+static int cli_fail(char *err, size_t len, const char *fmt, const char *a, const char *b)
 {
-    (void)snprintf(err, len, "bad value for %s: '%s'", opt, val ? val : "(missing)");
+    (void)snprintf(err, len, fmt, a, b ? b : "(missing)");
     return -1;
 }
 
-static int cli_num(const char *s, double lo, double hi, double *out)
+/* A plain decimal: optional sign, digits with an optional fraction, optional exponent.
+ * No spaces, no hexadecimal, no inf or nan, nothing after it. */
+static int strict_decimal(const char *s, int integer_only)
+{
+    int digits = 0;
+    if (*s == '+' || *s == '-') {
+        s++;
+    }
+    while (isdigit((unsigned char)*s)) {
+        s++;
+        digits++;
+    }
+    if (!integer_only && *s == '.') {
+        s++;
+        while (isdigit((unsigned char)*s)) {
+            s++;
+            digits++;
+        }
+    }
+    if (digits == 0) {
+        return 0;
+    }
+    if (!integer_only && (*s == 'e' || *s == 'E')) {
+        int exp_digits = 0;
+        s++;
+        if (*s == '+' || *s == '-') {
+            s++;
+        }
+        while (isdigit((unsigned char)*s)) {
+            s++;
+            exp_digits++;
+        }
+        if (exp_digits == 0) {
+            return 0;
+        }
+    }
+    return *s == '\0';
+}
+
+static int parse_number(const char *s, double lo, double hi, double *out)
 {
     char *end;
     double v;
-    if (!s || !*s) {
+    if (!s || !strict_decimal(s, 0)) {
         return -1;
     }
     errno = 0;
     v = strtod(s, &end);
-    if (errno != 0 || *end != '\0' || !(v == v) || v < lo || v > hi) {
+    if (errno != 0 || *end != '\0' || !isfinite(v) || v < lo || v > hi) {
         return -1;
     }
     *out = v;
     return 0;
 }
 
-static int cli_int(const char *s, long lo, long hi, long *out)
-{
-    char *end;
-    long v;
-    if (!s || !*s) {
-        return -1;
-    }
-    errno = 0;
-    v = strtol(s, &end, 10);
-    if (errno != 0 || *end != '\0' || v < lo || v > hi) {
-        return -1;
-    }
-    *out = v;
-    return 0;
-}
-
-static int cli_u64(const char *s, uint64_t *out)
+static int parse_seed(const char *s, uint64_t *out)
 {
     char *end;
     unsigned long long v;
-    if (!s || !*s || s[0] == '-' || s[0] == '+') {
+    if (!s || !strict_decimal(s, 1) || s[0] == '-' || s[0] == '+') {
         return -1;
     }
     errno = 0;
@@ -91,6 +237,106 @@ static int cli_u64(const char *s, uint64_t *out)
     return 0;
 }
 
+static int parse_choice(const char *s, const char *const *choices, int *out)
+{
+    int k;
+    for (k = 0; s && choices[k]; k++) {
+        if (strcmp(s, choices[k]) == 0) {
+            *out = k;
+            return 0;
+        }
+    }
+    return -1;
+}
+
+static int parse_scenario(const char *s, sim_config_t *c)
+{
+    static const char *const scenarios[] = {"steady", "load-step", "accel", "reversal", NULL};
+    static const sim_scenario_t values[] = {SIM_SCEN_STEADY, SIM_SCEN_LOAD_STEP, SIM_SCEN_ACCEL,
+                                            SIM_SCEN_REVERSAL};
+    int k;
+    if (parse_choice(s, scenarios, &k) == 0) {
+        c->scenario = values[k];
+        return 0;
+    }
+    if (s && sim_fault_from_scenario(s) != SIM_FAULT_NONE) {
+        c->scenario = SIM_SCEN_STEADY; /* rated operation, then the fault */
+        c->fault = sim_fault_from_scenario(s);
+        return 0;
+    }
+    return -1;
+}
+
+static void set_ideal(plant_params_t *p)
+{
+    p->dead_time_on = p->harmonics_on = p->adc_offset_on = p->adc_gain_on = false;
+    p->adc_noise_on = p->encoder_quant_on = false;
+}
+
+/* Stores one option's value. Returns the number of arguments consumed (1 or 2), -1 on error. */
+static int apply_option(const opt_t *opt, const char *v, sim_cli_t *o, char *err, size_t len)
+{
+    char *base = (char *)o;
+    double x;
+    int k;
+    switch (opt->kind) {
+    case OPT_SET_BOOL:
+        *(bool *)(void *)(base + opt->field) = opt->flag_value != 0;
+        return 1;
+    case OPT_SET_INT:
+        *(int *)(void *)(base + opt->field) = opt->flag_value;
+        return 1;
+    case OPT_IDEAL:
+        set_ideal(&o->cfg.plant);
+        return 1;
+    case OPT_NUMBER:
+        if (parse_number(v, opt->lo, opt->hi, (double *)(void *)(base + opt->field)) != 0) {
+            return cli_fail(err, len, "bad value for %s: '%s'", opt->name, v);
+        }
+        return 2;
+    case OPT_INTEGER:
+        if (!v || !strict_decimal(v, 1) || parse_number(v, opt->lo, opt->hi, &x) != 0) {
+            return cli_fail(err, len, "bad value for %s: '%s'", opt->name, v);
+        }
+        *(int *)(void *)(base + opt->field) = (int)x;
+        return 2;
+    case OPT_SEED:
+        if (parse_seed(v, &o->cfg.seed) != 0) {
+            return cli_fail(err, len, "bad value for %s: '%s'", opt->name, v);
+        }
+        return 2;
+    case OPT_CHOICE:
+        if (parse_choice(v, opt->choices, &k) != 0) {
+            return cli_fail(err, len, "bad value for %s: '%s'", opt->name, v);
+        }
+        *(int *)(void *)(base + opt->field) = k;
+        return 2;
+    case OPT_SCENARIO:
+        if (parse_scenario(v, &o->cfg) != 0) {
+            return cli_fail(err, len, "bad value for %s: '%s'", opt->name, v);
+        }
+        return 2;
+    case OPT_DIRECTORY:
+    default:
+        if (!v || !*v || strlen(v) > 900 || v[0] == '-') {
+            return cli_fail(err, len, "bad value for %s: '%s'", opt->name, v);
+        }
+        o->cfg.out_dir = v;
+        return 2;
+    }
+}
+
+static const opt_t *find_option(const char *a, unsigned where)
+{
+    int k;
+    for (k = 0; k < OPTION_COUNT; k++) {
+        if (strcmp(a, options[k].name) == 0 && (options[k].where & where) != 0u) {
+            return &options[k];
+        }
+    }
+    return NULL;
+}
+
 static void cli_defaults(sim_cli_t *o)
 {
     memset(o, 0, sizeof *o);
@@ -98,246 +344,89 @@ static void cli_defaults(sim_cli_t *o)
     o->jobs = 2;
 }
 
-static int cli_parse(int argc, char **argv, sim_cli_t *o, char *err, size_t len, int reproduce)
+/* What no single option can see: combinations that cannot work. */
+static int check_combination(const sim_cli_t *o, const int *seen, unsigned where, char *err,
+                             size_t len)
 {
-    int i;
-    int have_ctl = 0, have_scen = 0;
-    sim_config_t *c = &o->cfg;
-    plant_params_t *p = &c->plant;
-    cli_defaults(o);
-    for (i = 0; i < argc; i++) {
-        const char *a = argv[i];
-        const char *v = (i + 1 < argc) ? argv[i + 1] : NULL;
-        long n;
-        /* flags without a value */
-        if (strcmp(a, "--quiet") == 0) {
-            o->quiet = 1;
-            continue;
-        }
-        if (!reproduce) {
-            if (strcmp(a, "--no-dead-time") == 0) {
-                p->dead_time_on = false;
-                continue;
-            }
-            if (strcmp(a, "--no-harmonics") == 0) {
-                p->harmonics_on = false;
-                continue;
-            }
-            if (strcmp(a, "--no-adc-offset") == 0) {
-                p->adc_offset_on = false;
-                continue;
-            }
-            if (strcmp(a, "--no-adc-gain") == 0) {
-                p->adc_gain_on = false;
-                continue;
-            }
-            if (strcmp(a, "--no-adc-noise") == 0) {
-                p->adc_noise_on = false;
-                continue;
-            }
-            if (strcmp(a, "--no-encoder-quant") == 0) {
-                p->encoder_quant_on = false;
-                continue;
-            }
-            if (strcmp(a, "--ideal") == 0) {
-                p->dead_time_on = p->harmonics_on = p->adc_offset_on = p->adc_gain_on = false;
-                p->adc_noise_on = p->encoder_quant_on = false;
-                continue;
-            }
-            if (strcmp(a, "--ddc-torque-guard") == 0) {
-                c->ddc_torque_guard = 1;
-                continue;
-            }
-            if (strcmp(a, "--paper-ddc") == 0) { /* the paper's duty search: no torque guard */
-                c->ddc_torque_guard = 0;
-                continue;
-            }
-            if (strcmp(a, "--no-protect") == 0) {
-                c->protect = false;
-                continue;
-            }
-            if (strcmp(a, "--no-fine") == 0) {
-                c->write_fine = false;
-                continue;
-            }
-        }
-        /* options with a value */
-        if (strcmp(a, "--out") == 0) {
-            if (!v || !*v || strlen(v) > 900) {
-                return cli_bad(err, len, a, v);
-            }
-            c->out_dir = v;
-        } else if (reproduce && strcmp(a, "--jobs") == 0) {
-            if (cli_int(v, 1, 64, &n) != 0) {
-                return cli_bad(err, len, a, v);
-            }
-            o->jobs = (int)n;
-        } else if (reproduce) {
-            (void)snprintf(err, len, "unknown option '%s'", a);
-            return -1;
-        } else if (strcmp(a, "--controller") == 0) {
-            if (v && strcmp(v, "ddc") == 0) {
-                c->controller = 0;
-            } else if (v && strcmp(v, "mptc49") == 0) {
-                c->controller = 1;
-            } else if (v && strcmp(v, "mptc13") == 0) {
-                c->controller = 2;
-            } else {
-                return cli_bad(err, len, a, v);
-            }
-            have_ctl = 1;
-        } else if (strcmp(a, "--scenario") == 0) {
-            if (v && strcmp(v, "steady") == 0) {
-                c->scenario = SIM_SCEN_STEADY;
-            } else if (v && strcmp(v, "load-step") == 0) {
-                c->scenario = SIM_SCEN_LOAD_STEP;
-            } else if (v && strcmp(v, "accel") == 0) {
-                c->scenario = SIM_SCEN_ACCEL;
-            } else if (v && strcmp(v, "reversal") == 0) {
-                c->scenario = SIM_SCEN_REVERSAL;
-            } else if (sim_fault_from_scenario(v) != SIM_FAULT_NONE) {
-                c->scenario = SIM_SCEN_STEADY; /* rated operation, then the fault */
-                c->fault = sim_fault_from_scenario(v);
-            } else {
-                return cli_bad(err, len, a, v);
-            }
-            have_scen = 1;
-        } else if (strcmp(a, "--arith") == 0) {
-            if (v && strcmp(v, "fixed") == 0) {
-                c->arith = 0;
-            } else if (v && strcmp(v, "float") == 0) {
-                c->arith = 1;
-            } else {
-                return cli_bad(err, len, a, v);
-            }
-        } else if (strcmp(a, "--ddc-direction") == 0) {
-            if (v && strcmp(v, "flux-error") == 0) {
-                c->ddc_direction = 0;
-            } else if (v && strcmp(v, "xy-table") == 0) {
-                c->ddc_direction = 1;
-            } else {
-                return cli_bad(err, len, a, v);
-            }
-        } else if (strcmp(a, "--flux-ref") == 0) {
-            if (v && strcmp(v, "constant") == 0) {
-                c->flux_ref_mode = 0;
-            } else if (v && strcmp(v, "mtpa") == 0) {
-                c->flux_ref_mode = 1;
-            } else {
-                return cli_bad(err, len, a, v);
-            }
-        } else if (strcmp(a, "--lambda") == 0) {
-            if (cli_num(v, 0.0, 10000.0, &c->lambda) != 0) {
-                return cli_bad(err, len, a, v);
-            }
-        } else if (strcmp(a, "--fs") == 0) {
-            if (cli_num(v, 1000.0, 100000.0, &c->fs_hz) != 0) {
-                return cli_bad(err, len, a, v);
-            }
-        } else if (strcmp(a, "--speed") == 0) {
-            if (cli_num(v, -6000.0, 6000.0, &c->speed_rpm) != 0) {
-                return cli_bad(err, len, a, v);
-            }
-        } else if (strcmp(a, "--load") == 0) {
-            if (cli_num(v, -50.0, 50.0, &c->load_nm) != 0) {
-                return cli_bad(err, len, a, v);
-            }
-        } else if (strcmp(a, "--duration") == 0) {
-            if (cli_num(v, 0.01, 100.0, &c->duration_s) != 0) {
-                return cli_bad(err, len, a, v);
-            }
-        } else if (strcmp(a, "--seed") == 0) {
-            if (cli_u64(v, &c->seed) != 0) {
-                return cli_bad(err, len, a, v);
-            }
-        } else if (strcmp(a, "--duty-levels") == 0) {
-            if (cli_int(v, 2, 11, &n) != 0) {
-                return cli_bad(err, len, a, v);
-            }
-            c->duty_levels = (int)n;
-        } else if (strcmp(a, "--torque-limit") == 0) {
-            if (cli_num(v, 0.1, 50.0, &c->torque_limit_nm) != 0) {
-                return cli_bad(err, len, a, v);
-            }
-        } else if (strcmp(a, "--fault-time") == 0) {
-            if (cli_num(v, 0.001, 100.0, &c->fault_time_s) != 0) {
-                return cli_bad(err, len, a, v);
-            }
-        } else if (strcmp(a, "--trip-current") == 0) {
-            if (cli_num(v, 0.1, 1000.0, &c->trip_current_a) != 0) {
-                return cli_bad(err, len, a, v);
-            }
-        } else if (strcmp(a, "--fine-rate") == 0) {
-            if (cli_num(v, 10000.0, 10e6, &c->fine_rate_hz) != 0) {
-                return cli_bad(err, len, a, v);
-            }
-        } else if (strcmp(a, "--lxy") == 0) {
-            if (cli_num(v, 1e-4, 1.0, &p->lxy_h) != 0) {
-                return cli_bad(err, len, a, v);
-            }
-        } else if (strcmp(a, "--vdc") == 0) {
-            if (cli_num(v, 50.0, 1500.0, &p->vdc_v) != 0) {
-                return cli_bad(err, len, a, v);
-            }
-        } else if (strcmp(a, "--dead-time") == 0) {
-            if (cli_num(v, 0.0, 20e-6, &p->dead_time_s) != 0) {
-                return cli_bad(err, len, a, v);
-            }
-        } else if (strcmp(a, "--psi5") == 0) {
-            if (cli_num(v, 0.0, 0.1, &p->psi5_wb) != 0) {
-                return cli_bad(err, len, a, v);
-            }
-        } else if (strcmp(a, "--psi7") == 0) {
-            if (cli_num(v, 0.0, 0.1, &p->psi7_wb) != 0) {
-                return cli_bad(err, len, a, v);
-            }
-        } else if (strcmp(a, "--plant-step") == 0) {
-            if (cli_num(v, 1e-7, 1e-4, &p->max_step_s) != 0) {
-                return cli_bad(err, len, a, v);
-            }
-        } else {
-            (void)snprintf(err, len, "unknown option '%s'", a);
-            return -1;
-        }
-        i++; /* consumed the value */
+    const sim_config_t *c = &o->cfg;
+    char text[160];
+    if (where == OPT_RUN && !seen[G_CONTROLLER]) {
+        return cli_fail(err, len, "missing %s%s", "--controller", "");
     }
-    if (!reproduce && !have_ctl) {
-        (void)snprintf(err, len, "missing --controller");
-        return -1;
+    if (where == OPT_RUN && !seen[G_SCENARIO]) {
+        return cli_fail(err, len, "missing %s%s", "--scenario", "");
     }
-    if (!reproduce && !have_scen) {
-        (void)snprintf(err, len, "missing --scenario");
-        return -1;
+    if (where == OPT_REPRODUCE && !c->out_dir) {
+        return cli_fail(err, len, "missing %s%s", "--out", "");
     }
-    if (c->fault_time_s > 0.0 && c->fault == SIM_FAULT_NONE) {
-        (void)snprintf(err, len, "--fault-time needs a fault-<name> scenario");
-        return -1;
+    if (seen[G_FAULT_TIME] && c->fault == SIM_FAULT_NONE) {
+        return cli_fail(err, len, "%s needs a fault-<name> scenario%s", "--fault-time", "");
     }
-    if (c->fault != SIM_FAULT_NONE && sim_fault_at_power_up(c->fault) && c->fault_time_s > 0.0) {
+    if (c->fault != SIM_FAULT_NONE && sim_fault_at_power_up(c->fault) && seen[G_FAULT_TIME]) {
         (void)snprintf(err, len, "fault-%s is present from power-up: no --fault-time",
                        sim_fault_info(c->fault)->name);
         return -1;
     }
-    if (reproduce && !c->out_dir) {
-        (void)snprintf(err, len, "missing --out");
-        return -1;
+    /* Both switches of a leg are off for the dead time at every edge: it must leave room for
+     * pulses, a quarter of the period at most. */
+    if (c->plant.dead_time_on && c->plant.dead_time_s >= 0.25 / c->fs_hz) {
+        (void)snprintf(text, sizeof text, "%g us is not below a quarter of the %g us PWM period",
+                       c->plant.dead_time_s * 1e6, 1e6 / c->fs_hz);
+        return cli_fail(err, len, "bad value for %s: %s", "--dead-time", text);
     }
     {
-        const char *chk = plant_params_check(p);
+        const char *chk = plant_params_check(&c->plant);
         if (chk[0] != '\0') {
-            (void)snprintf(err, len, "%s", chk);
-            return -1;
+            return cli_fail(err, len, "%s%s", chk, "");
         }
     }
     return 0;
 }
 
+static int cli_parse(int argc, char **argv, sim_cli_t *o, char *err, size_t len, unsigned where)
+{
+    int seen[GROUP_LIMIT] = {0};
+    int i = 0;
+    cli_defaults(o);
+    while (i < argc) {
+        const char *a = argv[i];
+        const opt_t *opt = find_option(a, where);
+        int used;
+        if (!opt) {
+            return cli_fail(err, len, "unknown option '%s'%s", a, "");
+        }
+        if (seen[opt->group]) {
+            return cli_fail(err, len,
+                            "%s given more than once (or with an option that sets "
+                            "the same thing)%s",
+                            a, "");
+        }
+        seen[opt->group] = 1;
+        if (opt->kind == OPT_IDEAL) {
+            int g;
+            for (g = G_IDEAL + 1; g <= G_IDEAL + 6; g++) {
+                if (seen[g]) {
+                    return cli_fail(err, len, "%s repeats a --no-... option given with it%s", a,
+                                    "");
+                }
+                seen[g] = 1;
+            }
+        }
+        used = apply_option(opt, (i + 1 < argc) ? argv[i + 1] : NULL, o, err, len);
+        if (used < 0) {
+            return -1;
+        }
+        i += used;
+    }
+    return check_combination(o, seen, where, err, len);
+}
+
 int sim_cli_parse_run(int argc, char **argv, sim_cli_t *out, char *err, size_t err_len)
 {
-    return cli_parse(argc, argv, out, err, err_len, 0);
+    return cli_parse(argc, argv, out, err, err_len, OPT_RUN);
 }
 
 int sim_cli_parse_reproduce(int argc, char **argv, sim_cli_t *out, char *err, size_t err_len)
 {
-    return cli_parse(argc, argv, out, err, err_len, 1);
+    return cli_parse(argc, argv, out, err, err_len, OPT_REPRODUCE);
 }

@@ -104,11 +104,11 @@ int metrics_thd(const double *x, const double *theta, size_t n, metrics_thd_t *o
             }
         }
     }
-    if (!(q1 > 0.0)) {
-        return -1;
-    }
     out->fundamental_rms = q1;
     out->total_rms_ac = sqrt(q2);
+    if (!(q1 >= METRICS_THD_MIN_FUNDAMENTAL_RMS)) {
+        return -1;
+    }
     out->thd = sqrt(fmax(q2 - q1 * q1, 0.0)) / q1;
     out->thd_h50 = sqrt(sum_h) / q1;
     return 0;

@@ -20,11 +20,17 @@ typedef struct {
     double thd_h50;         /* sqrt(sum_{h=2..50} Q_h^2) / Q1 (power-analyser view) */
 } metrics_thd_t;
 
+/* Below this fundamental (A rms, 2 % of the 10 A base current) a THD says nothing about the
+ * waveform: a no-load run's switching ripple over a vanishing fundamental reads as several
+ * hundred percent. The THD is then not meaningful and not reported. */
+#define METRICS_THD_MIN_FUNDAMENTAL_RMS 0.2
+
 /* THD of x sampled uniformly over a window that holds an integer number of
  * fundamental periods; theta is the fundamental's phase (rad, unwrapped or
  * not) at each sample, so slight speed variations do not smear the
  * fundamental. Harmonic h is the projection on cos(h theta), sin(h theta).
- * Returns -1 if n < 8 or the fundamental is zero, else 0. */
+ * Returns -1 (thd and thd_h50 -1: not meaningful) if n < 8 or the fundamental is below
+ * METRICS_THD_MIN_FUNDAMENTAL_RMS, else 0. */
 int metrics_thd(const double *x, const double *theta, size_t n, metrics_thd_t *out);
 
 /* Index range [*first, n) covering the largest whole number of fundamental

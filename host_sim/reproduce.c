@@ -600,9 +600,12 @@ int sim_reproduce(const char *out_dir, int jobs, int quiet)
     const size_t bytes = sizeof(rep_case_t) * REP_MAX_CASES;
     char path[1200];
 
-    if (sim_make_dirs(out_dir) != 0) {
-        fprintf(stderr, "sixphase-sim: cannot create '%s'\n", out_dir);
-        return 1;
+    {
+        char err[1400];
+        if (sim_check_out_dir(out_dir, err, sizeof err) != 0) {
+            fprintf(stderr, "sixphase-sim: %s\n", err);
+            return 1;
+        }
     }
     cases =
         (rep_case_t *)mmap(NULL, bytes, PROT_READ | PROT_WRITE, MAP_SHARED | MAP_ANONYMOUS, -1, 0);

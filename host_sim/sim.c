@@ -526,6 +526,27 @@ int sim_make_dirs(const char *path)
     return 0;
 }
 
+int sim_check_out_dir(const char *dir, char *err, size_t err_len)
+{
+    char probe[1200];
+    FILE *f;
+    if (sim_make_dirs(dir) != 0) {
+        (void)snprintf(err, err_len, "cannot create the output directory '%s': %s", dir,
+                       strerror(errno));
+        return -1;
+    }
+    (void)snprintf(probe, sizeof probe, "%s/.sixphase-sim-write-test", dir);
+    f = fopen(probe, "w");
+    if (!f) {
+        (void)snprintf(err, err_len, "cannot write to the output directory '%s': %s", dir,
+                       strerror(errno));
+        return -1;
+    }
+    (void)fclose(f);
+    (void)remove(probe);
+    return 0;
+}
+
 static int sim_write_trace(const char *dir, const sim_trace_t *tr)
 {
     char path[1200];
@@ -758,6 +779,9 @@ int sim_run(const sim_config_t *c, sim_result_t *r, char *err, size_t err_len)
         sim_err(err, err_len, "fault injection runs on the steady scenario only");
         return -1;
     }
+    if (c->out_dir && sim_check_out_dir(c->out_dir, err, err_len) != 0) {
+        return -1; /* found before simulating, not after */
+    }
     sim_plan(c, &pl);
     ts = 1.0 / c->fs_hz;
     sim_fault_begin(&fs, c->fault, (c->fault_time_s > 0.0) ? c->fault_time_s : SIM_FAULT_INJECT_S);
@@ -865,6 +889,13 @@ int sim_run(const sim_config_t *c, sim_result_t *r, char *err, size_t err_len)
         r->fault_detect_ms = 1e3 * (double)cal_isr_calls * ts;
         r->fault = st.fault;
         k_detect = 0;
+    } else if (st.state == SIM_DRIVE_STATE_FAULT) {
+        (void)snprintf(err, err_len,
+                       "the drive stopped in fault %s during its ADC calibration, before the "
+                       "scenario (the operating point is beyond a protection limit: "
+                       "docs/faults.md; --no-protect lifts them)",
+                       sxl_fault_name((uint16_t)st.fault));
+        goto done;
     } else if (st.state != SIM_DRIVE_STATE_READY) {
         sim_err(err, err_len, "drive did not finish ADC calibration");
         goto done;

@@ -109,5 +109,8 @@ void sim_print_metrics_json(FILE *f, const sim_config_t *c, const sim_result_t *
 
 /* mkdir -p; 0 on success. */
 int sim_make_dirs(const char *path);
+/* Creates dir and proves a file can be written in it; else non-zero with a one-line message.
+ * Called before any simulation, so a bad --out costs nothing. */
+int sim_check_out_dir(const char *dir, char *err, size_t err_len);
 
 #endif /* SIM_SIM_H */

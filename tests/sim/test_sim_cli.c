@@ -78,7 +78,7 @@ static void test_good_arguments(void **state)
 }
 
 typedef struct {
-    const char *args[6];
+    const char *args[8];
     int n;
     const char *must_contain;
 } bad_case_t;
@@ -108,6 +108,23 @@ static const bad_case_t bad_cases[] = {
     {{"--controller", "ddc", "--scenario", "steady", "--lambda"}, 5, "(missing)"},
     {{"--scenario", "steady"}, 2, "--controller"},
     {{"--controller", "ddc"}, 2, "--scenario"},
+    /* plain decimals only, each option once, no impossible combination */
+    {{"--controller", "ddc", "--scenario", "steady", "--lambda", "0x0.1"}, 6, "'0x0.1'"},
+    {{"--controller", "ddc", "--scenario", "steady", "--lambda", " 20"}, 6, "' 20'"},
+    {{"--controller", "ddc", "--scenario", "steady", "--lambda", "20 "}, 6, "'20 '"},
+    {{"--controller", "ddc", "--scenario", "steady", "--lambda", "nan"}, 6, "'nan'"},
+    {{"--controller", "ddc", "--scenario", "steady", "--duty-levels", "6.0"}, 6, "'6.0'"},
+    {{"--controller", "ddc", "--scenario", "steady", "--lambda", "20", "--lambda", "30"},
+     8,
+     "--lambda given more than once"},
+    {{"--controller", "ddc", "--scenario", "steady", "--scenario", "accel"}, 6, "--scenario"},
+    {{"--controller", "ddc", "--scenario", "steady", "--paper-ddc", "--ddc-torque-guard"},
+     6,
+     "--ddc-torque-guard"},
+    {{"--controller", "ddc", "--scenario", "steady", "--fs", "100000", "--dead-time", "2e-5"},
+     8,
+     "quarter of the 10 us PWM period"},
+    {{"--controller", "ddc", "--scenario", "steady", "--out", "--quiet"}, 6, "'--quiet'"},
 };
 
 static void test_bad_arguments_rejected(void **state)
@@ -179,6 +196,30 @@ static void test_executable_writes_nothing_on_bad_argument(void **state)
         assert_non_null(strchr(err, '\n'));
         assert_true(strchr(err, '\n')[1] == '\0'); /* exactly one line */
         assert_int_not_equal(stat(out, &st), 0);   /* nothing written */
+    }
+    {
+        /* an output directory that cannot be written is found before the simulation */
+        const char *const a[] = {SIXPHASE_SIM_EXE,
+                                 "run",
+                                 "--controller",
+                                 "ddc",
+                                 "--scenario",
+                                 "steady",
+                                 "--duration",
+                                 "100",
+                                 "--out",
+                                 "/proc/sixphase/run",
+                                 NULL};
+        assert_int_equal(run_exe(a, err, sizeof err), 1);
+        assert_non_null(strstr(err, "cannot create the output directory"));
+    }
+    {
+        /* a drive stopped by its protection says by which fault */
+        const char *const a[] = {
+            SIXPHASE_SIM_EXE, "run", "--controller", "ddc",  "--scenario", "steady",
+            "--vdc",          "760", "--duration",   "0.05", NULL};
+        assert_int_equal(run_exe(a, err, sizeof err), 1);
+        assert_non_null(strstr(err, "fault DC_OVERVOLTAGE"));
     }
     {
         const char *const a[] = {SIXPHASE_SIM_EXE, "simulate", NULL};

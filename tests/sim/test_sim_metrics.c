@@ -53,6 +53,22 @@ static void test_thd_pure_sine_and_degenerate(void **state)
     assert_int_equal(metrics_thd(x, th, 4, &r), -1);
 }
 
+/* A no-load run: ripple over a vanishing fundamental is not a THD of several hundred per
+ * cent; it is reported as not meaningful. */
+static void test_thd_not_meaningful_without_a_fundamental(void **state)
+{
+    metrics_thd_t r;
+    int i;
+    (void)state;
+    for (i = 0; i < 1000; i++) {
+        th[i] = 2.0 * PI * (double)i / 100.0;
+        x[i] = 0.07 * sin(th[i]) + 0.35 * cos(37.0 * th[i]);
+    }
+    assert_int_equal(metrics_thd(x, th, 1000, &r), -1);
+    assert_true(r.thd < 0.0 && r.thd_h50 < 0.0);
+    assert_true(fabs(r.fundamental_rms - 0.07 / sqrt(2.0)) < 1e-9);
+}
+
 static void test_whole_periods(void **state)
 {
     size_t first = 0;
@@ -129,6 +145,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_thd_known_mix),
         cmocka_unit_test(test_thd_pure_sine_and_degenerate),
+        cmocka_unit_test(test_thd_not_meaningful_without_a_fundamental),
         cmocka_unit_test(test_whole_periods),
         cmocka_unit_test(test_std_pp_rms),
         cmocka_unit_test(test_switching_frequency_count),
