@@ -6,31 +6,21 @@
 #include "hal_pwm.h"
 #include "profile.h"
 
-/* Severity order: the first bit present names the drive fault. */
+/* The control core's fault bits are the fault list's (firmware/link/sxlink_faults.h). */
+#define DRIVE_FAULT_BIT_CHECK(name, code, bit_name, bit, text)                                     \
+    typedef char                                                                                   \
+        drive_fault_bit_check_##name[(CTL_FAULT_##bit_name == (uint16_t)(1u << (bit))) ? 1 : -1];
+SXL_FAULT_LIST(DRIVE_FAULT_BIT_CHECK)
+#undef DRIVE_FAULT_BIT_CHECK
+
+/* Severity order, the list's: the first bit present names the drive fault. */
+#define DRIVE_FAULT_MAP_ENTRY(name, code, bit_name, bit, text)                                     \
+    {(uint16_t)(1u << (bit)), DRIVE_FAULT_##name},
 static const struct {
     uint16_t bit;
     drive_fault_t code;
-} drive_fault_map[] = {
-    {CTL_FAULT_HW_TRIP, DRIVE_FAULT_HW_TRIP},
-    {CTL_FAULT_OVERCURRENT, DRIVE_FAULT_OVERCURRENT},
-    /* a channel at its rail first: the value it stands for is unknown, and the sensor chain
-     * is the first thing to look at (a DC-link channel at full scale also reads as
-     * overvoltage) */
-    {CTL_FAULT_ADC_RAIL, DRIVE_FAULT_ADC_RAIL},
-    {CTL_FAULT_DC_OVERVOLTAGE, DRIVE_FAULT_DC_OVERVOLTAGE},
-    {CTL_FAULT_MEASUREMENT, DRIVE_FAULT_MEASUREMENT},
-    {CTL_FAULT_ADC_MISSING, DRIVE_FAULT_ADC_MISSING},
-    {CTL_FAULT_ADC_STUCK, DRIVE_FAULT_ADC_STUCK},
-    {CTL_FAULT_CURRENT_SUM, DRIVE_FAULT_CURRENT_SUM},
-    {CTL_FAULT_OPEN_PHASE, DRIVE_FAULT_OPEN_PHASE},
-    {CTL_FAULT_ENCODER, DRIVE_FAULT_ENCODER},
-    {CTL_FAULT_OVERSPEED, DRIVE_FAULT_OVERSPEED},
-    {CTL_FAULT_DC_UNDERVOLTAGE, DRIVE_FAULT_DC_UNDERVOLTAGE},
-    {CTL_FAULT_OVERRUN, DRIVE_FAULT_OVERRUN},
-    {CTL_FAULT_ADC_OFFSET, DRIVE_FAULT_ADC_OFFSET},
-    {CTL_FAULT_PARAMS, DRIVE_FAULT_PARAMS},
-    {CTL_FAULT_PLATFORM, DRIVE_FAULT_STARTUP},
-};
+} drive_fault_map[] = {SXL_FAULT_LIST(DRIVE_FAULT_MAP_ENTRY)};
+#undef DRIVE_FAULT_MAP_ENTRY
 
 #define DRIVE_FAULT_MAP_LEN ((int16_t)(sizeof drive_fault_map / sizeof drive_fault_map[0]))
 

@@ -34,6 +34,7 @@
 #include "ctl_protect.h"
 #include "hal_adc.h"
 #include "hal_encoder.h"
+#include "sxlink_faults.h"
 
 #define DRIVE_CALIBRATION_SAMPLES 1024
 /* Offsets further than this from mid scale mean a broken sensor or front end. */
@@ -47,27 +48,12 @@ typedef enum {
     DRIVE_STATE_FAULT = 4
 } drive_state_t;
 
-typedef enum {
-    DRIVE_FAULT_NONE = 0,
-    DRIVE_FAULT_PARAMS = 1,      /* controller parameters rejected at init */
-    DRIVE_FAULT_ADC_OFFSET = 2,  /* calibration offset out of range */
-    DRIVE_FAULT_ADC_MISSING = 3, /* ISR ran without a new conversion */
-    DRIVE_FAULT_HW_TRIP = 4,     /* hardware over-current trip zone fired */
-    DRIVE_FAULT_OVERRUN = 5,     /* control ISR did not finish within its period */
-    DRIVE_FAULT_ENCODER = 6,     /* encoder unhealthy, stopped under torque, or angle jump */
-    DRIVE_FAULT_STARTUP = 7,     /* a peripheral failed to initialise (not clearable) */
-    DRIVE_FAULT_OVERCURRENT = 8, /* software phase over-current */
-    DRIVE_FAULT_DC_OVERVOLTAGE = 9,
-    DRIVE_FAULT_DC_UNDERVOLTAGE = 10, /* while running */
-    DRIVE_FAULT_OVERSPEED = 11,
-    DRIVE_FAULT_ADC_RAIL = 12,    /* a conversion at the rail */
-    DRIVE_FAULT_ADC_STUCK = 13,   /* a current channel frozen while current flows */
-    DRIVE_FAULT_CURRENT_SUM = 14, /* a three-phase set does not sum to zero */
-    DRIVE_FAULT_OPEN_PHASE = 15,  /* one phase carries no current while the others do */
-    DRIVE_FAULT_MEASUREMENT = 16  /* a scaled measurement is not a number (float build) */
-} drive_fault_t;
+/* Drive fault codes, from the one fault list (firmware/link/sxlink_faults.h). */
+#define DRIVE_FAULT_ENUM(name, code, bit_name, bit, text) DRIVE_FAULT_##name = code,
+typedef enum { DRIVE_FAULT_NONE = 0, SXL_FAULT_LIST(DRIVE_FAULT_ENUM) } drive_fault_t;
+#undef DRIVE_FAULT_ENUM
 
-#define DRIVE_FAULT_COUNT 17
+#define DRIVE_FAULT_COUNT ((int16_t)SXL_FAULT_CODE_COUNT)
 
 /* Why a run request was refused (the last reason is kept and reported over the link). */
 typedef enum {

@@ -4,31 +4,14 @@
 #include "hal_pwm.h"
 #include "profile.h"
 
-/* The protocol's name tables (sxlink_names.c) are numbered like the firmware's enums, and
- * sxlink stays free of drive.h: check them here, where both are visible (C99 has no
- * static_assert; a false condition gives an array of size -1). */
+/* The protocol's state and refusal name tables (sxlink_names.c) are numbered like the
+ * firmware's enums, and sxlink stays free of drive.h: check them here, where both are visible
+ * (C99 has no static_assert; a false condition gives an array of size -1). The fault names
+ * and codes come from one list (sxlink_faults.h). */
 #define DRIVE_LINK_ASSERT(name, cond) typedef char drive_link_assert_##name[(cond) ? 1 : -1]
-DRIVE_LINK_ASSERT(fault_names, (int32_t)SXL_FAULT_NAME_COUNT == (int32_t)DRIVE_FAULT_COUNT);
 DRIVE_LINK_ASSERT(state_names, (int32_t)SXL_STATE_NAME_COUNT == (int32_t)DRIVE_STATE_FAULT + 1);
 DRIVE_LINK_ASSERT(run_refusal_names,
                   (int32_t)SXL_RUN_REFUSAL_NAME_COUNT == (int32_t)DRIVE_RUN_REFUSAL_COUNT);
-DRIVE_LINK_ASSERT(fault_bits, SXL_FAULT_BIT_COUNT == 16u);
-DRIVE_LINK_ASSERT(bit_overcurrent, CTL_FAULT_OVERCURRENT == 0x0001);
-DRIVE_LINK_ASSERT(bit_dc_overvoltage, CTL_FAULT_DC_OVERVOLTAGE == 0x0002);
-DRIVE_LINK_ASSERT(bit_dc_undervoltage, CTL_FAULT_DC_UNDERVOLTAGE == 0x0004);
-DRIVE_LINK_ASSERT(bit_overspeed, CTL_FAULT_OVERSPEED == 0x0008);
-DRIVE_LINK_ASSERT(bit_encoder, CTL_FAULT_ENCODER == 0x0010);
-DRIVE_LINK_ASSERT(bit_adc_rail, CTL_FAULT_ADC_RAIL == 0x0020);
-DRIVE_LINK_ASSERT(bit_adc_stuck, CTL_FAULT_ADC_STUCK == 0x0040);
-DRIVE_LINK_ASSERT(bit_adc_offset, CTL_FAULT_ADC_OFFSET == 0x0080);
-DRIVE_LINK_ASSERT(bit_overrun, CTL_FAULT_OVERRUN == 0x0100);
-DRIVE_LINK_ASSERT(bit_current_sum, CTL_FAULT_CURRENT_SUM == 0x0200);
-DRIVE_LINK_ASSERT(bit_open_phase, CTL_FAULT_OPEN_PHASE == 0x0400);
-DRIVE_LINK_ASSERT(bit_hw_trip, CTL_FAULT_HW_TRIP == 0x0800);
-DRIVE_LINK_ASSERT(bit_params, CTL_FAULT_PARAMS == 0x1000);
-DRIVE_LINK_ASSERT(bit_measurement, CTL_FAULT_MEASUREMENT == 0x2000);
-DRIVE_LINK_ASSERT(bit_adc_missing, CTL_FAULT_ADC_MISSING == 0x4000);
-DRIVE_LINK_ASSERT(bit_platform, CTL_FAULT_PLATFORM == 0x8000);
 
 /* x rounded to the nearest integer and saturated to int32. */
 static int32_t float_to_i32(float x)

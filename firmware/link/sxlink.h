@@ -16,6 +16,8 @@
 #include <stdbool.h>
 #include <stdint.h>
 
+#include "sxlink_faults.h"
+
 #define SXL_SOF 0xA5u
 #define SXL_MAX_PAYLOAD 48u
 #define SXL_MAX_FRAME (SXL_MAX_PAYLOAD + 5u)
@@ -168,12 +170,12 @@ int16_t sxl_get_i16(const uint16_t *p);
 /* Names (sxlink_names.c), upper case as in the firmware's enums; "?" out of range. Plain
  * numbers, no firmware headers, so host programs can use them. */
 #define SXL_STATE_NAME_COUNT 5u       /* drive_state_t: INIT .. FAULT */
-#define SXL_FAULT_NAME_COUNT 17u      /* drive_fault_t: NONE .. MEASUREMENT (= DRIVE_FAULT_COUNT) */
-#define SXL_FAULT_BIT_COUNT 16u       /* ctl_fault_t bits 0..15 */
 #define SXL_RUN_REFUSAL_NAME_COUNT 4u /* drive_run_refusal_t: NONE .. UNDERVOLTAGE */
 const char *sxl_run_refusal_name(uint16_t reason);
 const char *sxl_state_name(uint16_t state);
 const char *sxl_fault_name(uint16_t code);
+/* One line on what a drive fault code means (the fault list's description; "" for NONE). */
+const char *sxl_fault_description(uint16_t code);
 /* Name of ctl_fault_t bit number bit (0 = OVERCURRENT .. 15 = PLATFORM), not of a mask. */
 const char *sxl_fault_bit_name(uint16_t bit);
 /* The names of the bits set in mask joined by '|' ("NONE" for 0) into out (cap chars incl.

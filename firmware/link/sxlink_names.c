@@ -1,20 +1,23 @@
 /* Names of the drive states, drive fault codes and protection fault bits carried by the
- * protocol. Tables in the order of the firmware's enums (drive.h, ctl_protect.h);
- * drive_link.c checks the counts at compile time. */
+ * protocol. The fault names come from the one fault list (sxlink_faults.h); drive_link.c
+ * checks the other tables' counts against the firmware's enums at compile time. */
 #include "sxlink.h"
 
 static const char *const state_names[SXL_STATE_NAME_COUNT] = {"INIT", "CALIBRATE", "READY", "RUN",
                                                               "FAULT"};
 
-static const char *const fault_names[SXL_FAULT_NAME_COUNT] = {
-    "NONE",     "PARAMS",    "ADC_OFFSET",  "ADC_MISSING",    "HW_TRIP",         "OVERRUN",
-    "ENCODER",  "STARTUP",   "OVERCURRENT", "DC_OVERVOLTAGE", "DC_UNDERVOLTAGE", "OVERSPEED",
-    "ADC_RAIL", "ADC_STUCK", "CURRENT_SUM", "OPEN_PHASE",     "MEASUREMENT"};
-
-static const char *const fault_bit_names[SXL_FAULT_BIT_COUNT] = {
-    "OVERCURRENT", "DC_OVERVOLTAGE", "DC_UNDERVOLTAGE", "OVERSPEED",   "ENCODER",    "ADC_RAIL",
-    "ADC_STUCK",   "ADC_OFFSET",     "OVERRUN",         "CURRENT_SUM", "OPEN_PHASE", "HW_TRIP",
-    "PARAMS",      "MEASUREMENT",    "ADC_MISSING",     "PLATFORM"};
+/* From the one fault list (sxlink_faults.h), by code and by bit number. */
+#define NAME_BY_CODE(name, code, bit_name, bit, text) [code] = #name,
+#define TEXT_BY_CODE(name, code, bit_name, bit, text) [code] = text,
+#define NAME_BY_BIT(name, code, bit_name, bit, text) [bit] = #bit_name,
+static const char *const fault_names[SXL_FAULT_CODE_COUNT] = {[0] = "NONE",
+                                                              SXL_FAULT_LIST(NAME_BY_CODE)};
+static const char *const fault_texts[SXL_FAULT_CODE_COUNT] = {[0] = "",
+                                                              SXL_FAULT_LIST(TEXT_BY_CODE)};
+static const char *const fault_bit_names[SXL_FAULT_BIT_COUNT] = {SXL_FAULT_LIST(NAME_BY_BIT)};
+#undef NAME_BY_CODE
+#undef TEXT_BY_CODE
+#undef NAME_BY_BIT
 
 static const char *const run_refusal_names[SXL_RUN_REFUSAL_NAME_COUNT] = {
     "NONE", "NOT_READY", "ENCODER", "UNDERVOLTAGE"};
@@ -31,12 +34,17 @@ const char *sxl_state_name(uint16_t state)
 
 const char *sxl_fault_name(uint16_t code)
 {
-    return (code < SXL_FAULT_NAME_COUNT) ? fault_names[code] : "?";
+    return (code < SXL_FAULT_CODE_COUNT && fault_names[code]) ? fault_names[code] : "?";
+}
+
+const char *sxl_fault_description(uint16_t code)
+{
+    return (code < SXL_FAULT_CODE_COUNT && fault_texts[code]) ? fault_texts[code] : "?";
 }
 
 const char *sxl_fault_bit_name(uint16_t bit)
 {
-    return (bit < SXL_FAULT_BIT_COUNT) ? fault_bit_names[bit] : "?";
+    return (bit < SXL_FAULT_BIT_COUNT && fault_bit_names[bit]) ? fault_bit_names[bit] : "?";
 }
 
 /* Append s at *n, keeping room for the terminator. */

@@ -273,7 +273,7 @@ static void test_names(void **state)
     assert_string_equal(sxl_state_name(SXL_STATE_NAME_COUNT), "?");
     assert_string_equal(sxl_state_name(0xFFFFu), "?");
 
-    assert_int_equal(SXL_FAULT_NAME_COUNT, 17u);
+    assert_int_equal(SXL_FAULT_CODE_COUNT, 17u);
     assert_string_equal(sxl_fault_name(0u), "NONE");
     assert_string_equal(sxl_fault_name(1u), "PARAMS");
     assert_string_equal(sxl_fault_name(4u), "HW_TRIP");
@@ -291,8 +291,11 @@ static void test_names(void **state)
     assert_string_equal(sxl_fault_bit_name(16u), "?");
     {
         uint16_t i;
-        for (i = 0u; i < SXL_FAULT_NAME_COUNT; i++) {
+        for (i = 0u; i < SXL_FAULT_CODE_COUNT; i++) {
+            /* every code up to the count is in the fault list: no hole, a name, a text */
             assert_true(strlen(sxl_fault_name(i)) > 1u);
+            assert_string_not_equal(sxl_fault_name(i), "?");
+            assert_true(i == 0u || strlen(sxl_fault_description(i)) > 10u);
         }
         for (i = 0u; i < SXL_FAULT_BIT_COUNT; i++) {
             assert_true(strlen(sxl_fault_bit_name(i)) > 1u);
