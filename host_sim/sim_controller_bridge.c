@@ -133,7 +133,7 @@ static void bridge_status(sim_ctl_status_t *st)
     st->torque_ref_nm = q2d(dg->torque_ref) * CTL_BASE_TORQUE_NM;
     st->flux_ref_wb = q2d(dg->flux_ref) * CTL_BASE_FLUX_WB;
     st->torque_est_nm = q2d(dg->torque_est) * CTL_BASE_TORQUE_NM;
-    st->flux_est_wb = q2d(dg->flux_est) * CTL_BASE_FLUX_WB;
+    st->flux_est_wb = q2d(ctl_diag_flux_est(dg)) * CTL_BASE_FLUX_WB;
     st->vector = (int)bridge_drive.cmd.vector;
     st->duty = q2d(bridge_drive.cmd.duty);
     st->enable = bridge_drive.cmd.enable ? 1 : 0;

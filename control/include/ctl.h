@@ -73,9 +73,9 @@ typedef struct {
 } ctl_cmd_t;
 
 typedef struct {
-    ctl_q i_d, i_q, i_x, i_y; /* measured, at sample k */
-    ctl_q torque_est;         /* Te(k) from measured currents */
-    ctl_q flux_est;           /* |psi_s|(k) */
+    ctl_q i_d, i_q, i_x, i_y;   /* measured, at sample k */
+    ctl_q torque_est;           /* Te(k) from measured currents */
+    ctl_q psi_d_est, psi_q_est; /* psi_s(k) in the rotor frame; |psi_s|: ctl_diag_flux_est */
     ctl_q torque_ref;
     ctl_q flux_ref;
     ctl_q torque_pred; /* chosen candidate, at k+2 */
@@ -149,6 +149,10 @@ void ctl_set_torque_ref(ctl_t *c, ctl_q torque_pu);
 void ctl_step(ctl_t *c, const ctl_meas_t *m, ctl_cmd_t *cmd);
 
 const ctl_diag_t *ctl_diag(const ctl_t *c);
+
+/* |psi_s|(k) of a diagnostic record: its root is taken here, by whoever reads it (background,
+ * simulator), not in every control period. */
+ctl_q ctl_diag_flux_est(const ctl_diag_t *d);
 
 /* Stage boundaries of every following ctl_step go to hook (0 removes it). */
 void ctl_set_stage_hook(ctl_t *c, ctl_stage_hook_t hook);

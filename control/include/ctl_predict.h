@@ -46,39 +46,63 @@ static inline void ctl_predict_dq(const ctl_model_t *m, ctl_q id, ctl_q iq, ctl_
 {
     const ctl_q w_id = ctl_mul(w, id);
     const ctl_q w_iq = ctl_mul(w, iq);
-    ctl_q d = ctl_mul(m->a_d, id);
-    ctl_q q = ctl_mul(m->a_q, iq);
-    d = ctl_add(d, ctl_mul(m->b_d, w_iq));
-    d = ctl_add(d, ctl_mul(m->c_d, ud));
-    q = ctl_sub(q, ctl_mul(m->b_q, w_id));
-    q = ctl_sub(q, ctl_mul(m->e_q, w));
-    q = ctl_add(q, ctl_mul(m->c_q, uq));
+    ctl_q d = ctl_mul_add(m->a_d, id, m->b_d, w_iq);
+    ctl_q q = ctl_mul_sub(m->a_q, iq, m->b_q, w_id);
+    d = ctl_mul_acc(d, m->c_d, ud);
+    q = ctl_mul_dec(q, m->e_q, w);
+    q = ctl_mul_acc(q, m->c_q, uq);
     *id_next = d;
     *iq_next = q;
+}
+
+/* The same step with no voltage (the free response): the voltage terms are zero, left out. */
+static inline void ctl_predict_dq_free(const ctl_model_t *m, ctl_q id, ctl_q iq, ctl_q w,
+                                       ctl_q *id_next, ctl_q *iq_next)
+{
+    const ctl_q w_id = ctl_mul(w, id);
+    const ctl_q w_iq = ctl_mul(w, iq);
+    *id_next = ctl_mul_add(m->a_d, id, m->b_d, w_iq);
+    *iq_next = ctl_mul_dec(ctl_mul_sub(m->a_q, iq, m->b_q, w_id), m->e_q, w);
 }
 
 /* One Euler step of one x-y current component. */
 static inline ctl_q ctl_predict_xy(const ctl_model_t *m, ctl_q i, ctl_q u)
 {
-    return ctl_add(ctl_mul(m->a_xy, i), ctl_mul(m->c_xy, u));
+    return ctl_mul_add(m->a_xy, i, m->c_xy, u);
 }
 
 /* Stator flux components from rotor-frame currents. */
 static inline ctl_q ctl_flux_d(const ctl_model_t *m, ctl_q id)
 {
-    return ctl_add(ctl_mul(m->ld, id), m->psi_f);
+    return ctl_mul_acc(m->psi_f, m->ld, id);
 }
 static inline ctl_q ctl_flux_q(const ctl_model_t *m, ctl_q iq) { return ctl_mul(m->lq, iq); }
 
-/* Te = Pn (psi_d i_q - psi_q i_d), per unit (torque base is per pole pair), and |psi_s|,
- * from rotor-frame currents; both from the same psi_d, psi_q. */
+/* Te = Pn (psi_d i_q - psi_q i_d), per unit (torque base is per pole pair), from rotor-frame
+ * currents; psi_d and psi_q out for the flux magnitude, whose root is left to the caller
+ * (the searches take it only where they need it). */
+static inline ctl_q ctl_torque_psi(const ctl_model_t *m, ctl_q id, ctl_q iq, ctl_q *psi_d,
+                                   ctl_q *psi_q)
+{
+    *psi_d = ctl_flux_d(m, id);
+    *psi_q = ctl_flux_q(m, iq);
+    return ctl_mul_int(ctl_mul_sub(*psi_d, iq, *psi_q, id), m->pole_pairs);
+}
+
+/* |psi_s| from its rotor-frame components. */
+static inline ctl_q ctl_flux_magnitude(ctl_q psi_d, ctl_q psi_q)
+{
+    return ctl_sqrt(ctl_mul_add(psi_d, psi_d, psi_q, psi_q));
+}
+
+/* Te and |psi_s| from rotor-frame currents; both from the same psi_d, psi_q. */
 static inline void ctl_torque_flux(const ctl_model_t *m, ctl_q id, ctl_q iq, ctl_q *torque,
                                    ctl_q *flux)
 {
-    const ctl_q pd = ctl_flux_d(m, id);
-    const ctl_q pq = ctl_flux_q(m, iq);
-    *torque = ctl_mul_int(ctl_sub(ctl_mul(pd, iq), ctl_mul(pq, id)), m->pole_pairs);
-    *flux = ctl_sqrt(ctl_add(ctl_mul(pd, pd), ctl_mul(pq, pq)));
+    ctl_q pd;
+    ctl_q pq;
+    *torque = ctl_torque_psi(m, id, iq, &pd, &pq);
+    *flux = ctl_flux_magnitude(pd, pq);
 }
 
 #endif /* CTL_PREDICT_H */

@@ -14,9 +14,9 @@
 #define CTL_SECTORS 12        /* alpha-beta flux sectors, sector s spans [30s-15, 30s+15) deg */
 #define CTL_XY_SECTORS 24     /* x-y flux sectors, sector j spans [15j, 15j+15) deg */
 
-#define CTL_RSQRT_SEGMENTS 48 /* over x in [0.25, 1), 1/64 each */
+#define CTL_RSQRT_SEGMENTS 192 /* over x in [0.25, 1), 1/256 each */
 
-/* 1/sqrt(x) at the middle of segment k (x = (16 + k + 0.5) / 64), Q30: the seed of the
+/* 1/sqrt(x) at the middle of segment k (x = (64 + k + 0.5) / 256), Q30: the seed of the
  * fixed-point square root's Newton iteration. */
 extern const uint32_t ctl_rsqrt_seed[CTL_RSQRT_SEGMENTS];
 

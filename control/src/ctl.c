@@ -88,6 +88,10 @@ void ctl_set_loop_mode(ctl_t *c, ctl_loop_mode_t mode) { c->loop_mode = mode; }
 void ctl_set_speed_ref(ctl_t *c, ctl_q omega_e_pu) { c->speed_ref = omega_e_pu; }
 void ctl_set_torque_ref(ctl_t *c, ctl_q torque_pu) { c->torque_ref_direct = torque_pu; }
 const ctl_diag_t *ctl_diag(const ctl_t *c) { return &c->diag; }
+ctl_q ctl_diag_flux_est(const ctl_diag_t *d)
+{
+    return ctl_flux_magnitude(d->psi_d_est, d->psi_q_est);
+}
 void ctl_set_stage_hook(ctl_t *c, ctl_stage_hook_t hook) { c->stage_hook = hook; }
 
 static void command_off(ctl_cmd_t *cmd)
@@ -136,12 +140,11 @@ static void advance_angle(const ctl_model_t *model, const ctl_meas_t *m, ctl_q s
     const ctl_q delta = ctl_mul(m->omega_e, model->ts);
     if (ctl_abs(delta) <= CTL_Q(0.5)) {
         const ctl_q d2 = ctl_mul(delta, delta);
-        const ctl_q sd = ctl_mul(delta, ctl_sub(CTL_Q(1.0), ctl_mul(d2, CTL_K_ONE_SIXTH)));
-        const ctl_q cd =
-            ctl_sub(CTL_Q(1.0), ctl_mul(ctl_mul(d2, CTL_Q(0.5)),
-                                        ctl_sub(CTL_Q(1.0), ctl_mul(d2, CTL_K_ONE_TWELFTH))));
-        h->sin1 = ctl_add(ctl_mul(s0, cd), ctl_mul(c0, sd));
-        h->cos1 = ctl_sub(ctl_mul(c0, cd), ctl_mul(s0, sd));
+        const ctl_q sd = ctl_mul(delta, ctl_mul_dec(CTL_Q(1.0), d2, CTL_K_ONE_SIXTH));
+        const ctl_q cd = ctl_mul_dec(CTL_Q(1.0), ctl_mul(d2, CTL_Q(0.5)),
+                                     ctl_mul_dec(CTL_Q(1.0), d2, CTL_K_ONE_TWELFTH));
+        h->sin1 = ctl_mul_add(s0, cd, c0, sd);
+        h->cos1 = ctl_mul_sub(c0, cd, s0, sd);
     } else {
         ctl_sincos_pu(ctl_add(m->theta_e, ctl_mul(delta, CTL_K_INV_TWO_PI)), &h->sin1, &h->cos1);
     }
@@ -161,22 +164,24 @@ static void predict(const ctl_t *c, const ctl_config_t *cfg, const ctl_meas_t *m
                     ctl_q *iq1)
 {
     const ctl_vsd_t *applied = &ctl_vector_vsd[c->applied_vector];
-    const ctl_q applied_scale = ctl_mul(c->applied_duty, m->vdc);
-    ctl_vsd_t u0;
-    ctl_q ud0;
-    ctl_q uq0;
-    u0.alpha = ctl_mul(applied->alpha, applied_scale);
-    u0.beta = ctl_mul(applied->beta, applied_scale);
-    u0.x = ctl_mul(applied->x, applied_scale);
-    u0.y = ctl_mul(applied->y, applied_scale);
-    ctl_park(u0.alpha, u0.beta, smp->s0, smp->c0, &ud0, &uq0);
+    ctl_vsd_t u0 = {CTL_Q(0.0), CTL_Q(0.0), CTL_Q(0.0), CTL_Q(0.0)};
+    ctl_q ud0 = CTL_Q(0.0);
+    ctl_q uq0 = CTL_Q(0.0);
+    if (c->applied_duty != CTL_Q(0.0)) { /* a zero vector in force applies no voltage */
+        const ctl_q applied_scale = ctl_mul(c->applied_duty, m->vdc);
+        u0.alpha = ctl_mul(applied->alpha, applied_scale);
+        u0.beta = ctl_mul(applied->beta, applied_scale);
+        u0.x = ctl_mul(applied->x, applied_scale);
+        u0.y = ctl_mul(applied->y, applied_scale);
+        ud0 = ctl_mul_add(u0.alpha, smp->c0, u0.beta, smp->s0);
+        uq0 = ctl_mul_sub(u0.beta, smp->c0, u0.alpha, smp->s0);
+    }
     ctl_predict_dq(&cfg->model, smp->id, smp->iq, m->omega_e, ud0, uq0, id1, iq1);
     *ix1 = ctl_predict_xy(&cfg->model, smp->vsd.x, u0.x);
     *iy1 = ctl_predict_xy(&cfg->model, smp->vsd.y, u0.y);
     h->model = &cfg->model;
     advance_angle(&cfg->model, m, smp->s0, smp->c0, h);
-    ctl_predict_dq(&cfg->model, *id1, *iq1, m->omega_e, CTL_Q(0.0), CTL_Q(0.0), &h->id2_free,
-                   &h->iq2_free);
+    ctl_predict_dq_free(&cfg->model, *id1, *iq1, m->omega_e, &h->id2_free, &h->iq2_free);
     h->vdc = m->vdc;
     h->lambda = cfg->lambda;
     ctl_horizon_prepare(h);
@@ -190,7 +195,7 @@ static void select_ddc(const ctl_t *c, const ctl_config_t *cfg, const ctl_horizo
     const ctl_q psi_d1 = ctl_flux_d(&cfg->model, id1);
     const ctl_q psi_q1 = ctl_flux_q(&cfg->model, iq1);
     ctl_park_inverse(psi_d1, psi_q1, h->sin1, h->cos1, &f.psi_alpha, &f.psi_beta);
-    f.psi_mag_sq = ctl_add(ctl_mul(psi_d1, psi_d1), ctl_mul(psi_q1, psi_q1));
+    f.psi_mag_sq = ctl_mul_add(psi_d1, psi_d1, psi_q1, psi_q1);
     f.psi_x = ctl_mul(cfg->model.lxy, ix1);
     f.psi_y = ctl_mul(cfg->model.lxy, iy1);
     ddc.direction = (int16_t)cfg->params.ddc_direction;
@@ -214,7 +219,7 @@ static void record_diag(ctl_t *c, const ctl_config_t *cfg, const ctl_sample_t *s
     dg->i_q = smp->iq;
     dg->i_x = smp->vsd.x;
     dg->i_y = smp->vsd.y;
-    ctl_torque_flux(&cfg->model, smp->id, smp->iq, &dg->torque_est, &dg->flux_est);
+    dg->torque_est = ctl_torque_psi(&cfg->model, smp->id, smp->iq, &dg->psi_d_est, &dg->psi_q_est);
     dg->torque_ref = h->torque_ref;
     dg->flux_ref = h->flux_ref;
     dg->torque_pred = choice->torque;

@@ -3,59 +3,85 @@
 #include "ctl_tables.h"
 #include "ctl_vectors.h"
 
+/* The k+2 state under the zero vector: torque and flux components, the root on demand. */
+typedef struct {
+    ctl_q torque;
+    ctl_q psi_d;
+    ctl_q psi_q;
+} ctl_ddc_state_t;
+
+/* Levels [*first, *last] that compete: all of them, or with the torque guard (improvement,
+ * docs/improvements.md) the level that best meets the torque reference and its neighbours, so a
+ * large lambda cannot trade torque for flux beyond the resolution of the duty set. (A band in
+ * torque units would put the neighbour on the far side exactly on its edge, torque being
+ * nearly linear in duty.) Only they need a flux root. */
+static void competing_levels(const ctl_ddc_config_t *cfg, const ctl_q *torque_err, int16_t *first,
+                             int16_t *last)
+{
+    int16_t best = 0;
+    ctl_q best_err = CTL_Q_MAX;
+    int16_t k;
+    *first = 0;
+    *last = (int16_t)(cfg->n_levels - 1);
+    if (!cfg->torque_guard) {
+        return;
+    }
+    for (k = 0; k < cfg->n_levels; k++) {
+        if (torque_err[k] < best_err) {
+            best_err = torque_err[k];
+            best = k;
+        }
+    }
+    *first = (best > 0) ? (int16_t)(best - 1) : 0;
+    *last = (best < *last) ? (int16_t)(best + 1) : *last;
+}
+
 /* Best duty for one vector: the forced response scales with the duty; duty 0 is the zero
- * vector, whose evaluation the caller already has. */
+ * vector, whose state the caller already has. */
 static void duty_search(const ctl_horizon_t *h, const ctl_ddc_config_t *cfg, int16_t vector,
-                        const ctl_choice_t *zero, ctl_choice_t *out)
+                        const ctl_ddc_state_t *zero, ctl_choice_t *out)
 {
     ctl_q torque[CTL_DDC_LEVELS_MAX];
-    ctl_q flux_mag[CTL_DDC_LEVELS_MAX];
-    ctl_q cost[CTL_DDC_LEVELS_MAX];
+    ctl_q torque_err[CTL_DDC_LEVELS_MAX]; /* |Te(k+2) - Tref|, the cost's first term */
+    ctl_q psi_d[CTL_DDC_LEVELS_MAX];
+    ctl_q psi_q[CTL_DDC_LEVELS_MAX];
     ctl_q did;
     ctl_q diq;
+    int16_t first;
+    int16_t last;
     int16_t k;
     ctl_horizon_forced(h, &ctl_vector_vsd[vector], &did, &diq);
     for (k = 0; k < cfg->n_levels; k++) {
         const ctl_q d = cfg->levels[k];
-        torque[k] = zero->torque;
-        flux_mag[k] = zero->flux;
-        cost[k] = (d == CTL_Q(0.0)) ? zero->cost
-                                    : ctl_horizon_cost(h, ctl_add(h->id2_free, ctl_mul(d, did)),
-                                                       ctl_add(h->iq2_free, ctl_mul(d, diq)),
-                                                       &torque[k], &flux_mag[k]);
-    }
-    if (cfg->torque_guard) {
-        /* Improvement: flux weighting may move the duty at most one level away from the level
-         * that best meets the torque reference, so a large lambda cannot trade torque for flux
-         * beyond the resolution of the duty set. (A band in torque units would put the
-         * neighbour on the far side exactly on its edge, torque being nearly linear in duty.) */
-        int16_t best = 0;
-        ctl_q best_err = CTL_Q_MAX;
-        for (k = 0; k < cfg->n_levels; k++) {
-            const ctl_q err = ctl_abs(ctl_sub(torque[k], h->torque_ref));
-            if (err < best_err) {
-                best_err = err;
-                best = k;
-            }
+        if (d == CTL_Q(0.0)) {
+            torque[k] = zero->torque;
+            psi_d[k] = zero->psi_d;
+            psi_q[k] = zero->psi_q;
+        } else {
+            torque[k] = ctl_torque_psi(h->model, ctl_mul_acc(h->id2_free, d, did),
+                                       ctl_mul_acc(h->iq2_free, d, diq), &psi_d[k], &psi_q[k]);
         }
-        for (k = 0; k < cfg->n_levels; k++) {
-            if (k < best - 1 || k > best + 1) {
-                cost[k] = CTL_Q_MAX;
-            }
-        }
+        torque_err[k] = ctl_abs(ctl_sub(torque[k], h->torque_ref));
     }
+    competing_levels(cfg, torque_err, &first, &last);
     out->vector = vector;
     out->cost = CTL_Q_MAX;
     out->duty = CTL_Q(0.0);
     out->torque = zero->torque;
-    out->flux = zero->flux;
-    for (k = 0; k < cfg->n_levels; k++) {
-        if (cost[k] < out->cost) {
-            out->cost = cost[k];
+    out->flux = -1; /* none chosen yet */
+    for (k = first; k <= last; k++) {
+        const ctl_q flux = ctl_flux_magnitude(psi_d[k], psi_q[k]);
+        const ctl_q cost =
+            ctl_add(torque_err[k], ctl_mul(h->lambda, ctl_abs(ctl_sub(flux, h->flux_ref))));
+        if (cost < out->cost) {
+            out->cost = cost;
             out->duty = cfg->levels[k];
             out->torque = torque[k];
-            out->flux = flux_mag[k];
+            out->flux = flux;
         }
+    }
+    if (out->flux < CTL_Q(0.0)) { /* every cost saturated: the zero vector stands */
+        out->flux = ctl_flux_magnitude(zero->psi_d, zero->psi_q);
     }
 }
 
@@ -66,13 +92,13 @@ void ctl_ddc_select(const ctl_horizon_t *h, const ctl_ddc_flux_t *flux, const ct
     const int16_t sector =
         (int16_t)(((ctl_sector24(flux->psi_beta, flux->psi_alpha) + 1) / 2) % CTL_SECTORS);
     const int16_t xy_sector = ctl_sector24(flux->psi_y, flux->psi_x);
-    ctl_choice_t zero = {0};
+    ctl_ddc_state_t zero;
     int16_t torque_half;
     int16_t vector;
 
     /* Table 1 half: the zero vector alone (duty 0) already overshoots a lower reference
      * -> the torque-lowering mirror set (paper Eq. 10 compares Te under zero against Tref). */
-    zero.cost = ctl_horizon_cost(h, h->id2_free, h->iq2_free, &zero.torque, &zero.flux);
+    zero.torque = ctl_torque_psi(h->model, h->id2_free, h->iq2_free, &zero.psi_d, &zero.psi_q);
     torque_half = (zero.torque > h->torque_ref) ? 1 : 0;
 
     if (cfg->direction == 1) {

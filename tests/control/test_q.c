@@ -160,6 +160,60 @@ static void test_mul(void **state)
 #endif
 }
 
+#if !CTL_MATH_FLOAT
+/* Round half up of an exact Q48 value to Q24, saturated (long double holds 64 bits). */
+static int32_t round_q48(long double exact_q48)
+{
+    long double r = floorl(exact_q48 / 16777216.0L + 0.5L);
+    if (r > 2147483647.0L) {
+        return INT32_MAX;
+    }
+    if (r < -2147483648.0L) {
+        return INT32_MIN;
+    }
+    return (int32_t)r;
+}
+#endif
+
+/* The fused forms round the exact sum once: a*b + c*d, a*b - c*d, acc + a*b, acc - a*b,
+ * including the one sum of two Q48 products that does not fit int64 (both MIN * MIN). */
+static void test_fused_mul(void **state)
+{
+    (void)state;
+    expect_close(qd(ctl_mul_add(CTL_Q(1.5), CTL_Q(2.0), CTL_Q(-0.5), CTL_Q(4.0))), 1.0, 0.0,
+                 "mul_add", 1.5);
+    expect_close(qd(ctl_mul_sub(CTL_Q(1.5), CTL_Q(2.0), CTL_Q(-0.5), CTL_Q(4.0))), 5.0, 0.0,
+                 "mul_sub", 1.5);
+    expect_close(qd(ctl_mul_acc(CTL_Q(0.25), CTL_Q(0.5), CTL_Q(0.5))), 0.5, 0.0, "mul_acc", 0.25);
+    expect_close(qd(ctl_mul_dec(CTL_Q(0.25), CTL_Q(0.5), CTL_Q(0.5))), 0.0, 0.0, "mul_dec", 0.25);
+#if !CTL_MATH_FLOAT
+    expect_i32(ctl_mul_add(INT32_MIN, INT32_MIN, INT32_MIN, INT32_MIN), INT32_MAX, "MIN^2+MIN^2");
+    expect_i32(ctl_mul_sub(INT32_MIN, INT32_MIN, INT32_MIN, INT32_MAX), INT32_MAX, "MIN^2-MIN*MAX");
+    expect_i32(ctl_mul_sub(INT32_MIN, INT32_MAX, INT32_MIN, INT32_MIN), INT32_MIN, "MIN*MAX-MIN^2");
+    expect_i32(ctl_mul_acc(INT32_MIN, INT32_MIN, INT32_MAX), INT32_MIN, "MIN+MIN*MAX");
+    expect_i32(ctl_mul_dec(INT32_MAX, INT32_MIN, INT32_MAX), INT32_MAX, "MAX-MIN*MAX");
+    if (LDBL_MANT_DIG >= 64) {
+        int32_t i;
+        for (i = 0; i < 200000; i++) {
+            const int32_t a = (int32_t)rng_u32();
+            const int32_t b = (i & 1) ? (int32_t)rng_u32() : (int32_t)rng_u32() >> 8;
+            const int32_t c = (int32_t)rng_u32() >> (i % 9);
+            const int32_t d = (int32_t)rng_u32() >> (i % 7);
+            const long double ab = (long double)a * (long double)b;
+            const long double cd = (long double)c * (long double)d;
+            const long double acc = (long double)c * 16777216.0L;
+            if (ctl_mul_add(a, b, c, d) != round_q48(ab + cd) ||
+                ctl_mul_sub(a, b, c, d) != round_q48(ab - cd) ||
+                ctl_mul_acc(c, a, b) != round_q48(acc + ab) ||
+                ctl_mul_dec(c, a, b) != round_q48(acc - ab)) {
+                print_error("fused(%ld, %ld, %ld, %ld) off\n", (long)a, (long)b, (long)c, (long)d);
+                fail();
+            }
+        }
+    }
+#endif
+}
+
 static void test_mul_int(void **state)
 {
     (void)state;
@@ -841,15 +895,16 @@ static void test_sector24(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_add_sub),     cmocka_unit_test(test_mul),
-        cmocka_unit_test(test_mul_int),     cmocka_unit_test(test_div),
-        cmocka_unit_test(test_abs),         cmocka_unit_test(test_from_float),
-        cmocka_unit_test(test_to_qn),       cmocka_unit_test(test_from_turn_u32),
-        cmocka_unit_test(test_mul_q16),     cmocka_unit_test(test_sqrt_exact),
-        cmocka_unit_test(test_sqrt_sweep),  cmocka_unit_test(test_sqrtf),
-        cmocka_unit_test(test_sin_cos),     cmocka_unit_test(test_atan2_axes),
-        cmocka_unit_test(test_atan2_sweep), cmocka_unit_test(test_wrap_turn),
-        cmocka_unit_test(test_turn_sector), cmocka_unit_test(test_sector24),
+        cmocka_unit_test(test_add_sub),       cmocka_unit_test(test_mul),
+        cmocka_unit_test(test_fused_mul),     cmocka_unit_test(test_mul_int),
+        cmocka_unit_test(test_div),           cmocka_unit_test(test_abs),
+        cmocka_unit_test(test_from_float),    cmocka_unit_test(test_to_qn),
+        cmocka_unit_test(test_from_turn_u32), cmocka_unit_test(test_mul_q16),
+        cmocka_unit_test(test_sqrt_exact),    cmocka_unit_test(test_sqrt_sweep),
+        cmocka_unit_test(test_sqrtf),         cmocka_unit_test(test_sin_cos),
+        cmocka_unit_test(test_atan2_axes),    cmocka_unit_test(test_atan2_sweep),
+        cmocka_unit_test(test_wrap_turn),     cmocka_unit_test(test_turn_sector),
+        cmocka_unit_test(test_sector24),
     };
     print_message("arithmetic: %s\n", CTL_MATH_FLOAT ? "float" : "Q24 fixed point");
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -33,6 +33,12 @@ int16_t flt_bench_setup(int16_t controller);
 uint32_t bench_run(int32_t reps);
 uint32_t flt_bench_run(int32_t reps);
 
+/* Every command (vector, duty, leg duties to the last Q24 bit, enable) of one pass over the
+ * prepared points after bench_setup, folded (FNV-1a): the benchmark's check that a change of
+ * the core left the commands identical. Not measured. */
+uint32_t bench_digest(void);
+uint32_t flt_bench_digest(void);
+
 /* The protection check (ctl_protect_check) over every prepared point, `reps` times, as the
  * drive runs it each period while running: the default settings' limits, raw ADC words
  * rebuilt from the currents with the board's scaling. Returns a checksum; only this is

@@ -70,16 +70,39 @@ int16_t bench_request_change(int16_t k)
 
 bool bench_change_pending(void) { return ctl_config_pending(&controller_state); }
 
-/* One control step at prepared point i; a word of its command for the checksum. */
-static uint32_t step_at(size_t i)
+/* One control step at prepared point i; a word of its command for the checksum (cheap: this
+ * is the measured loop). */
+static uint32_t step_at(size_t i, ctl_cmd_t *cmd)
 {
-    ctl_cmd_t cmd;
     ctl_set_torque_ref(&controller_state, torque_ref[i]);
-    ctl_step(&controller_state, &meas[i], &cmd);
-    return (uint32_t)(uint16_t)cmd.vector + (uint32_t)ctl_to_qn(cmd.duty, 8);
+    ctl_step(&controller_state, &meas[i], cmd);
+    return (uint32_t)(uint16_t)cmd->vector + (uint32_t)ctl_to_qn(cmd->duty, 8);
 }
 
-uint32_t bench_step(size_t i) { return (i < count) ? step_at(i) : 0u; }
+uint32_t bench_digest(void)
+{
+    uint32_t digest = 2166136261u;
+    size_t i;
+    ctl_reset(&controller_state);
+    for (i = 0; i < count; i++) {
+        ctl_cmd_t cmd;
+        int16_t leg;
+        (void)step_at(i, &cmd);
+        digest = (digest ^ (uint32_t)(uint16_t)cmd.vector) * 16777619u;
+        digest = (digest ^ (uint32_t)ctl_to_qn(cmd.duty, 24)) * 16777619u;
+        digest = (digest ^ (cmd.enable ? 1u : 0u)) * 16777619u;
+        for (leg = 0; leg < CTL_PHASES; leg++) {
+            digest = (digest ^ (uint32_t)ctl_to_qn(cmd.leg_duty[leg], 24)) * 16777619u;
+        }
+    }
+    return digest;
+}
+
+uint32_t bench_step(size_t i)
+{
+    ctl_cmd_t cmd;
+    return (i < count) ? step_at(i, &cmd) : 0u;
+}
 
 uint32_t bench_run(int32_t reps)
 {
@@ -89,7 +112,8 @@ uint32_t bench_run(int32_t reps)
     for (r = 0; r < reps; r++) {
         ctl_reset(&controller_state);
         for (i = 0; i < count; i++) {
-            checksum = checksum * 31u + step_at(i);
+            ctl_cmd_t cmd;
+            checksum = checksum * 31u + step_at(i, &cmd);
         }
     }
     return checksum;

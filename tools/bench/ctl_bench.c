@@ -150,8 +150,9 @@ int main(int argc, char **argv)
             t1 = now_s();
             CALLGRIND_TOGGLE_COLLECT;
             CALLGRIND_DUMP_STATS_AT(label);
-            printf("%s steps %zu ns_per_step %.1f checksum %08x\n", label, n * (size_t)reps_d,
-                   1e9 * (t1 - t0) / ((double)n * reps_d), (unsigned)sum);
+            printf("%s steps %zu ns_per_step %.1f checksum %08x digest %08x\n", label,
+                   n * (size_t)reps_d, 1e9 * (t1 - t0) / ((double)n * reps_d), (unsigned)sum,
+                   (unsigned)(arith ? flt_bench_digest() : bench_digest()));
         }
     }
     {

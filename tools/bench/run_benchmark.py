@@ -6,6 +6,7 @@ writes docs/performance.md.
 usage: run_benchmark.py --sim PATH --bench PATH --out docs/performance.md [--work DIR]
 """
 import argparse
+import hashlib
 import os
 import platform
 import re
@@ -25,6 +26,8 @@ CYCLES = {
     "float": {"add": 2, "mul": 2, "div": 15, "sqrt": 25, "sin": 20},
 }
 OVERHEAD = 1.5  # loads, stores, branches and calls around the counted arithmetic
+COMMAND_REFERENCE = os.path.join(os.path.dirname(os.path.abspath(__file__)),
+                                 "command_reference.txt")
 # No DDC step, the one that takes a new parameter set included, may cost more than this times
 # the mean DDC step of its arithmetic (the ISR budget must hold for every period).
 WORST_STEP_BUDGET = 1.5
@@ -60,6 +63,43 @@ def wall_times(bench, traces):
     for m in re.finditer(r"^(\w+) steps \d+ ns_per_step ([\d.]+)", out, re.M):
         ns[m.group(1)] = float(m.group(2))
     return points, ns
+
+
+def command_digests(bench, traces):
+    """Checksum of every command (vector, duty, leg duties to the last bit) per configuration
+    over one pass of the operating points, and a digest of the points themselves."""
+    out = run([bench, "--reps", "1"] + traces)
+    digests = {m.group(1): m.group(2)
+               for m in re.finditer(r"^(\w+) steps \d+ ns_per_step [\d.]+ checksum \w+ digest (\w+)", out, re.M)
+               if m.group(1) in CONFIGS}
+    h = hashlib.sha256()
+    for t in traces:
+        h.update(open(t, "rb").read())
+    return h.hexdigest(), digests
+
+
+def check_commands(points_digest, digests, rebase):
+    """Commands must stay identical to the reference build's on the same operating points; a
+    deliberate change of the method is recorded with --rebase-commands. Returns a line for
+    the report."""
+    if rebase or not os.path.exists(COMMAND_REFERENCE):
+        with open(COMMAND_REFERENCE, "w") as f:
+            f.write("# Commands of every configuration over the benchmark's operating points (vector,\n"
+                    "# duty and leg duties to the last bit, folded): written by\n"
+                    "# `run_benchmark.py --rebase-commands` when the commands change on purpose.\n")
+            f.write("points %s\n" % points_digest)
+            for c in CONFIGS:
+                f.write("%s %s\n" % (c, digests[c]))
+        return "reference recorded in this run (`--rebase-commands`)"
+    ref = dict(line.split() for line in open(COMMAND_REFERENCE) if line.strip() and line[0] != "#")
+    if ref.get("points") != points_digest:
+        return ("not compared: the operating points differ from the reference's (the simulator "
+                "changed); rebase with `--rebase-commands` on an unchanged core")
+    changed = [c for c in CONFIGS if ref.get(c) != digests[c]]
+    if changed:
+        fail("commands changed against tools/bench/command_reference.txt for %s; if that is "
+             "meant, rerun with --rebase-commands and say why in the commit" % ", ".join(changed))
+    return "identical to the reference build on all %d configurations" % len(CONFIGS)
 
 
 def instruction_counts(bench, traces, work):
@@ -176,6 +216,8 @@ def main():
     ap.add_argument("--out", required=True)
     ap.add_argument("--flags", default="-O3 (CMake Release)")
     ap.add_argument("--work")
+    ap.add_argument("--rebase-commands", action="store_true",
+                    help="record this build's commands as the reference (a deliberate change)")
     ap.add_argument("--budget", type=float, default=WORST_STEP_BUDGET,
                     help="fail if a DDC step costs more than this times the mean DDC step")
     a = ap.parse_args()
@@ -187,6 +229,7 @@ def main():
     os.makedirs(work, exist_ok=True)
     traces = record_traces(a.sim, work)
     points, ns = wall_times(a.bench, traces)
+    commands = check_commands(*command_digests(a.bench, traces), rebase=a.rebase_commands)
     counts, profiles = instruction_counts(a.bench, traces, work)
     worst = worst_steps(a.bench, traces, work)
     sizes = freestanding_sizes(root, work)
@@ -215,6 +258,8 @@ def main():
     w("  configuration (client requests toggle collection and dump each configuration")
     w("  separately). Repeatable for the same binary and input, whatever else the machine does.")
     w("- Wall time: the same loop, 5 repetitions, native; indicative only.")
+    w("- Commands (vector, duty and leg duties to the last bit) against the reference build's on")
+    w("  the same points (tools/bench/command_reference.txt): %s." % commands)
     w("- Machine and compiler: %s; flags %s." % (machine(), a.flags))
     w("")
     w("## Cost per control step")
@@ -310,7 +355,9 @@ def main():
                 cnt["add"][1], cnt["mul"][1], cnt["sqrt"][1], cnt["sin"][1], cycles, us,
                 100.0 * us / PERIOD_US))
     w("")
-    w("Operation counts are the same in both arithmetics (one source); the paper measured")
+    w("Operation counts differ between the arithmetics only in the forced response of each")
+    w("candidate (the fixed build multiplies by the horizon's coefficients, two products per")
+    w("axis; the float build keeps the model's product order); the paper measured")
     w("%.1f us (DDC) and %.1f us (MPTC) on this chip." % (PAPER_US["ddc"], PAPER_US["mptc49"]))
     w("")
     w("## Memory (control core, freestanding build)")
