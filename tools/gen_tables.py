@@ -163,11 +163,11 @@ def main():
         w("    " + ", ".join(q(v) for v in vals[k:k + 4]) + ",")
     w("};")
     w("")
-    # reciprocal square root seeds: x in [0.25, 1) in 48 segments of 1/64 (x = m / 2^32 with
+    # reciprocal square root seeds: x in [0.25, 1) in 192 segments of 1/256 (x = m / 2^32 with
     # m's top bit at 31 or 30), value at the segment midpoint in Q30
     w("const uint32_t ctl_rsqrt_seed[CTL_RSQRT_SEGMENTS] = {")
-    seeds = [round((1.0 / math.sqrt((16 + k + 0.5) / 64.0)) * 2 ** 30) for k in range(48)]
-    for k in range(0, 48, 6):
+    seeds = [round((1.0 / math.sqrt((64 + k + 0.5) / 256.0)) * 2 ** 30) for k in range(192)]
+    for k in range(0, 192, 6):
         w("    " + ", ".join("%du" % v for v in seeds[k:k + 6]) + ",")
     w("};")
     w("")
