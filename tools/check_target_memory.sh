@@ -14,6 +14,7 @@
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
 out=${1:-$(mktemp -d)}
+mkdir -p "$out" && out=$(cd "$out" && pwd)   # the compiles run inside it
 cc=${ARM_CC:-arm-none-eabi-gcc}
 command -v "$cc" >/dev/null || { echo "check_target_memory: $cc not found" >&2; exit 1; }
 mapfile -t sources < <(cmake -P "$here/tools/print_sources.cmake" SIXPHASE_TARGET_C_SOURCES)
