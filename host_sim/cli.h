@@ -14,7 +14,8 @@
 typedef struct {
     sim_config_t cfg;
     int quiet;
-    int jobs; /* reproduce: parallel workers */
+    int jobs;     /* reproduce: parallel workers */
+    int no_plots; /* reproduce: leave the figures out */
 } sim_cli_t;
 
 /* argv[0] is the first option (after the sub-command). 0 on success. */

@@ -17,6 +17,7 @@
 #include <stdint.h>
 
 #include "plant.h"
+#include "plant_stepper.h"
 
 typedef void (*inverter_sample_fn)(void *ctx, double t_rel, const plant_state_t *s,
                                    unsigned leg_state);
@@ -25,14 +26,17 @@ typedef struct {
     double ts;                 /* carrier period, s */
     double td;                 /* dead time in force (0 when off), s */
     int nominal[PLANT_PHASES]; /* commanded state (gate signal before dead band) */
+    unsigned nominal_bits;     /* the same as leg bits (S_A = bit 5) */
     double
         dead_until[PLANT_PHASES]; /* end of the running dead interval, relative to period start */
+    double dead_last;             /* the latest of dead_until[] */
     unsigned eff;                 /* effective leg states of the last interval (S_A = bit 5) */
     bool off;                     /* outputs forced off in the last period */
     bool counting;                /* count effective transitions */
     uint64_t transitions;         /* effective leg transitions while counting */
     double u_table[64][4];        /* per-unit-of-Vdc VSD voltage of each state */
     int intervals;                /* constant-voltage intervals in the last period */
+    plant_stepper_t stepper;      /* integrates the plant over the intervals */
 } inverter_t;
 
 void inverter_init(inverter_t *inv, const plant_params_t *p, double ts);
@@ -41,7 +45,8 @@ void inverter_init(inverter_t *inv, const plant_params_t *p, double ts);
  * (fractions 0..1). forced_off: all switches off (currents are commutated
  * to zero at once; valid while the line back-EMF stays below Vdc).
  * sample_t: sorted times in [0, ts) at which cb is called with the state
- * (may be NULL / 0). Returns the period-average electromagnetic torque. */
+ * (may be NULL / 0). Returns the period-average electromagnetic torque.
+ * The plant is integrated as p->integrator asks (plant_stepper.h). */
 double inverter_run_period(inverter_t *inv, const plant_params_t *p, plant_state_t *s,
                            const double duty[PLANT_PHASES], bool forced_off, double t_load,
                            bool lock_mech, const double *sample_t, int n_samples,

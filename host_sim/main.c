@@ -40,7 +40,7 @@ int main(int argc, char **argv)
             fprintf(stderr, "sixphase-sim: %s\n", err);
             return 2;
         }
-        return sim_reproduce(cli.cfg.out_dir, cli.jobs, cli.quiet);
+        return sim_reproduce(cli.cfg.out_dir, cli.jobs, !cli.no_plots, cli.quiet);
     }
     fprintf(stderr, "sixphase-sim: unknown command '%s' (expected run or reproduce)\n", argv[1]);
     return 2;

@@ -5,6 +5,7 @@
 #include <stddef.h>
 
 #include "ctl_machine.h"
+#include "hal_board.h"
 
 #define PLANT_PI 3.14159265358979323846
 
@@ -42,6 +43,7 @@ void plant_params_default(plant_params_t *p)
     for (int k = 0; k < PLANT_PHASES; k++) {
         p->phase_extra_r_ohm[k] = 0.0;
     }
+    p->integrator = PLANT_INTEGRATOR_EXACT;
     p->max_step_s = 50e-6;
     p->dead_time_on = true;
     p->harmonics_on = true;
@@ -51,6 +53,7 @@ void plant_params_default(plant_params_t *p)
     p->adc_gain_error = 0.005;
     p->adc_noise_on = true;
     p->adc_noise_counts = 1.0;
+    p->current_sensor_span_a = 0.5 * HAL_BOARD_CURRENT_FULL_SPAN_A;
     p->encoder_quant_on = true;
     p->encoder_lines = 2500u;
 }
@@ -82,6 +85,9 @@ const char *plant_params_check(const plant_params_t *p)
     if (!(p->dead_time_s >= 0.0 && p->dead_time_s < 50e-6)) {
         return "dead time must be in [0, 50) us";
     }
+    if (p->integrator != PLANT_INTEGRATOR_EXACT && p->integrator != PLANT_INTEGRATOR_RK4) {
+        return "integrator must be exact or rk4";
+    }
     if (!(p->max_step_s > 1e-9 && p->max_step_s <= 1e-3)) {
         return "plant step must be in (1 ns, 1 ms]";
     }
@@ -89,6 +95,10 @@ const char *plant_params_check(const plant_params_t *p)
         if (!(p->phase_extra_r_ohm[k] >= 0.0 && p->phase_extra_r_ohm[k] < 1e5)) {
             return "extra phase resistance must be in [0, 1e5) ohm";
         }
+    }
+    if (!(p->current_sensor_span_a >= PLANT_SENSOR_SPAN_MIN_A &&
+          p->current_sensor_span_a <= PLANT_SENSOR_SPAN_MAX_A)) {
+        return "current sensor span must be in [2, 200] A";
     }
     if (p->encoder_lines < 1u || p->encoder_lines > 1000000u) {
         return "encoder lines must be in 1..1e6";

@@ -6,9 +6,11 @@
  * Electrical state in the rotor frame (i_d, i_q) and the stationary x-y plane
  * (i_x, i_y); PM flux harmonics (5th, 7th) appear in x-y as
  *   psi_pm,xy = psi_5 [cos 5th, sin 5th] + psi_7 [cos 7th, -sin 7th].
- * Between switching instants the phase voltages are constant; each such
- * interval is integrated with classical RK4 (sub-steps no longer than
- * plant_params_t.max_step_s).
+ * Between switching instants the phase voltages are constant. Such an
+ * interval is solved exactly at the speed held over the control period
+ * (plant_exact.h, the default) or integrated with classical RK4 in sub-steps
+ * no longer than plant_params_t.max_step_s (the reference, and the fallback
+ * where the exact solution does not apply); plant_stepper.h chooses.
  *
  * Open-phase fault: phase_extra_r_ohm[k] adds a series resistance to phase k
  * (its drop projected onto the VSD planes; the zero-sequence part is taken by
@@ -26,6 +28,11 @@
 #include <stdint.h>
 
 #define PLANT_PHASES 6
+
+typedef enum {
+    PLANT_INTEGRATOR_EXACT = 0, /* exact interval solution at the period's held speed */
+    PLANT_INTEGRATOR_RK4 = 1    /* classical RK4, free mechanics (reference) */
+} plant_integrator_t;
 
 typedef struct {
     /* machine (brief §6) */
@@ -46,6 +53,7 @@ typedef struct {
      * open circuit); 0 in normal runs. See the stiffness note above. */
     double phase_extra_r_ohm[PLANT_PHASES];
     /* numerics */
+    plant_integrator_t integrator;
     double max_step_s; /* longest RK4 sub-step inside a constant-voltage interval */
     /* non-idealities, each on/off */
     bool dead_time_on;
@@ -56,9 +64,16 @@ typedef struct {
     double adc_gain_error;
     bool adc_noise_on; /* Gaussian noise, adc_noise_counts standard deviation */
     double adc_noise_counts;
+    double current_sensor_span_a; /* phase-current sensors read -span .. +span A over the ADC's
+                                   * range (the reference board's 20 A, hal_board.h); the drive
+                                   * is told the same span (drive_set_current_span) */
     bool encoder_quant_on; /* angle quantised to 1/(4*lines) turn; speed by edge timing */
     uint32_t encoder_lines;
 } plant_params_t;
+
+/* The sensor spans a board may have (the drive's DRIVE_CURRENT_SPAN_MIN_A..MAX_A, halved). */
+#define PLANT_SENSOR_SPAN_MIN_A 2.0
+#define PLANT_SENSOR_SPAN_MAX_A 200.0
 
 /* Brief §6 values and the documented non-ideality defaults (all on). */
 void plant_params_default(plant_params_t *p);

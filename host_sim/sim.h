@@ -12,6 +12,7 @@
 
 #include "fault_inject.h"
 #include "plant.h"
+#include "recorder.h"
 #include "sim_ctl.h"
 
 typedef enum {
@@ -47,9 +48,32 @@ typedef struct {
     const char *out_dir; /* NULL: write nothing */
     bool write_trace;
     bool write_fine;
+    const struct sim_observer *observer; /* NULL: none (tests watch a run through it) */
 } sim_config_t;
 
 #define SIM_UNSET (-1e30)
+#define SIM_DEFAULT_FINE_RATE_HZ 100000.0
+/* Longest run: 10 h of simulated time (at 10 kHz, 3.6e8 periods; memory does not grow with the
+ * duration, trace.csv does: about 1.7 MB per simulated second at 10 kHz). */
+#define SIM_MAX_DURATION_S 36000.0
+
+/* What the inverter applied in one control period. */
+typedef struct {
+    double duty[6];  /* leg duties, fractions of the period */
+    bool forced_off; /* every switch open */
+    double t_load_nm;
+} sim_period_input_t;
+
+/* Sees every trace row and fine sample of a run (whether or not files are written) and what
+ * the inverter applied in each period: the tests replay a run's commands through the plant
+ * with another integrator, and compare the files with a reference writer. */
+typedef struct sim_observer {
+    void *ctx;
+    /* after each control period, with its complete trace row */
+    void (*period)(void *ctx, const sim_trace_row_t *row, const sim_period_input_t *in);
+    /* each plant sample of the analysis window */
+    void (*fine)(void *ctx, const sim_fine_row_t *row);
+} sim_observer_t;
 
 typedef struct {
     char controller[8];
@@ -58,23 +82,27 @@ typedef struct {
     double lambda, fs_hz, speed_ref_rpm, load_nm, duration_s;
     double window_start_s, window_end_s;
     int thd_periods;
-    double thd_percent;      /* all frequencies in the fine samples (brief §7) */
-    double thd50_percent;    /* harmonics 2..50 */
-    double torque_ripple_nm; /* std of plant torque at fine resolution */
+    double stats_from_s; /* start of the whole fundamental periods THD, ripple and x-y rms use
+                            (the analysis window's start when it holds no whole period) */
+    double thd_phase_percent[6]; /* each phase current, all frequencies; < 0: not meaningful */
+    double thd_percent;          /* mean of the six phases' THD (brief §7); < 0: n/a */
+    double thd50_percent;        /* harmonics 2..50, six-phase mean */
+    double torque_ripple_nm;     /* std of plant torque at fine resolution */
     double torque_ripple_pp_nm;
     double torque_ripple_sampled_nm; /* std of plant torque at the control samples */
     double torque_mean_nm;
     double speed_mean_rpm;
     double xy_current_rms_a;
-    double phase_current_rms_a;
+    double phase_current_rms_a; /* six-phase mean, without DC */
     double switching_freq_hz;
     double phase_current_peak_a; /* max |i| of the six phases at the control samples, analysis
                                     window */
     long adc_clipped;    /* phase-current conversions at 0 or 4095 counts (sensor range +-20 A) */
     double transient_ms; /* < 0: null */
+    /* host timing: machine-dependent, kept out of the committed reproduce report */
     double realtime_factor;
     double wall_s;
-    double isr_mean_us; /* host wall time per drive ISR call */
+    double isr_mean_us; /* host wall time per drive ISR call (mean over every 8th call) */
     int final_state, fault;
     double fault_time_s; /* first period the drive was in FAULT; < 0: never */
     double trip_time_s;  /* simulated hardware trip; < 0: never */

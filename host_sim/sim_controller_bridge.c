@@ -88,6 +88,9 @@ static int bridge_init(const sim_ctl_config_t *cfg)
         return 1;
     }
     drive_init(&bridge_drive, &p);
+    if (!drive_set_current_span(&bridge_drive, (float)cfg->current_full_span_a)) {
+        return 1;
+    }
     return (bridge_drive.state == DRIVE_STATE_FAULT) ? 2 : 0;
 }
 
@@ -129,6 +132,9 @@ static void bridge_status(sim_ctl_status_t *st)
     const ctl_params_t *prm = ctl_params(c);
     const ctl_diag_t *dg = &c->diag;
     st->state = (int)bridge_drive.state;
+    st->ready = bridge_drive.state == DRIVE_STATE_READY;
+    st->running = bridge_drive.state == DRIVE_STATE_RUN;
+    st->faulted = bridge_drive.state == DRIVE_STATE_FAULT;
     st->fault = (int)bridge_drive.fault;
     st->torque_ref_nm = q2d(dg->torque_ref) * CTL_BASE_TORQUE_NM;
     st->flux_ref_wb = q2d(dg->flux_ref) * CTL_BASE_FLUX_WB;

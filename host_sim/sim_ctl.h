@@ -8,6 +8,8 @@
 #ifndef SIM_CTL_H
 #define SIM_CTL_H
 
+#include <stdbool.h>
+
 typedef struct {
     int controller;       /* 0 ddc, 1 mptc49, 2 mptc13 (ctl_controller_t) */
     double lambda;        /* N*m/Wb */
@@ -24,11 +26,16 @@ typedef struct {
     /* speed loop; <= 0: core default */
     double speed_kp, speed_ki, torque_limit_nm;
     int protect; /* 1: ctl_protect_default limits; 0: every threshold out of reach */
+    double current_full_span_a; /* the board's phase-current sensors, -span/2 .. +span/2 A */
 } sim_ctl_config_t;
 
 typedef struct {
-    int state; /* drive_state_t */
-    int fault; /* drive_fault_t */
+    int state; /* drive_state_t, as a number (reported in metrics.json) */
+    /* the states the simulator acts on, named by the bridge from drive.h's drive_state_t */
+    bool ready;   /* DRIVE_STATE_READY: calibrated, waiting for RUN */
+    bool running; /* DRIVE_STATE_RUN */
+    bool faulted; /* DRIVE_STATE_FAULT */
+    int fault;    /* drive_fault_t */
     double torque_ref_nm, flux_ref_wb;
     double torque_est_nm, flux_est_wb;
     int vector;  /* commanded active state (S_A = bit 5) */

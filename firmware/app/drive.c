@@ -441,6 +441,16 @@ void drive_report_overrun(drive_t *d)
 void drive_request_stop(drive_t *d) { d->stop_requested = true; }
 void drive_request_clear_fault(drive_t *d) { d->clear_requested = true; }
 
+bool drive_set_current_span(drive_t *d, float full_span_a)
+{
+    if (d->state == DRIVE_STATE_RUN ||
+        !(full_span_a >= DRIVE_CURRENT_SPAN_MIN_A && full_span_a <= DRIVE_CURRENT_SPAN_MAX_A)) {
+        return false;
+    }
+    d->current_pu_per_count = ctl_from_float(full_span_a / (float)(HAL_ADC_FULL_SCALE + 1u) / CTL_BASE_CURRENT_A_F);
+    return true;
+}
+
 void drive_set_speed_ref_rpm(drive_t *d, float rpm)
 {
     const float omega_e = rpm * (CTL_TWO_PI_F / 60.0f) * (float)d->params_bg.pole_pairs;

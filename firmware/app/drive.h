@@ -125,6 +125,16 @@ uint16_t drive_clear_blockers(const drive_t *d, bool fresh);
  * healthy encoder and a DC link at or above the under-voltage limit are needed. */
 drive_run_refusal_t drive_run_check(const drive_t *d);
 
+/* Phase-current sensor spans a board may have (full span, A: -span/2 .. +span/2 over the
+ * ADC's 0..4095 counts, zero at mid scale; the reference board's is hal_board.h's 40 A). */
+#define DRIVE_CURRENT_SPAN_MIN_A 4.0f
+#define DRIVE_CURRENT_SPAN_MAX_A 400.0f
+
+/* Background side: the phase-current scaling of a board whose sensors span full_span_a instead
+ * of the reference board's. Taken outside RUN only (the ISR reads the scaling every period);
+ * false, and nothing changed, in RUN or for a span outside DRIVE_CURRENT_SPAN_MIN_A..MAX_A. */
+bool drive_set_current_span(drive_t *d, float full_span_a);
+
 /* Background-side commands, acted on by the next ISR. */
 void drive_request_run(drive_t *d);
 void drive_request_stop(drive_t *d);

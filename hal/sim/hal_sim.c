@@ -28,10 +28,10 @@ static uint16_t hal_sim_clamp_counts(double counts)
     return (uint16_t)(counts + 0.5);
 }
 
-uint16_t hal_sim_current_to_counts(double amps)
+uint16_t hal_sim_current_to_counts(double amps, double full_span_a)
 {
     return hal_sim_clamp_counts(HAL_BOARD_CURRENT_ZERO_COUNTS +
-                                amps / HAL_BOARD_CURRENT_A_PER_COUNT);
+                                amps * ((double)(HAL_ADC_FULL_SCALE + 1u) / full_span_a));
 }
 
 uint16_t hal_sim_vdc_to_counts(double volts)

@@ -42,10 +42,11 @@ extern hal_sim_bus_t hal_sim_bus;
 /* Clear the bus to its power-on state (outputs forced off, no samples). */
 void hal_sim_reset(void);
 
-/* Physical quantity to 12-bit ADC counts with the board scaling of hal_board.h:
- * round to nearest, clamp to 0..4095. Offset (counts) and gain error are the
- * caller's (the plant's) business and are applied before this. */
-uint16_t hal_sim_current_to_counts(double amps);
+/* Physical quantity to 12-bit ADC counts: round to nearest, clamp to 0..4095. Currents over a
+ * sensor span of full_span_a (-span/2 .. +span/2, zero at mid scale; the reference board's is
+ * HAL_BOARD_CURRENT_FULL_SPAN_A), the DC link with hal_board.h's scaling. Offset (counts) and
+ * gain error are the caller's (the plant's) business and are applied before this. */
+uint16_t hal_sim_current_to_counts(double amps, double full_span_a);
 uint16_t hal_sim_vdc_to_counts(double volts);
 
 /* Publish a completed conversion sequence (sets the fresh flag). */

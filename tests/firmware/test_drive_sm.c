@@ -476,6 +476,32 @@ static void test_overcurrent_forces_off_before_any_write(void **state)
     assert_false(drive_read_fault_record(&d, &r));
 }
 
+/* A board with +-50 A sensors: 500 counts above mid scale read 12.2 A (4.9 A with the reference
+ * board's +-20 A scaling). The span is taken outside RUN only and within
+ * DRIVE_CURRENT_SPAN_MIN_A..MAX_A. */
+static void test_current_span_scales_the_phase_currents(void **state)
+{
+    const ctl_q per_count_20a = d.current_pu_per_count;
+    (void)state;
+    assert_false(drive_set_current_span(&d, 3.9f));
+    assert_false(drive_set_current_span(&d, 400.5f));
+    assert_false(drive_set_current_span(&d, 0.0f / 0.0f));
+    assert_int_equal(d.current_pu_per_count, per_count_20a);
+    assert_true(drive_set_current_span(&d, 100.0f));
+    assert_int_equal(d.current_pu_per_count, ctl_from_float(100.0f / 4096.0f / 10.0f));
+    start_running();
+    assert_false(drive_set_current_span(&d, 40.0f)); /* not while running */
+    mock_adc.phase[0] = (uint16_t)(2048 + 500);
+    mock_adc.phase[1] = (uint16_t)(2048 - 500);
+    run_isr(1);
+    assert_true(d.meas.i_phase[0] > ctl_from_float(1.21f) && d.meas.i_phase[0] < ctl_from_float(1.23f));
+    assert_int_equal(d.state, DRIVE_STATE_RUN);
+    mock_adc.phase[0] = (uint16_t)(2048 + OVER_LIMIT_COUNTS); /* 41.5 A */
+    mock_adc.phase[1] = (uint16_t)(2048 - OVER_LIMIT_COUNTS);
+    run_isr(1);
+    assert_int_equal(d.fault, DRIVE_FAULT_OVERCURRENT);
+}
+
 static void test_simultaneous_faults_one_record_all_bits(void **state)
 {
     ctl_fault_record_t r;
@@ -549,6 +575,7 @@ int main(void)
         cmocka_unit_test_setup(test_duty_conversion, setup),
         cmocka_unit_test_setup(test_references, setup),
         cmocka_unit_test_setup(test_overcurrent_forces_off_before_any_write, setup),
+        cmocka_unit_test_setup(test_current_span_scales_the_phase_currents, setup),
         cmocka_unit_test_setup(test_simultaneous_faults_one_record_all_bits, setup),
         cmocka_unit_test_setup(test_dc_overvoltage_faults_when_idle, setup),
         cmocka_unit_test_setup(test_fault_mask_mapping_round_trips, setup),

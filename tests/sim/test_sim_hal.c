@@ -14,17 +14,19 @@
 static void test_adc_scaling_and_clamping(void **state)
 {
     (void)state;
-    assert_int_equal(hal_sim_current_to_counts(0.0), 2048);
+    assert_int_equal(hal_sim_current_to_counts(0.0, HAL_BOARD_CURRENT_FULL_SPAN_A), 2048);
     /* 9.765625 mA per count */
-    assert_int_equal(hal_sim_current_to_counts(1.0), 2048 + 102);
-    assert_int_equal(hal_sim_current_to_counts(-1.0), 2048 - 102);
-    assert_int_equal(hal_sim_current_to_counts(19.99), 4095);
-    assert_int_equal(hal_sim_current_to_counts(25.0), 4095);
-    assert_int_equal(hal_sim_current_to_counts(-25.0), 0);
+    assert_int_equal(hal_sim_current_to_counts(1.0, HAL_BOARD_CURRENT_FULL_SPAN_A), 2048 + 102);
+    assert_int_equal(hal_sim_current_to_counts(-1.0, HAL_BOARD_CURRENT_FULL_SPAN_A), 2048 - 102);
+    assert_int_equal(hal_sim_current_to_counts(19.99, HAL_BOARD_CURRENT_FULL_SPAN_A), 4095);
+    assert_int_equal(hal_sim_current_to_counts(25.0, HAL_BOARD_CURRENT_FULL_SPAN_A), 4095);
+    assert_int_equal(hal_sim_current_to_counts(-25.0, HAL_BOARD_CURRENT_FULL_SPAN_A), 0);
+    assert_int_equal(hal_sim_current_to_counts(25.0, 100.0), 2048 + 1024); /* a +-50 A sensor */
+    assert_int_equal(hal_sim_current_to_counts(60.0, 100.0), 4095);
     assert_int_equal(hal_sim_vdc_to_counts(540.0), 2765); /* 540 / 0.1953125 = 2764.8 */
     assert_int_equal(hal_sim_vdc_to_counts(1000.0), 4095);
     assert_int_equal(hal_sim_vdc_to_counts(-5.0), 0);
-    assert_int_equal(hal_sim_current_to_counts(1e300), 4095);
+    assert_int_equal(hal_sim_current_to_counts(1e300, HAL_BOARD_CURRENT_FULL_SPAN_A), 4095);
 }
 
 static void test_adc_fresh_flag(void **state)

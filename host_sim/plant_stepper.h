@@ -1,0 +1,57 @@
+/*
+ * Advances the plant over the constant-voltage intervals of one carrier period, with the
+ * integrator the parameters ask for:
+ *
+ * exact (default): the electrical equations solved exactly per interval (plant_exact.h) at a
+ *   speed held over the period, the mid-period speed predicted from the last period's change
+ *   (w_k + (w_k - w_k-1) / 2: the angle error of holding the speed then telescopes instead of
+ *   accumulating); the rotor angle advances with it; at the period end the speed takes the
+ *   period's torque integral (trapezoidal per interval), load and friction. Coefficients are
+ *   rebuilt when the parameters change (fault injection) and when the speed does (per period).
+ * rk4: classical RK4 with free mechanics in every interval (plant_integrate_nosync), as before
+ *   the exact solution existed; also where the exact solution does not apply
+ *   (plant_exact_applies: no resistance, or an extra phase resistance).
+ */
+#ifndef SIM_PLANT_STEPPER_H
+#define SIM_PLANT_STEPPER_H
+
+#include <stdbool.h>
+
+#include "plant.h"
+#include "plant_exact.h"
+
+/* The parameters the exact coefficients depend on, to notice a change. */
+typedef struct {
+    double values[16];
+} plant_stepper_key_t;
+
+typedef struct {
+    plant_exact_t exact;
+    plant_exact_point_t point; /* the present instant of the period being integrated */
+    plant_stepper_key_t key;
+    bool have_key;
+    bool use_exact;   /* this period */
+    bool lock_mech;   /* this period */
+    double omega_start, omega_prev; /* mechanical speed at this and the last period start */
+    int starts_seen;  /* periods started (saturates at 2) */
+} plant_stepper_t;
+
+void plant_stepper_init(plant_stepper_t *st);
+
+/* Every period start, forced off or not: the speed history for the held-speed prediction. */
+void plant_stepper_mark_period(plant_stepper_t *st, const plant_state_t *s);
+
+/* Choose the method and prepare the period (s->cos_e / sin_e must be current). */
+void plant_stepper_begin(plant_stepper_t *st, const plant_params_t *p, plant_state_t *s,
+                         bool lock_mech);
+
+/* One constant-voltage interval of h seconds; returns the torque integral (N*m*s). */
+double plant_stepper_step(plant_stepper_t *st, const plant_params_t *p, plant_state_t *s,
+                          const double u[4], double t_load, double h);
+
+/* Close the period of length ts with its torque integral: the speed update of the exact
+ * method (RK4 has integrated the mechanics already). */
+void plant_stepper_end(const plant_stepper_t *st, const plant_params_t *p, plant_state_t *s,
+                       double t_load, double torque_integral, double ts);
+
+#endif /* SIM_PLANT_STEPPER_H */

@@ -1,0 +1,42 @@
+/*
+ * The runs of `sixphase-sim reproduce` (brief §8): one table of cases, each a sim_config_t
+ * with a name the report looks it up by.
+ *
+ * Sensor span: MPTC-49 and MPTC-13 reach 26-37 A, beyond the board's +-20 A current sensors,
+ * so on the board they would decide on clipped measurements. The comparison runs them with
+ * REP_BASELINE_SENSOR_SPAN_A sensors (the drive told the same span); the rows named board_*,
+ * trip20_* and protect_* keep the board's +-20 A (what the board itself would do).
+ */
+#ifndef SIM_REPRODUCE_CASES_H
+#define SIM_REPRODUCE_CASES_H
+
+#include "sim.h"
+
+#define REP_MAX_CASES 64
+#define REP_BASELINE_SENSOR_SPAN_A 50.0
+
+typedef struct {
+    char name[64];
+    char group[16]; /* steady, eqsw, dyn, lxy, extra, fault */
+    sim_config_t cfg;
+    sim_result_t res;
+    int ok;
+    char err[160];
+} rep_case_t;
+
+/* The paper's lambdas and its numbers at them (brief §8). */
+extern const double rep_paper_lambda[3];
+extern const double rep_paper_thd_mptc[3], rep_paper_thd_ddc[3];
+extern const double rep_paper_rip_mptc[3], rep_paper_rip_ddc[3];
+
+/* Every case of the first batch into cases[0..*n); run outputs under dir/runs/NAME. */
+void rep_cases_first_batch(rep_case_t *cases, int *n, const char *dir);
+
+/* After the first batch: MPTC-49 at the sampling frequency that gives DDC's switching
+ * frequency at each lambda (eqsw_mptc49_l*), appended. */
+void rep_cases_equal_switching(rep_case_t *cases, int *n, const char *dir);
+
+/* The case of that name if it ran, else NULL. */
+const rep_case_t *rep_find(const rep_case_t *cases, int n, const char *name);
+
+#endif /* SIM_REPRODUCE_CASES_H */

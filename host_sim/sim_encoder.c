@@ -1,0 +1,144 @@
+/* The simulated encoder, see sim_encoder.h. */
+#include "sim_encoder.h"
+
+#include <math.h>
+
+#include "hal_encoder.h"
+#include "hal_sim.h"
+
+#define ENC_TWO_PI 6.28318530717958647692
+/* hal/f28335: F28335_QEP_WATCHDOG_PRD (10 ms) and F28335_QEP_TIMEOUT_SPEED_Q16 (5 rev/s); that
+ * header describes registers of the target and is not part of the host build */
+#define ENC_WATCHDOG_S 10e-3
+#define ENC_LOSS_REV_S 5.0
+
+void sim_encoder_init(sim_encoder_t *enc, double ts)
+{
+    long len = lround(1e-3 / ts);
+    enc->ring_len = (int)((len < 1) ? 1 : ((len > SIM_ENCODER_RING_MAX) ? SIM_ENCODER_RING_MAX : len));
+    enc->ring_pos = 0;
+    enc->first = true;
+    enc->edge_speed_rev_s = 0.0;
+    enc->qep_error = false;
+}
+
+void sim_encoder_restart(sim_encoder_t *enc) { enc->first = true; }
+
+static int32_t enc_q16_clamp(double v)
+{
+    const double q = v * 65536.0;
+    if (!(q == q)) {
+        return 0;
+    }
+    if (q >= 2147483647.0) {
+        return INT32_MAX;
+    }
+    if (q <= -2147483648.0) {
+        return INT32_MIN;
+    }
+    return (int32_t)lround(q);
+}
+
+static uint32_t enc_turn_u32(double turns)
+{
+    const double frac = turns - floor(turns);
+    double v = frac * 4294967296.0;
+    if (v >= 4294967295.0) {
+        v = 0.0;
+    }
+    return (uint32_t)v;
+}
+
+/* The window's history as if the rotor had turned at its present speed before. */
+static void enc_fill_window(sim_encoder_t *enc, int64_t count, double pos, double omega_m,
+                            double cpr, double t, double ts)
+{
+    int i;
+    enc->first = false;
+    enc->count_prev = count;
+    enc->pos_prev = pos;
+    enc->edge_t_prev = t;
+    for (i = 0; i < enc->ring_len; i++) {
+        const double back = (double)(enc->ring_len - i) * ts;
+        enc->ring_t[i] = t - back;
+        enc->ring_count[i] = (int64_t)floor(pos - omega_m / ENC_TWO_PI * cpr * back);
+    }
+}
+
+/* Time of the latest edge: interpolated between the previous and this sample. */
+static double enc_edge_time(const sim_encoder_t *enc, int64_t count, double pos, double t,
+                            double ts)
+{
+    double edge, span, frac;
+    if (count == enc->count_prev) {
+        return enc->edge_t_prev;
+    }
+    edge = (count > enc->count_prev) ? (double)count : (double)(count + 1);
+    span = pos - enc->pos_prev;
+    frac = (span != 0.0) ? (edge - enc->pos_prev) / span : 1.0;
+    frac = (frac < 0.0) ? 0.0 : ((frac > 1.0) ? 1.0 : frac);
+    return (t - ts) + frac * ts;
+}
+
+/* Count change over the window divided by the time between its end edges (0 when still). */
+static int32_t enc_window_speed(sim_encoder_t *enc, int64_t count, double edge_t, double cpr)
+{
+    const int old = enc->ring_pos; /* oldest entry */
+    const int64_t dc = count - enc->ring_count[old];
+    const double dt = edge_t - enc->ring_t[old];
+    const int32_t speed = (dc != 0 && dt > 0.0) ? enc_q16_clamp((double)dc / cpr / dt) : 0;
+    enc->ring_count[old] = count;
+    enc->ring_t[old] = edge_t;
+    enc->ring_pos = (enc->ring_pos + 1) % enc->ring_len;
+    if (dc != 0) {
+        enc->edge_speed_rev_s = (double)speed / 65536.0;
+    }
+    return speed;
+}
+
+static void enc_quantised(sim_encoder_t *enc, const plant_params_t *p, const plant_state_t *s,
+                          double t, double ts, hal_encoder_sample_t *e)
+{
+    const double cpr = 4.0 * (double)p->encoder_lines;
+    const double pos = s->theta_m / ENC_TWO_PI * cpr;
+    const int64_t count = (int64_t)floor(pos);
+    const int64_t cpr_i = (int64_t)(4u * p->encoder_lines);
+    int64_t in_turn = count % cpr_i;
+    double edge_t;
+    if (in_turn < 0) {
+        in_turn += cpr_i;
+    }
+    /* electrical angle of the counted position: (count / cpr) * Pn turns */
+    e->elec_angle =
+        (uint32_t)(((uint64_t)in_turn * (uint64_t)p->pole_pairs * 4294967296ull) / (uint64_t)cpr_i);
+    if (enc->first) {
+        enc_fill_window(enc, count, pos, s->omega_m, cpr, t, ts);
+    }
+    edge_t = enc_edge_time(enc, count, pos, t, ts);
+    e->mech_speed_q16 = enc_window_speed(enc, count, edge_t, cpr);
+    enc->count_prev = count;
+    enc->pos_prev = pos;
+    enc->edge_t_prev = edge_t;
+    /* eQEP watchdog (hal/f28335 f28335_eqep.c) */
+    if (t - edge_t > ENC_WATCHDOG_S && fabs(enc->edge_speed_rev_s) > ENC_LOSS_REV_S) {
+        enc->qep_error = true;
+    }
+    e->healthy = !enc->qep_error;
+}
+
+void sim_encoder_sample(sim_encoder_t *enc, const plant_params_t *p, const plant_state_t *x,
+                        double t, double ts, sim_fault_state_t *fs)
+{
+    plant_state_t seen = *x; /* the shaft as the encoder interface sees it */
+    hal_encoder_sample_t e;
+    seen.theta_m = sim_fault_encoder_angle(fs, x->theta_m);
+    e.healthy = true;
+    if (!p->encoder_quant_on) {
+        e.elec_angle = enc_turn_u32((double)p->pole_pairs * seen.theta_m / ENC_TWO_PI);
+        e.mech_speed_q16 = enc_q16_clamp(seen.omega_m / ENC_TWO_PI);
+    } else {
+        enc_quantised(enc, p, &seen, t, ts, &e);
+    }
+    sim_fault_encoder(fs, &e);
+    hal_sim_post_encoder(&e);
+}

@@ -1,0 +1,68 @@
+/*
+ * Everything one simulation run owns, shared by the files that make up sim_run(): set-up and
+ * calibration (sim_setup.c), the period loop (sim_loop.c), the results (sim_result.c).
+ * Internal to host_sim.
+ */
+#ifndef SIM_RUN_STATE_H
+#define SIM_RUN_STATE_H
+
+#include <stdbool.h>
+#include <stddef.h>
+
+#include "fault_inject.h"
+#include "inverter.h"
+#include "plant.h"
+#include "recorder.h"
+#include "scenario.h"
+#include "sim.h"
+#include "sim_adc.h"
+#include "sim_ctl.h"
+#include "sim_encoder.h"
+#include "sim_metrics.h"
+
+typedef struct {
+    const sim_config_t *cfg;
+    const sim_ctl_ops_t *ops;
+    sim_plan_t plan;
+    plant_params_t plant; /* the plant as any injected fault leaves it */
+    sim_fault_state_t fault;
+    sim_adc_t adc;
+    sim_encoder_t encoder;
+    inverter_t inv;
+    plant_state_t x;
+    sim_recorder_t rec;
+    sim_metrics_t metrics;
+    double ts;
+    long n_periods, k_win;
+    int n_fine;
+    double *fine_times; /* the fine sampling instants within a period */
+    double t_period;    /* start of the period being integrated */
+    double duty[6];     /* leg duties loaded at the last period boundary */
+    int applied_vector; /* the command in force in this period (trace) */
+    double applied_duty;
+    long k_detect;      /* first period in FAULT; -1: none */
+    long cal_isr_calls; /* drive ISR calls of the calibration */
+    double isr_wall_s; /* host time in the timed drive ISR calls */
+    long isr_timed;
+    double wall0_s, wall1_s;
+} sim_run_t;
+
+/* Plan, buffers, output files, HAL and controller; 0 or a one-line message in err. */
+int sim_setup(sim_run_t *rs, const sim_config_t *c, char *err, size_t err_len);
+
+/* The drive's ADC offset calibration before the scenario clock (rotor held), then RUN. */
+int sim_setup_calibrate(sim_run_t *rs, sim_result_t *r, char *err, size_t err_len);
+
+/* Release what sim_setup took; ok false deletes partial output files. */
+void sim_teardown(sim_run_t *rs, bool ok);
+
+/* The scenario: every control period. */
+int sim_loop_run(sim_run_t *rs, sim_result_t *r, char *err, size_t err_len);
+
+/* Identity, drive status, timing and metrics of the finished run into r. */
+void sim_result_fill(sim_run_t *rs, sim_result_t *r);
+
+/* Monotonic wall clock, s. */
+double sim_wall_now(void);
+
+#endif /* SIM_RUN_STATE_H */

@@ -1,0 +1,204 @@
+/* Setting up a run and calibrating the drive before the scenario clock, see sim_run_state.h. */
+#define _POSIX_C_SOURCE 200809L
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "hal_cycles.h"
+#include "hal_sim.h"
+#include "sim_run_state.h"
+#include "sxlink.h"
+
+/* The drive calibrates for DRIVE_CALIBRATION_SAMPLES (1024) periods; this bounds the wait. */
+#define SIM_CAL_PERIODS_MAX 4096
+
+double sim_wall_now(void)
+{
+    struct timespec ts;
+    (void)clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static int setup_fail(char *err, size_t len, const char *msg)
+{
+    (void)snprintf(err, len, "%s", msg);
+    return -1;
+}
+
+/* The controller as the firmware's parameter set would configure it for this run. */
+static void setup_controller_config(const sim_run_t *rs, sim_ctl_config_t *cc)
+{
+    const sim_config_t *c = rs->cfg;
+    const plant_params_t *p = &rs->plant;
+    memset(cc, 0, sizeof *cc);
+    cc->controller = c->controller;
+    cc->lambda = c->lambda;
+    cc->ts_s = rs->ts;
+    cc->duty_levels = c->duty_levels;
+    cc->ddc_direction = c->ddc_direction;
+    cc->flux_ref_mode = c->flux_ref_mode;
+    cc->ddc_torque_guard = c->ddc_torque_guard;
+    cc->j_kgm2 = p->j_kgm2;
+    cc->flux_ref_wb = 0.0;
+    cc->r_ohm = p->r_ohm;
+    cc->ld_h = p->ld_h;
+    cc->lq_h = p->lq_h;
+    cc->lxy_h = p->lxy_h;
+    cc->psi_f_wb = p->psi_f_wb;
+    cc->pole_pairs = p->pole_pairs;
+    cc->torque_limit_nm = rs->plan.torque_limit;
+    cc->protect = c->protect ? 1 : 0;
+    cc->current_full_span_a = 2.0 * p->current_sensor_span_a;
+}
+
+/* Periods, window and fine sampling of the run. */
+static int setup_timing(sim_run_t *rs, char *err, size_t err_len)
+{
+    const sim_config_t *c = rs->cfg;
+    int j;
+    rs->ts = 1.0 / c->fs_hz;
+    rs->n_periods = lround(rs->plan.duration / rs->ts);
+    if (rs->n_periods < 10) {
+        return setup_fail(err, err_len, "duration shorter than 10 control periods");
+    }
+    rs->k_win = rs->n_periods - lround(rs->plan.window / rs->ts);
+    if (rs->k_win < 0) {
+        rs->k_win = 0;
+    }
+    rs->n_fine = (int)ceil(((c->fine_rate_hz > 0.0) ? c->fine_rate_hz : SIM_DEFAULT_FINE_RATE_HZ) /
+                               c->fs_hz -
+                           1e-9);
+    if (rs->n_fine < 4) {
+        rs->n_fine = 4;
+    }
+    rs->fine_times = (double *)calloc((size_t)rs->n_fine, sizeof(double));
+    if (!rs->fine_times) {
+        return setup_fail(err, err_len, "out of memory");
+    }
+    for (j = 0; j < rs->n_fine; j++) {
+        rs->fine_times[j] = rs->ts * (double)j / (double)rs->n_fine;
+    }
+    return 0;
+}
+
+/* HAL and controller, as the firmware's main would set them up. */
+static int setup_drive(sim_run_t *rs, char *err, size_t err_len)
+{
+    const plant_params_t *p = &rs->plant;
+    sim_ctl_config_t cc;
+    hal_sim_reset();
+    if (!hal_pwm_init((uint32_t)lround(rs->cfg->fs_hz),
+                      (uint32_t)lround((p->dead_time_on ? p->dead_time_s : 0.0) * 1e9)) ||
+        !hal_adc_init() || !hal_encoder_init(p->encoder_lines, (uint16_t)p->pole_pairs, 0u)) {
+        return setup_fail(err, err_len, "simulator HAL refused its configuration");
+    }
+    hal_cycles_init();
+    setup_controller_config(rs, &cc);
+    if (rs->ops->init(&cc) != 0) {
+        return setup_fail(err, err_len, "control core rejected the parameters");
+    }
+    return 0;
+}
+
+int sim_setup(sim_run_t *rs, const sim_config_t *c, char *err, size_t err_len)
+{
+    memset(rs, 0, sizeof *rs);
+    rs->cfg = c;
+    rs->ops = (c->arith == 1) ? &simflt_sim_ctl_ops_float : &sim_ctl_ops_fixed;
+    rs->plant = c->plant;
+    rs->k_detect = -1;
+    sim_plan(c, &rs->plan);
+    sim_fault_begin(&rs->fault, c->fault,
+                    (c->fault_time_s > 0.0) ? c->fault_time_s : SIM_FAULT_INJECT_S);
+    if (c->fault != SIM_FAULT_NONE && !sim_fault_at_power_up(c->fault) &&
+        !(rs->fault.t_inject < rs->plan.duration)) {
+        return setup_fail(err, err_len, "fault injection time must be inside the run");
+    }
+    if (setup_timing(rs, err, err_len) != 0) {
+        return -1;
+    }
+    {
+        const size_t win = (size_t)(rs->n_periods - rs->k_win);
+        if (sim_metrics_open(&rs->metrics, win * (size_t)rs->n_fine + 4u, win) != 0) {
+            return setup_fail(err, err_len, "out of memory");
+        }
+    }
+    if (sim_recorder_open(&rs->rec, c->out_dir, c->write_trace, c->write_fine, err, err_len) != 0 ||
+        setup_drive(rs, err, err_len) != 0) {
+        return -1;
+    }
+    inverter_init(&rs->inv, &rs->plant, rs->ts);
+    rs->x.omega_m = rs->plan.speed0 * 2.0 * 3.14159265358979323846 / 60.0;
+    plant_sync_angle(&rs->plant, &rs->x);
+    sim_adc_init(&rs->adc, &rs->plant, c->seed);
+    sim_encoder_init(&rs->encoder, rs->ts);
+    return 0;
+}
+
+/* Calibration periods until the drive is READY (or FAULT); returns the drive's status. */
+static void calibrate_periods(sim_run_t *rs, sim_ctl_status_t *st)
+{
+    long cal;
+    rs->ops->status(st);
+    for (cal = 0; cal < SIM_CAL_PERIODS_MAX && !st->ready; cal++) {
+        double iph[6];
+        plant_phase_currents(&rs->plant, &rs->x, iph);
+        sim_adc_sample(&rs->adc, &rs->plant, iph, &rs->fault);
+        sim_encoder_sample(&rs->encoder, &rs->plant, &rs->x,
+                           (double)(cal - SIM_CAL_PERIODS_MAX) * rs->ts, rs->ts, &rs->fault);
+        rs->ops->isr();
+        (void)inverter_run_period(&rs->inv, &rs->plant, &rs->x, rs->duty, true, 0.0, true, NULL, 0,
+                                  NULL, NULL);
+        rs->ops->status(st);
+        if (st->faulted) {
+            rs->cal_isr_calls = cal + 1;
+            return;
+        }
+    }
+    rs->cal_isr_calls = cal;
+}
+
+int sim_setup_calibrate(sim_run_t *rs, sim_result_t *r, char *err, size_t err_len)
+{
+    sim_ctl_status_t st;
+    calibrate_periods(rs, &st);
+    if (st.faulted && sim_fault_at_power_up(rs->cfg->fault)) {
+        /* found by the calibration: the latency is the calibration itself */
+        r->fault_inject_s = 0.0;
+        r->fault_detect_ms = 1e3 * (double)rs->cal_isr_calls * rs->ts;
+        r->fault = st.fault;
+        rs->k_detect = 0;
+    } else if (st.faulted) {
+        (void)snprintf(err, err_len,
+                       "the drive stopped in fault %s during its ADC calibration, before the "
+                       "scenario (the operating point is beyond a protection limit: "
+                       "docs/faults.md; --no-protect lifts them)",
+                       sxl_fault_name((uint16_t)st.fault));
+        return -1;
+    } else if (!st.ready) {
+        return setup_fail(err, err_len, "drive did not finish ADC calibration");
+    }
+    rs->x.theta_m = 0.0;
+    plant_sync_angle(&rs->plant, &rs->x);
+    sim_encoder_restart(&rs->encoder);
+    rs->ops->set_speed_rpm(rs->plan.speed0);
+    rs->ops->request_run(); /* refused by a drive already in FAULT */
+    rs->adc.clipped = 0;
+    r->outputs_off = true;
+    r->fault_time_s = (rs->k_detect == 0) ? 0.0 : -1.0;
+    r->trip_time_s = -1.0;
+    return 0;
+}
+
+void sim_teardown(sim_run_t *rs, bool ok)
+{
+    if (!ok) {
+        sim_recorder_discard(&rs->rec);
+    }
+    sim_metrics_close(&rs->metrics);
+    free(rs->fine_times);
+    rs->fine_times = NULL;
+}
