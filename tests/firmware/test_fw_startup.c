@@ -80,6 +80,24 @@ static sxl_rx_t transact(uint16_t cmd, const uint16_t *payload, uint16_t len, sx
     return r;
 }
 
+/* The whole start-up writes EALLOW-protected registers only between EALLOW and EDIS (the
+ * host watch, f28335_regs.h). ePWM's HRCNFG and trip-zone registers start from values a
+ * previous configuration may have left, so that writing them changes something to see. */
+static void test_startup_writes_protected_registers_inside_eallow(void **state)
+{
+    int i;
+    (void)state;
+    for (i = 0; i < F28335_EPWM_COUNT; i++) {
+        R.epwm[i].HRCNFG = 0x00A5u;
+        R.epwm[i].TZSEL = 0x5A5Au;
+        R.epwm[i].TZCTL = 0x000Fu;
+        R.epwm[i].TZEINT = 0x0006u;
+    }
+    f28335_host_eallow_watch_start();
+    assert_true(fw_startup());
+    assert_int_equal(f28335_host_eallow_violations(), 0u);
+}
+
 static void test_startup_configures_everything(void **state)
 {
     int i;
@@ -348,6 +366,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test_setup(test_startup_configures_everything, setup),
+        cmocka_unit_test_setup(test_startup_writes_protected_registers_inside_eallow, setup),
         cmocka_unit_test_setup(test_isr_calibrates_then_runs_on_serial_command, setup),
         cmocka_unit_test_setup(test_parameter_change_reaches_everything_at_the_next_period, setup),
         cmocka_unit_test_setup(test_bring_up_steps_of_the_porting_guide, setup),

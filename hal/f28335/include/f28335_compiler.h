@@ -99,8 +99,13 @@ typedef struct {
 
 extern f28335_host_core_t f28335_host_core;
 
-#define F28335_EALLOW() (f28335_host_core.eallow = 1u, f28335_host_core.eallow_count++)
-#define F28335_EDIS() (f28335_host_core.eallow = 0u)
+/* EALLOW / EDIS on the host also watch the EALLOW-protected registers (f28335_host_regs.c):
+ * a change of one of them made while protected counts as a violation, which on the target is a
+ * write the CPU ignores. */
+void f28335_host_eallow(void);
+void f28335_host_edis(void);
+#define F28335_EALLOW() f28335_host_eallow()
+#define F28335_EDIS() f28335_host_edis()
 #define F28335_EINT() (f28335_host_core.intm = 0u)
 #define F28335_DINT() (f28335_host_core.intm = 1u)
 #define F28335_ERTM() ((void)0)

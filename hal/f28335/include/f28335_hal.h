@@ -48,10 +48,18 @@ void f28335_interrupts_disable_global(void);
 uint16_t f28335_pwm_period_for(uint32_t carrier_hz);
 /* Dead-band counts for dead_time_ns; 0xFFFF if above the 10-bit limit. */
 uint16_t f28335_pwm_deadband_for(uint32_t dead_time_ns);
-/* CMPA for a Q15 duty (0..32768) and period prd: prd + 1 for duty 0 (never
- * matches: output low), 0 for duty 1 (set at counter zero: output high),
- * prd - round(duty * prd / 32768) in between, limited to 1..prd. */
+/* CMPB of every module: the up-count event at CTR = 1 that clears EPWMxA once more after a
+ * period in which the continuous force held it high (f28335_pwm.c). CMPA stays at least one
+ * count above it. */
+#define F28335_PWM_CMPB 1u
+#define F28335_PWM_CMPA_MIN 2u
+
+/* CMPA for a Q15 duty (0..32768) and period prd: on = round(duty * prd / 32768) counts per
+ * half period; prd + 1 (no compare event) when on is 0 or prd (0 % and 100 %), else prd - on
+ * limited to F28335_PWM_CMPA_MIN..prd - 1. */
 uint16_t f28335_pwm_cmpa_for(uint16_t duty_q15, uint16_t prd);
+/* AQCSFRC for that duty: continuous force high at 100 % (on = prd), no force otherwise. */
+uint16_t f28335_pwm_force_for(uint16_t duty_q15, uint16_t prd);
 uint16_t f28335_pwm_period(void);
 /* ePWM1 time-base counter: in up-down mode the counter rises from 0 at the period start
  * (ADC start of conversion), so in the first half period it is the time since then, in

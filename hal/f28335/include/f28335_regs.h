@@ -111,6 +111,12 @@ typedef struct {
 #define EPWM_AQ_CAD_SHIFT 6u
 #define EPWM_AQ_CBU_SHIFT 8u
 #define EPWM_AQ_CBD_SHIFT 10u
+/* AQSFRC: RLDCSF 7:6 (0 = AQCSFRC shadow loaded at CTR = 0). AQCSFRC: CSFA 1:0, CSFB 3:2
+ * (0 no force, 1 continuous low, 2 continuous high). */
+#define EPWM_AQSFRC_RLDCSF_ZERO 0x0000u
+#define EPWM_AQCSFRC_CSFA_LOW 0x0001u
+#define EPWM_AQCSFRC_CSFA_HIGH 0x0002u
+#define EPWM_AQCSFRC_CSFA_MASK 0x0003u
 
 #define EPWM_DBCTL_OUT_MODE_FULL 0x0003u /* OUT_MODE 1:0 = 3 */
 #define EPWM_DBCTL_POLSEL_AHC 0x0008u    /* POLSEL 3:2 = 2: active high complementary */
@@ -425,6 +431,14 @@ extern volatile f28335_host_regs_t f28335_host_regs;
 
 /* Zero every host frame and the host core state (test set-up). */
 void f28335_host_regs_reset(void);
+
+/* The EALLOW watch: the EALLOW-protected registers (system control, flash, GPIO control, PIE
+ * vectors, each ePWM's trip-zone registers and HRCNFG; ../shared/f28335-facts.md) are
+ * snapshotted at every EDIS and compared at the next EALLOW. watch_start snapshots now and
+ * zeroes the count (after a test's own presets); violations compares once more and returns
+ * how many protected-register changes were made outside EALLOW .. EDIS since then. */
+void f28335_host_eallow_watch_start(void);
+uint32_t f28335_host_eallow_violations(void);
 
 #define F28335_SYSCTRL (&f28335_host_regs.sysctrl)
 #define F28335_FLASH (&f28335_host_regs.flash)

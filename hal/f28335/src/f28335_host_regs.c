@@ -30,6 +30,77 @@ static void host_sci_update_rx(void)
     }
 }
 
+/* The EALLOW-protected registers, copied out of the frames. */
+typedef struct {
+    f28335_sysctrl_t sysctrl;
+    f28335_flash_t flash;
+    f28335_gpioctrl_t gpioctrl;
+    f28335_pievect_t pievect;
+    uint16_t epwm_tz[F28335_EPWM_COUNT][6]; /* TZSEL, TZCTL, TZEINT, TZCLR, TZFRC, HRCNFG */
+} host_protected_t;
+
+static host_protected_t host_protected_snapshot;
+static uint32_t host_eallow_violations;
+
+static void host_protected_copy(host_protected_t *p)
+{
+    int16_t i;
+    memset(p, 0, sizeof *p);
+    memcpy(&p->sysctrl, (const void *)(uintptr_t)&f28335_host_regs.sysctrl, sizeof p->sysctrl);
+    memcpy(&p->flash, (const void *)(uintptr_t)&f28335_host_regs.flash, sizeof p->flash);
+    memcpy(&p->gpioctrl, (const void *)(uintptr_t)&f28335_host_regs.gpioctrl, sizeof p->gpioctrl);
+    memcpy(&p->pievect, (const void *)(uintptr_t)&f28335_host_regs.pievect, sizeof p->pievect);
+    for (i = 0; i < F28335_EPWM_COUNT; i++) {
+        const volatile f28335_epwm_t *e = &f28335_host_regs.epwm[i];
+        p->epwm_tz[i][0] = e->TZSEL;
+        p->epwm_tz[i][1] = e->TZCTL;
+        p->epwm_tz[i][2] = e->TZEINT;
+        p->epwm_tz[i][3] = e->TZCLR;
+        p->epwm_tz[i][4] = e->TZFRC;
+        p->epwm_tz[i][5] = e->HRCNFG;
+    }
+}
+
+/* Protected registers changed since the last snapshot: counted, the snapshot moves on. */
+static void host_protected_compare(void)
+{
+    host_protected_t now;
+    host_protected_copy(&now);
+    if (memcmp(&now, &host_protected_snapshot, sizeof now) != 0) {
+        host_eallow_violations++;
+    }
+    host_protected_snapshot = now;
+}
+
+void f28335_host_eallow(void)
+{
+    if (f28335_host_core.eallow == 0u) {
+        host_protected_compare();
+    }
+    f28335_host_core.eallow = 1u;
+    f28335_host_core.eallow_count++;
+}
+
+void f28335_host_edis(void)
+{
+    f28335_host_core.eallow = 0u;
+    host_protected_copy(&host_protected_snapshot);
+}
+
+void f28335_host_eallow_watch_start(void)
+{
+    host_protected_copy(&host_protected_snapshot);
+    host_eallow_violations = 0u;
+}
+
+uint32_t f28335_host_eallow_violations(void)
+{
+    if (f28335_host_core.eallow == 0u) {
+        host_protected_compare();
+    }
+    return host_eallow_violations;
+}
+
 void f28335_host_regs_reset(void)
 {
     memset((void *)(uintptr_t)&f28335_host_regs, 0, sizeof(f28335_host_regs));
@@ -39,6 +110,7 @@ void f28335_host_regs_reset(void)
     host_rx_head = 0u;
     host_rx_count = 0u;
     host_tx_count = 0u;
+    f28335_host_eallow_watch_start();
 }
 
 void f28335_host_sci_rx_inject(const uint16_t *bytes, uint16_t n)

@@ -4,9 +4,22 @@
  *   time base   up-down count, TBCLK = SYSCLKOUT, TBPRD = SYSCLK / (2 f),
  *               ePWM1 master (SYNCO at CTR = 0), ePWM2..6 slaves (phase 0,
  *               count up after sync, SYNCI passed on)
- *   compare     CMPA shadowed, loaded at CTR = 0
- *   actions     EPWMxA set on CAU, cleared on CAD: high while CTR > CMPA,
- *               a pulse of 2 (TBPRD - CMPA) TBCLK centred on CTR = TBPRD
+ *   compare     CMPA, CMPB shadowed, loaded at CTR = 0; CMPB fixed at 1
+ *   actions     EPWMxA set on CAU, cleared on CAD: high while CTR > CMPA, a
+ *               pulse of 2 (TBPRD - CMPA) TBCLK centred on CTR = TBPRD, with
+ *               CMPA kept in 2 .. TBPRD - 1; also cleared on ZRO and on CBU
+ *               (CTR = 1 counting up), so every period starts low whatever the
+ *               one before left
+ *   0 %, 100 %  no compare event (CMPA = TBPRD + 1) and, for 100 %, the
+ *               continuous software force high (AQCSFRC, shadowed, loaded at
+ *               CTR = 0 with the compares). Nothing depends on an edge case of
+ *               the compare logic. Where a force ends, TI does not say whether
+ *               the zero event of that same count still sees the force: if it
+ *               does, CBU clears one count later; either way the next pulse is
+ *               centred (tests/firmware: the action-qualifier model, both
+ *               orders). Event priorities (TI's ePWM guides, up-down mode):
+ *               software force; then counting up CBU, CAU, ZRO, CBD, CAD;
+ *               counting down CBD, CAD, PRD, CBU, CAU.
  *   dead band   EPWMxA as source of both edges, full mode, active high
  *               complementary: xA = upper switch, xB = lower switch
  *   trip zone   TZ1 (GPIO12, active low) one-shot trips every module, both
@@ -48,18 +61,20 @@ uint16_t f28335_pwm_deadband_for(uint32_t dead_time_ns)
 
 uint16_t f28335_pwm_cmpa_for(uint16_t duty_q15, uint16_t prd)
 {
-    uint32_t on;
-    if (duty_q15 == 0u) {
-        return (uint16_t)(prd + 1u); /* beyond the period: no compare event, output low */
+    const uint32_t on = ((uint32_t)duty_q15 * prd + (HAL_PWM_DUTY_ONE / 2u)) >> 15;
+    if (on == 0u || on >= prd) {
+        return (uint16_t)(prd + 1u); /* 0 % or 100 %: no compare event (see above) */
     }
-    if (duty_q15 >= HAL_PWM_DUTY_ONE) {
-        return 0u; /* set at CTR = 0 (counting up by definition), never cleared */
-    }
-    on = ((uint32_t)duty_q15 * prd + (HAL_PWM_DUTY_ONE / 2u)) >> 15;
-    if (on >= prd) {
-        return 1u; /* keep CMPA >= 1 below full duty (compare loaded at zero) */
+    if (on > (uint32_t)prd - F28335_PWM_CMPA_MIN) {
+        return F28335_PWM_CMPA_MIN; /* CMPA = 1 would meet CBU's clear */
     }
     return (uint16_t)(prd - on);
+}
+
+uint16_t f28335_pwm_force_for(uint16_t duty_q15, uint16_t prd)
+{
+    const uint32_t on = ((uint32_t)duty_q15 * prd + (HAL_PWM_DUTY_ONE / 2u)) >> 15;
+    return (on >= prd) ? EPWM_AQCSFRC_CSFA_HIGH : 0u;
 }
 
 uint16_t f28335_pwm_period(void) { return pwm_prd; }
@@ -72,6 +87,70 @@ static void pwm_force_all(void)
         F28335_EPWM(i)->TZFRC = EPWM_TZ_OST;
     }
     F28335_EDIS();
+}
+
+/* One module (i = 0 for ePWM1, the master), its outputs tripped low before anything else. */
+static void pwm_init_module(int16_t i, uint16_t prd, uint16_t db)
+{
+    volatile f28335_epwm_t *p = F28335_EPWM(i);
+    uint16_t tbctl = (uint16_t)(EPWM_TBCTL_CTRMODE_UPDOWN |
+                                (PWM_FREE_SOFT_STOP_AT_ZERO << EPWM_TBCTL_FREE_SOFT_SHIFT));
+    F28335_EALLOW();
+    p->TZSEL = EPWM_TZSEL_OSHT1;
+    p->TZCTL = (uint16_t)(EPWM_TZCTL_TZA_LOW | EPWM_TZCTL_TZB_LOW);
+    p->TZEINT = 0u;
+    p->TZFRC = EPWM_TZ_OST;
+    p->HRCNFG = 0u;
+    F28335_EDIS();
+
+    if (i == 0) {
+        tbctl |= (uint16_t)(EPWM_SYNCOSEL_CTR_ZERO << EPWM_TBCTL_SYNCOSEL_SHIFT);
+    } else {
+        /* SYNCOSEL = SYNCI (value 0): each slave passes the master's sync on */
+        tbctl |= (uint16_t)(EPWM_TBCTL_PHSEN | EPWM_TBCTL_PHSDIR_UP);
+    }
+    p->TBPRD = prd;
+    p->TBPHS = 0u;
+    p->TBPHSHR = 0u;
+    p->TBCTR = 0u;
+    p->TBCTL = tbctl; /* PRDLD = 0 (shadow), HSPCLKDIV = CLKDIV = 0 (/1) */
+
+    p->CMPCTL = 0u; /* CMPA/CMPB shadowed, loaded at CTR = 0 */
+    p->CMPA = f28335_pwm_cmpa_for(0u, prd);
+    p->CMPAHR = 0u;
+    p->CMPB = F28335_PWM_CMPB;
+    p->AQCTLA =
+        (uint16_t)((EPWM_AQ_CLEAR << EPWM_AQ_ZRO_SHIFT) | (EPWM_AQ_SET << EPWM_AQ_CAU_SHIFT) |
+                   (EPWM_AQ_CLEAR << EPWM_AQ_CAD_SHIFT) | (EPWM_AQ_CLEAR << EPWM_AQ_CBU_SHIFT));
+    p->AQCTLB = 0u; /* xB comes from the dead band */
+    p->AQSFRC = EPWM_AQSFRC_RLDCSF_ZERO;
+    p->AQCSFRC = 0u;
+
+    p->DBCTL = (uint16_t)(EPWM_DBCTL_OUT_MODE_FULL | EPWM_DBCTL_POLSEL_AHC);
+    p->DBRED = db;
+    p->DBFED = db;
+    p->PCCTL = 0u;
+    if (i == 0) {
+        p->ETSEL = (uint16_t)((EPWM_ET_CTR_ZERO << EPWM_ETSEL_SOCASEL_SHIFT) | EPWM_ETSEL_SOCAEN);
+        p->ETPS = (uint16_t)(1u << EPWM_ETPS_SOCAPRD_SHIFT);
+    } else {
+        p->ETSEL = 0u;
+        p->ETPS = 0u;
+    }
+}
+
+/* Pins last, when the outputs are already tripped low. GPIO0..11 = EPWM1A, 1B, 2A, ..., 6B;
+ * gate drivers need pull-downs until here. */
+static void pwm_init_pins(void)
+{
+    int16_t i;
+    for (i = 0; i < 2 * F28335_EPWM_COUNT; i++) {
+        f28335_gpio_set_pullup((uint16_t)i, false);
+        f28335_gpio_set_mux((uint16_t)i, F28335_GPIO_MUX_PERIPH1);
+    }
+    f28335_gpio_set_pullup(F28335_PWM_TRIP_GPIO, true);
+    f28335_gpio_set_qsel(F28335_PWM_TRIP_GPIO, F28335_GPIO_QSEL_ASYNC);
+    f28335_gpio_set_mux(F28335_PWM_TRIP_GPIO, F28335_GPIO_MUX_PERIPH1);
 }
 
 bool hal_pwm_init(uint32_t carrier_hz, uint32_t dead_time_ns)
@@ -92,73 +171,14 @@ bool hal_pwm_init(uint32_t carrier_hz, uint32_t dead_time_ns)
     sys->PCLKCR0 &= (uint16_t)~PCLKCR0_TBCLKSYNC;
     sys->PCLKCR1 |= PCLKCR1_EPWM_ALL;
     F28335_EDIS();
-
     for (i = 0; i < F28335_EPWM_COUNT; i++) {
-        volatile f28335_epwm_t *p = F28335_EPWM(i);
-        uint16_t tbctl = (uint16_t)(EPWM_TBCTL_CTRMODE_UPDOWN |
-                                    (PWM_FREE_SOFT_STOP_AT_ZERO << EPWM_TBCTL_FREE_SOFT_SHIFT));
-
-        /* Trip zone first: outputs forced low before anything else runs. */
-        F28335_EALLOW();
-        p->TZSEL = EPWM_TZSEL_OSHT1;
-        p->TZCTL = (uint16_t)(EPWM_TZCTL_TZA_LOW | EPWM_TZCTL_TZB_LOW);
-        p->TZEINT = 0u;
-        p->TZFRC = EPWM_TZ_OST;
-        F28335_EDIS();
-
-        if (i == 0) {
-            tbctl |= (uint16_t)(EPWM_SYNCOSEL_CTR_ZERO << EPWM_TBCTL_SYNCOSEL_SHIFT);
-        } else {
-            /* SYNCOSEL = SYNCI (value 0): each slave passes the master's sync on */
-            tbctl |= (uint16_t)(EPWM_TBCTL_PHSEN | EPWM_TBCTL_PHSDIR_UP);
-        }
-        p->TBPRD = prd;
-        p->TBPHS = 0u;
-        p->TBPHSHR = 0u;
-        p->TBCTR = 0u;
-        p->TBCTL = tbctl; /* PRDLD = 0 (shadow), HSPCLKDIV = CLKDIV = 0 (/1) */
-
-        p->CMPCTL = 0u; /* CMPA/CMPB shadowed, loaded at CTR = 0 */
-        p->CMPA = f28335_pwm_cmpa_for(0u, prd);
-        p->CMPAHR = 0u;
-        p->CMPB = 0u;
-
-        p->AQCTLA =
-            (uint16_t)((EPWM_AQ_SET << EPWM_AQ_CAU_SHIFT) | (EPWM_AQ_CLEAR << EPWM_AQ_CAD_SHIFT));
-        p->AQCTLB = 0u; /* xB comes from the dead band */
-        p->AQSFRC = 0u;
-        p->AQCSFRC = 0u;
-
-        p->DBCTL = (uint16_t)(EPWM_DBCTL_OUT_MODE_FULL | EPWM_DBCTL_POLSEL_AHC);
-        p->DBRED = db;
-        p->DBFED = db;
-
-        p->PCCTL = 0u;
-        p->HRCNFG = 0u;
-        if (i == 0) {
-            p->ETSEL =
-                (uint16_t)((EPWM_ET_CTR_ZERO << EPWM_ETSEL_SOCASEL_SHIFT) | EPWM_ETSEL_SOCAEN);
-            p->ETPS = (uint16_t)(1u << EPWM_ETPS_SOCAPRD_SHIFT);
-        } else {
-            p->ETSEL = 0u;
-            p->ETPS = 0u;
-        }
+        pwm_init_module(i, prd, db);
     }
-
     /* Start all time bases together. */
     F28335_EALLOW();
     sys->PCLKCR0 |= PCLKCR0_TBCLKSYNC;
     F28335_EDIS();
-
-    /* Pins last, when the outputs are already tripped low. GPIO0..11 =
-     * EPWM1A, 1B, 2A, ..., 6B; gate drivers need pull-downs until here. */
-    for (i = 0; i < 2 * F28335_EPWM_COUNT; i++) {
-        f28335_gpio_set_pullup((uint16_t)i, false);
-        f28335_gpio_set_mux((uint16_t)i, F28335_GPIO_MUX_PERIPH1);
-    }
-    f28335_gpio_set_pullup(F28335_PWM_TRIP_GPIO, true);
-    f28335_gpio_set_qsel(F28335_PWM_TRIP_GPIO, F28335_GPIO_QSEL_ASYNC);
-    f28335_gpio_set_mux(F28335_PWM_TRIP_GPIO, F28335_GPIO_MUX_PERIPH1);
+    pwm_init_pins();
     return true;
 }
 
@@ -167,7 +187,9 @@ void hal_pwm_write(const uint16_t duty[HAL_PWM_LEGS])
 {
     int16_t i;
     for (i = 0; i < HAL_PWM_LEGS; i++) {
-        F28335_EPWM(i)->CMPA = f28335_pwm_cmpa_for(duty[i], pwm_prd);
+        volatile f28335_epwm_t *p = F28335_EPWM(i);
+        p->CMPA = f28335_pwm_cmpa_for(duty[i], pwm_prd);
+        p->AQCSFRC = f28335_pwm_force_for(duty[i], pwm_prd);
     }
 }
 
