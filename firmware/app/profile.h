@@ -53,7 +53,8 @@ typedef struct {
 typedef struct {
     prof_stat_t stage[PROF_STAGES];
     uint32_t read_cost;     /* cycles one counter reading costs (subtracted) */
-    uint32_t period_cycles; /* control period in counter cycles */
+    uint32_t period_cycles; /* control period in counter cycles (0: load not computed) */
+    uint32_t permille_k;    /* floor(1000 * 2^16 / period_cycles) */
     uint32_t cycles_per_us;
     uint16_t load_permille_last; /* (LATENCY + TOTAL) / period of the last ISR */
     uint16_t load_permille_max;
@@ -63,6 +64,9 @@ typedef struct {
 } prof_t;
 
 extern prof_t drive_profile;
+
+/* Shorter control periods (6.7 us at 150 MHz) get no load figure. */
+#define PROF_MIN_PERIOD_CYCLES 1000u
 
 #if PROFILE_ENABLE
 /* Clears the statistics and measures the counter's reading cost. */

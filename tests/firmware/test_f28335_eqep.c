@@ -257,11 +257,98 @@ static void test_slow_stop_stays_healthy(void **state)
     assert_true(s.healthy);
 }
 
+/* The per-sample angle and speed use only 32-bit products (no 64-bit arithmetic in the ISR on
+ * the C28x); they give exactly what the 64-bit forms give (the references below), for
+ * encoders from 1 to 2^28 lines and 1 to 50 pole pairs, over every position class, difference
+ * and capture period, including the saturation limits (where the 64-bit product itself would
+ * have overflowed, as the old code's did for a 1-line encoder, the reference saturates). */
+static uint32_t ref_angle(uint32_t counts, uint16_t pp, uint32_t off, uint32_t pos)
+{
+    const uint64_t a = (((uint64_t)pp << 48) + counts / 2u) / counts;
+    return (uint32_t)(((uint64_t)pos * a) >> 16) + off;
+}
+
+static int32_t ref_speed_unit(uint32_t counts, int32_t delta)
+{
+    const int64_t k = (int64_t)((((uint64_t)F28335_QEP_UNIT_HZ << 32) + counts / 2u) / counts);
+    int64_t v;
+    if (delta > INT64_MAX / k || delta < -(INT64_MAX / k)) { /* beyond 64 bits: saturated */
+        return (delta < 0) ? -INT32_MAX : INT32_MAX;
+    }
+    v = ((int64_t)delta * k) / 65536;
+    return (v > (int64_t)INT32_MAX)    ? INT32_MAX
+           : (v < -(int64_t)INT32_MAX) ? -INT32_MAX
+                                       : (int32_t)v;
+}
+
+static int64_t ref_speed_capture(uint32_t counts, uint16_t period)
+{
+    const uint64_t k =
+        (((uint64_t)F28335_SYSCLK_HZ << (16u + F28335_QEP_UPPS)) >> F28335_QEP_CCPS) / counts;
+    const uint64_t v = k / period;
+    return (v > (uint64_t)INT32_MAX) ? INT32_MAX : (int64_t)v;
+}
+
+static void check_encoder(uint32_t lines, uint16_t pp)
+{
+    const uint32_t counts = 4u * lines;
+    const f28335_qep_state_t *q = f28335_qep_state();
+    uint32_t i;
+    f28335_host_regs_reset();
+    assert_true(hal_encoder_init(lines, pp, 0x12345678u));
+    for (i = 0; i < 4096u; i++) { /* positions spread over the turn, both ends included */
+        const uint32_t pos = (uint32_t)(((uint64_t)(counts - 1u) * i) / 4095u);
+        assert_int_equal(f28335_qep_angle(q, pos), ref_angle(counts, pp, 0x12345678u, pos));
+    }
+    for (i = 0; i < 64u; i++) { /* around 2^16 boundaries of the position */
+        const uint32_t pos = ((i * 0x10000u) + (i & 1u) - 1u) % counts;
+        assert_int_equal(f28335_qep_angle(q, pos), ref_angle(counts, pp, 0x12345678u, pos));
+    }
+    for (i = 0; i < 2000u; i++) {
+        const int32_t d = (int32_t)((i * 2654435761u) >> (i % 31u)) * ((i & 1u) ? -1 : 1);
+        if (f28335_qep_speed_unit(q, d) != ref_speed_unit(counts, d)) {
+            print_error("lines %u pp %u delta %d\n", (unsigned)lines, (unsigned)pp, (int)d);
+        }
+        assert_int_equal(f28335_qep_speed_unit(q, d), ref_speed_unit(counts, d));
+    }
+    assert_int_equal(f28335_qep_speed_unit(q, INT32_MAX), ref_speed_unit(counts, INT32_MAX));
+    assert_int_equal(f28335_qep_speed_unit(q, -INT32_MAX), ref_speed_unit(counts, -INT32_MAX));
+    assert_int_equal(f28335_qep_speed_unit(q, (int32_t)q->ut_max_delta),
+                     ref_speed_unit(counts, (int32_t)q->ut_max_delta));
+    for (i = 1; i <= 65535u; i += (i < 300u) ? 1u : 97u) {
+        const int64_t want = ref_speed_capture(counts, (uint16_t)i);
+        const int64_t got = f28335_qep_speed_capture(q, (uint16_t)i);
+        /* exact while the constant fits 32 bits (lines >= 144); below, within 2^cap_shift */
+        assert_true(got - want <= 0 && want - got < ((int64_t)2 << q->cap_shift));
+        if (q->cap_shift == 0u) {
+            assert_true(got == want);
+        }
+    }
+}
+
+static void test_32bit_forms_equal_64bit_references(void **state)
+{
+    static const uint32_t lines[] = {1u,    100u,  143u,     144u,       1000u,
+                                     2500u, 4096u, 1u << 20, 0x10000000u};
+    static const uint16_t pole_pairs[] = {1u, 3u, 7u, 50u};
+    size_t i, j;
+    (void)state;
+    for (i = 0; i < sizeof lines / sizeof lines[0]; i++) {
+        for (j = 0; j < sizeof pole_pairs / sizeof pole_pairs[0]; j++) {
+            check_encoder(lines[i], pole_pairs[j]);
+        }
+    }
+    f28335_host_regs_reset();
+    assert_true(hal_encoder_init(LINES, PN, 0u));
+    assert_int_equal(f28335_qep_state()->cap_shift, 0u); /* the board's encoder: exact */
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test_setup(test_init_registers, setup),
         cmocka_unit_test_setup(test_angle, setup),
+        cmocka_unit_test_setup(test_32bit_forms_equal_64bit_references, setup),
         cmocka_unit_test_setup(test_high_speed_unit_timer, setup),
         cmocka_unit_test_setup(test_low_speed_capture, setup),
         cmocka_unit_test_setup(test_switch_with_hysteresis, setup),

@@ -122,12 +122,59 @@ static void test_core_stage_hook(void **state)
     }
 }
 
+/* The ISR's statistics use 32-bit arithmetic only (no 64-bit run-time library on the C28x):
+ * the running mean equals the 64-bit form it replaced for every sample below 2^24 cycles, and
+ * the load in permille is floor(busy * 1000 / period) while busy < 2^16 cycles, and within
+ * busy / 2^16 + 1 below it beyond, saturated at 65535. Busy is the latency alone here (the
+ * counter does not move: TOTAL is 0). */
+static uint32_t lcg = 12345u;
+static uint32_t next_rand(void)
+{
+    lcg = lcg * 1664525u + 1013904223u;
+    return lcg;
+}
+
+static void test_32bit_mean_and_load(void **state)
+{
+    const uint32_t period = 15000u;
+    uint32_t ref_mean = 0u;
+    long k;
+    (void)state;
+    step = 0u;
+    prof_init(period, 150000000u);
+    for (k = 0; k < 200000; k++) {
+        const uint32_t r = next_rand();
+        const uint32_t busy = (k < 100000) ? (r >> 16) : (r >> (8u + (r & 7u)));
+        const uint32_t exact = (uint32_t)(((uint64_t)busy * 1000u) / period);
+        uint32_t got;
+        prof_begin(busy);
+        prof_end();
+        if (k == 0) {
+            ref_mean = busy << 8;
+        } else {
+            ref_mean =
+                (uint32_t)((int64_t)ref_mean + (((int64_t)busy * 256 - (int64_t)ref_mean) / 64));
+        }
+        assert_int_equal(drive_profile.stage[PROF_LATENCY].mean_x256, ref_mean);
+        got = drive_profile.load_permille_last;
+        if (busy < 65536u) {
+            assert_int_equal(got, exact);
+        } else if (exact >= 65535u) {
+            assert_int_equal(got, 65535u);
+        } else {
+            assert_true(got <= exact && exact - got <= (busy >> 16) + 1u);
+        }
+    }
+    step = 7u;
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_read_cost_is_measured_and_subtracted),
         cmocka_unit_test(test_min_max_mean),
         cmocka_unit_test(test_core_stage_hook),
+        cmocka_unit_test(test_32bit_mean_and_load),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

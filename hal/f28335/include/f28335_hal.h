@@ -94,11 +94,20 @@ void f28335_adc_isr_ack(void);
 #define F28335_QEP_A_GPIO 20u          /* EQEP1A, EQEP1B = 21, EQEP1S = 22, EQEP1I = 23 */
 
 typedef struct {
-    uint32_t counts;          /* 4 * lines per mechanical turn */
-    uint64_t angle_per_count; /* electrical turn per count, Q48 (2^48 = one turn) */
+    uint32_t counts; /* 4 * lines per mechanical turn */
+    /* electrical turns per count, Q48 (2^48 = one turn), as 2^16 angle_hi + angle_lo: the
+     * per-sample products stay within 32 bits (no 64-bit arithmetic in the ISR) */
+    uint32_t angle_hi;
+    uint32_t angle_lo; /* < 2^16 */
     uint32_t elec_offset;
-    int64_t ut_speed_k;   /* rev/s Q16 per count of unit-timer difference, in Q16 */
-    uint64_t cap_speed_k; /* rev/s Q16 times capture period (capture clocks) */
+    /* rev/s Q16 per count of unit-timer difference, in Q16, as 2^16 ut_hi + ut_lo */
+    uint32_t ut_hi;
+    uint32_t ut_lo;        /* < 2^16 */
+    uint32_t ut_max_delta; /* largest |difference| whose speed fits in int32 */
+    /* rev/s Q16 times capture period (capture clocks), as cap_k << cap_shift (cap_shift > 0
+     * only for encoders below 144 lines, whose constant exceeds 32 bits) */
+    uint32_t cap_k;
+    uint16_t cap_shift;
     uint32_t last_poslat;
     bool have_poslat;
     bool use_capture;   /* current estimator: capture (low speed) or unit timer */

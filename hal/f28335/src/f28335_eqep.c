@@ -24,32 +24,64 @@ static f28335_qep_state_t qep;
 
 const f28335_qep_state_t *f28335_qep_state(void) { return &qep; }
 
+/* (pos * (2^16 hi + lo)) >> 16 mod 2^32, exactly, in 32-bit products: with pos = 2^16 p_hi +
+ * p_lo, it is pos hi + p_hi lo + ((p_lo lo) >> 16), the angle wrapping at one turn. */
 uint32_t f28335_qep_angle(const f28335_qep_state_t *q, uint32_t pos)
 {
-    const uint64_t turns_q48 = (uint64_t)pos * q->angle_per_count;
-    return (uint32_t)(turns_q48 >> 16) + q->elec_offset;
+    const uint32_t p_hi = pos >> 16, p_lo = pos & 0xFFFFu;
+    return pos * q->angle_hi + p_hi * q->angle_lo + ((p_lo * q->angle_lo) >> 16) + q->elec_offset;
 }
 
+/* delta (2^16 hi + lo) / 2^16 truncated toward zero, as the 64-bit quotient was, on the
+ * magnitude m = 2^16 m_hi + m_lo: m hi + m_hi lo + ((m_lo lo) >> 16), every product within 32
+ * bits while m <= ut_max_delta; the sign put back after. */
 int32_t f28335_qep_speed_unit(const f28335_qep_state_t *q, int32_t delta_counts)
 {
-    const int64_t v = ((int64_t)delta_counts * q->ut_speed_k) / 65536;
-    if (v > (int64_t)INT32_MAX) {
-        return INT32_MAX;
+    const uint32_t m =
+        (delta_counts < 0) ? (uint32_t)0u - (uint32_t)delta_counts : (uint32_t)delta_counts;
+    uint32_t v;
+    if (m > q->ut_max_delta) {
+        return (delta_counts < 0) ? -INT32_MAX : INT32_MAX;
     }
-    if (v < -(int64_t)INT32_MAX) {
-        return -INT32_MAX;
-    }
-    return (int32_t)v;
+    v = m * q->ut_hi + (m >> 16) * q->ut_lo + (((m & 0xFFFFu) * q->ut_lo) >> 16);
+    return (delta_counts < 0) ? -(int32_t)v : (int32_t)v;
 }
 
 int32_t f28335_qep_speed_capture(const f28335_qep_state_t *q, uint16_t period)
 {
-    uint64_t v;
+    uint32_t v;
     if (period == 0u) {
         return 0;
     }
-    v = q->cap_speed_k / period;
-    return (v > (uint64_t)INT32_MAX) ? INT32_MAX : (int32_t)v;
+    v = q->cap_k / period;
+    if (v > ((uint32_t)INT32_MAX >> q->cap_shift)) {
+        return INT32_MAX;
+    }
+    return (int32_t)(v << q->cap_shift);
+}
+
+/* The speed and angle constants of an encoder (background: 64-bit arithmetic allowed). */
+static void qep_constants(f28335_qep_state_t *q, uint16_t pole_pairs)
+{
+    const uint64_t angle_q48 = (((uint64_t)pole_pairs << 48) + q->counts / 2u) / q->counts;
+    /* unit timer: rev/s = delta * f_unit / counts; in Q16 with a Q16 factor */
+    const uint64_t ut_k = (((uint64_t)F28335_QEP_UNIT_HZ << 32) + q->counts / 2u) / q->counts;
+    /* capture: rev/s = 2^UPPS / counts / (period * 2^CCPS / SYSCLK) */
+    uint64_t cap_k =
+        (((uint64_t)F28335_SYSCLK_HZ << (16u + F28335_QEP_UPPS)) >> F28335_QEP_CCPS) / q->counts;
+    q->angle_hi = (uint32_t)(angle_q48 >> 16);
+    q->angle_lo = (uint32_t)(angle_q48 & 0xFFFFu);
+    q->ut_hi = (uint32_t)(ut_k >> 16);
+    q->ut_lo = (uint32_t)(ut_k & 0xFFFFu);
+    /* the largest |delta| whose speed, |delta| ut_k / 2^16, is at most INT32_MAX */
+    const uint64_t max_delta = (((uint64_t)INT32_MAX << 16) + 0xFFFFu) / ut_k;
+    q->ut_max_delta = (max_delta > 0x80000000u) ? 0x80000000u : (uint32_t)max_delta;
+    q->cap_shift = 0u;
+    while (cap_k > UINT32_MAX) {
+        cap_k >>= 1;
+        q->cap_shift++;
+    }
+    q->cap_k = (uint32_t)cap_k;
 }
 
 static int32_t abs32(int32_t x) { return (x < 0) ? -x : x; }
@@ -63,14 +95,8 @@ bool hal_encoder_init(uint32_t lines, uint16_t pole_pairs, uint32_t elec_offset)
         return false;
     }
     qep.counts = 4u * lines;
-    qep.angle_per_count = (((uint64_t)pole_pairs << 48) + qep.counts / 2u) / qep.counts;
     qep.elec_offset = elec_offset;
-    /* unit timer: rev/s = delta * f_unit / counts; in Q16 with a Q16 factor */
-    qep.ut_speed_k =
-        (int64_t)((((uint64_t)F28335_QEP_UNIT_HZ << 32) + qep.counts / 2u) / qep.counts);
-    /* capture: rev/s = 2^UPPS / counts / (period * 2^CCPS / SYSCLK) */
-    qep.cap_speed_k =
-        (((uint64_t)F28335_SYSCLK_HZ << (16u + F28335_QEP_UPPS)) >> F28335_QEP_CCPS) / qep.counts;
+    qep_constants(&qep, pole_pairs);
     qep.last_poslat = 0u;
     qep.have_poslat = false;
     qep.use_capture = true;
