@@ -158,109 +158,153 @@ static uint16_t handle_set_controller(drive_t *d, const sxl_frame_t *req)
     }
 }
 
+/* One command each: the request's length is checked by the table below; the handler fills the
+ * reply's payload after the result byte, sets its length, and returns the result. */
+typedef uint16_t (*link_handler_t)(drive_t *d, const sxl_frame_t *req, sxl_frame_t *reply,
+                                   uint16_t rx_errors);
+
+static uint16_t on_ping(drive_t *d, const sxl_frame_t *req, sxl_frame_t *reply, uint16_t rx_errors)
+{
+    (void)d;
+    (void)req;
+    (void)rx_errors;
+    reply->payload[1] = SXL_VERSION;
+    reply->len = 2u;
+    return SXL_OK;
+}
+
+static uint16_t on_get_status(drive_t *d, const sxl_frame_t *req, sxl_frame_t *reply,
+                              uint16_t rx_errors)
+{
+    (void)req;
+    drive_link_status(d, rx_errors, &reply->payload[1]);
+    reply->len = (uint16_t)(1u + SXL_ST_SIZE);
+    return SXL_OK;
+}
+
+static uint16_t on_get_profile(drive_t *d, const sxl_frame_t *req, sxl_frame_t *reply,
+                               uint16_t rx_errors)
+{
+    (void)d;
+    (void)rx_errors;
+    if (req->payload[0] >= (uint16_t)PROF_STAGES) {
+        return SXL_ERR_VALUE;
+    }
+    drive_link_profile(req->payload[0], &reply->payload[1]);
+    reply->len = (uint16_t)(1u + SXL_PF_SIZE);
+    return SXL_OK;
+}
+
+static uint16_t on_get_fault_record(drive_t *d, const sxl_frame_t *req, sxl_frame_t *reply,
+                                    uint16_t rx_errors)
+{
+    (void)req;
+    (void)rx_errors;
+    reply->len = (uint16_t)(1u + drive_link_fault_record(d, &reply->payload[1]));
+    return SXL_OK;
+}
+
+static uint16_t on_set_speed(drive_t *d, const sxl_frame_t *req, sxl_frame_t *reply,
+                             uint16_t rx_errors)
+{
+    const int32_t v = sxl_get_i32(req->payload);
+    (void)reply;
+    (void)rx_errors;
+    if (v > DRIVE_LINK_MAX_SPEED_01RPM || v < -DRIVE_LINK_MAX_SPEED_01RPM) {
+        return SXL_ERR_VALUE;
+    }
+    drive_set_speed_ref_rpm(d, (float)v * 0.1f);
+    return SXL_OK;
+}
+
+static uint16_t on_set_torque(drive_t *d, const sxl_frame_t *req, sxl_frame_t *reply,
+                              uint16_t rx_errors)
+{
+    const int32_t v = sxl_get_i32(req->payload);
+    (void)reply;
+    (void)rx_errors;
+    if (v > DRIVE_LINK_MAX_TORQUE_MNM || v < -DRIVE_LINK_MAX_TORQUE_MNM) {
+        return SXL_ERR_VALUE;
+    }
+    drive_set_torque_ref_nm(d, (float)v * 0.001f);
+    return SXL_OK;
+}
+
+static uint16_t on_run(drive_t *d, const sxl_frame_t *req, sxl_frame_t *reply, uint16_t rx_errors)
+{
+    const drive_run_refusal_t why = drive_run_check(d);
+    (void)req;
+    (void)reply;
+    (void)rx_errors;
+    if (why != DRIVE_RUN_ACCEPTED) {
+        d->run_refusal = why; /* the status says why */
+        return SXL_ERR_REFUSED;
+    }
+    drive_request_run(d);
+    return SXL_OK;
+}
+
+static uint16_t on_stop(drive_t *d, const sxl_frame_t *req, sxl_frame_t *reply, uint16_t rx_errors)
+{
+    (void)req;
+    (void)reply;
+    (void)rx_errors;
+    drive_request_stop(d);
+    return SXL_OK;
+}
+
+static uint16_t on_clear_fault(drive_t *d, const sxl_frame_t *req, sxl_frame_t *reply,
+                               uint16_t rx_errors)
+{
+    (void)req;
+    (void)reply;
+    (void)rx_errors;
+    if (d->state != DRIVE_STATE_FAULT) {
+        return SXL_ERR_REFUSED;
+    }
+    drive_request_clear_fault(d);
+    return SXL_OK;
+}
+
+static uint16_t on_set_controller(drive_t *d, const sxl_frame_t *req, sxl_frame_t *reply,
+                                  uint16_t rx_errors)
+{
+    (void)reply;
+    (void)rx_errors;
+    return handle_set_controller(d, req);
+}
+
+#define LINK_ANY_LENGTH 0xFFFFu /* the handler checks the length */
+
+static const struct {
+    uint16_t cmd, len;
+    link_handler_t handler;
+} link_commands[] = {
+    {SXL_CMD_PING, 0u, on_ping},
+    {SXL_CMD_GET_STATUS, 0u, on_get_status},
+    {SXL_CMD_GET_PROFILE, 1u, on_get_profile},
+    {SXL_CMD_GET_FAULT_RECORD, 0u, on_get_fault_record},
+    {SXL_CMD_SET_SPEED, 4u, on_set_speed},
+    {SXL_CMD_SET_TORQUE, 4u, on_set_torque},
+    {SXL_CMD_RUN, 0u, on_run},
+    {SXL_CMD_STOP, 0u, on_stop},
+    {SXL_CMD_CLEAR_FAULT, 0u, on_clear_fault},
+    {SXL_CMD_SET_CONTROLLER, LINK_ANY_LENGTH, on_set_controller},
+};
+
 void drive_link_handle(drive_t *d, const sxl_frame_t *req, sxl_frame_t *reply, uint16_t rx_errors)
 {
-    uint16_t result = SXL_OK;
+    uint16_t result = SXL_ERR_UNKNOWN;
+    uint16_t k;
     reply->cmd = (uint16_t)((req->cmd | SXL_REPLY) & 0xFFu);
     reply->len = 1u;
-
-    switch (req->cmd) {
-    case SXL_CMD_PING:
-        if (req->len != 0u) {
-            result = SXL_ERR_LENGTH;
+    for (k = 0u; k < (uint16_t)(sizeof link_commands / sizeof link_commands[0]); k++) {
+        if (link_commands[k].cmd == req->cmd) {
+            result = (link_commands[k].len != LINK_ANY_LENGTH && req->len != link_commands[k].len)
+                         ? SXL_ERR_LENGTH
+                         : link_commands[k].handler(d, req, reply, rx_errors);
             break;
         }
-        reply->payload[1] = SXL_VERSION;
-        reply->len = 2u;
-        break;
-    case SXL_CMD_GET_STATUS:
-        if (req->len != 0u) {
-            result = SXL_ERR_LENGTH;
-            break;
-        }
-        drive_link_status(d, rx_errors, &reply->payload[1]);
-        reply->len = (uint16_t)(1u + SXL_ST_SIZE);
-        break;
-    case SXL_CMD_GET_PROFILE:
-        if (req->len != 1u) {
-            result = SXL_ERR_LENGTH;
-        } else if (req->payload[0] >= (uint16_t)PROF_STAGES) {
-            result = SXL_ERR_VALUE;
-        } else {
-            drive_link_profile(req->payload[0], &reply->payload[1]);
-            reply->len = (uint16_t)(1u + SXL_PF_SIZE);
-        }
-        break;
-    case SXL_CMD_GET_FAULT_RECORD:
-        if (req->len != 0u) {
-            result = SXL_ERR_LENGTH;
-            break;
-        }
-        reply->len = (uint16_t)(1u + drive_link_fault_record(d, &reply->payload[1]));
-        break;
-    case SXL_CMD_SET_SPEED: {
-        int32_t v;
-        if (req->len != 4u) {
-            result = SXL_ERR_LENGTH;
-            break;
-        }
-        v = sxl_get_i32(req->payload);
-        if (v > DRIVE_LINK_MAX_SPEED_01RPM || v < -DRIVE_LINK_MAX_SPEED_01RPM) {
-            result = SXL_ERR_VALUE;
-            break;
-        }
-        drive_set_speed_ref_rpm(d, (float)v * 0.1f);
-        break;
-    }
-    case SXL_CMD_SET_TORQUE: {
-        int32_t v;
-        if (req->len != 4u) {
-            result = SXL_ERR_LENGTH;
-            break;
-        }
-        v = sxl_get_i32(req->payload);
-        if (v > DRIVE_LINK_MAX_TORQUE_MNM || v < -DRIVE_LINK_MAX_TORQUE_MNM) {
-            result = SXL_ERR_VALUE;
-            break;
-        }
-        drive_set_torque_ref_nm(d, (float)v * 0.001f);
-        break;
-    }
-    case SXL_CMD_RUN:
-        if (req->len != 0u) {
-            result = SXL_ERR_LENGTH;
-        } else {
-            const drive_run_refusal_t why = drive_run_check(d);
-            if (why != DRIVE_RUN_ACCEPTED) {
-                d->run_refusal = why; /* the status says why */
-                result = SXL_ERR_REFUSED;
-            } else {
-                drive_request_run(d);
-            }
-        }
-        break;
-    case SXL_CMD_STOP:
-        if (req->len != 0u) {
-            result = SXL_ERR_LENGTH;
-        } else {
-            drive_request_stop(d);
-        }
-        break;
-    case SXL_CMD_CLEAR_FAULT:
-        if (req->len != 0u) {
-            result = SXL_ERR_LENGTH;
-        } else if (d->state != DRIVE_STATE_FAULT) {
-            result = SXL_ERR_REFUSED;
-        } else {
-            drive_request_clear_fault(d);
-        }
-        break;
-    case SXL_CMD_SET_CONTROLLER:
-        result = handle_set_controller(d, req);
-        break;
-    default:
-        result = SXL_ERR_UNKNOWN;
-        break;
     }
     reply->payload[0] = result;
     if (result != SXL_OK) {

@@ -553,23 +553,15 @@ static int build_request(int argc, char **argv, uint16_t *cmd, uint16_t *payload
     return 0;
 }
 
-int main(int argc, char **argv)
+/* The options before the command; *next is the command's index. -1 to go on, else the exit
+ * status (help printed, or a usage error). */
+static int parse_options(int argc, char **argv, options_t *o, int *next)
 {
-    options_t o = {"/dev/ttyUSB0", 115200L, 500L, 0};
-    uint16_t payload[SXL_MAX_PAYLOAD];
-    uint16_t frame[SXL_MAX_FRAME];
-    uint16_t cmd = 0u;
-    uint16_t plen = 0u;
-    uint16_t flen;
-    sxl_frame_t reply;
     int i = 1;
-    int fd = -1;
-    int rc;
-
     while (i < argc && argv[i][0] == '-' && argv[i][1] != '\0') {
         const char *opt = argv[i];
         if (strcmp(opt, "-n") == 0) {
-            o.print_only = 1;
+            o->print_only = 1;
             i++;
             continue;
         }
@@ -583,13 +575,13 @@ int main(int argc, char **argv)
             return usage("option needs a value");
         }
         if (strcmp(opt, "-d") == 0) {
-            o.device = argv[i + 1];
+            o->device = argv[i + 1];
         } else if (strcmp(opt, "-b") == 0) {
-            if (!parse_long(argv[i + 1], 1, 4000000, &o.baud)) {
+            if (!parse_long(argv[i + 1], 1, 4000000, &o->baud)) {
                 return usage("bad baud rate");
             }
         } else if (strcmp(opt, "-t") == 0) {
-            if (!parse_long(argv[i + 1], 1, 60000, &o.timeout_ms)) {
+            if (!parse_long(argv[i + 1], 1, 60000, &o->timeout_ms)) {
                 return usage("bad timeout (1..60000 ms)");
             }
         } else {
@@ -597,71 +589,98 @@ int main(int argc, char **argv)
         }
         i += 2;
     }
+    *next = i;
+    return -1;
+}
+
+/* -n: the request's frame on stdout instead of sending it. */
+static int print_request(uint16_t cmd, const uint16_t *payload, uint16_t len)
+{
+    uint16_t frame[SXL_MAX_FRAME];
+    const uint16_t flen = sxl_encode(cmd, payload, len, frame, (uint16_t)SXL_MAX_FRAME);
+    if (flen == 0u) {
+        return fail(EXIT_USAGE, "cannot encode the request");
+    }
+    print_frame(frame, flen);
+    return 0;
+}
+
+/* profile: one request per stage, printed as a table. */
+static int cmd_profile(const options_t *o)
+{
+    uint16_t payload[1];
+    sxl_frame_t reply;
+    uint16_t stage;
+    int fd = -1;
+    int rc = open_port(o, &fd);
+    for (stage = 0u; stage < SXL_PF_STAGES && rc == 0; stage++) {
+        payload[0] = stage;
+        rc = exchange(fd, o, SXL_CMD_GET_PROFILE, payload, 1u, &reply);
+        if (rc == 0) {
+            rc = print_profile_row(&reply, stage == 0u);
+        }
+    }
+    if (fd >= 0) {
+        close(fd);
+    }
+    return rc;
+}
+
+/* Any other command: one request, one reply printed. */
+static int cmd_single(const options_t *o, uint16_t cmd, const uint16_t *payload, uint16_t len)
+{
+    uint16_t frame[SXL_MAX_FRAME];
+    const uint16_t flen = sxl_encode(cmd, payload, len, frame, (uint16_t)SXL_MAX_FRAME);
+    sxl_frame_t reply;
+    int fd = -1;
+    int rc;
+    if (flen == 0u) {
+        return fail(EXIT_USAGE, "cannot encode the request");
+    }
+    rc = open_port(o, &fd);
+    if (rc != 0) {
+        return rc;
+    }
+    rc = write_all(fd, frame, flen);
+    if (rc == 0) {
+        rc = read_reply(fd, cmd, o->timeout_ms, &reply);
+    }
+    close(fd);
+    return (rc != 0) ? rc : print_reply(&reply);
+}
+
+int main(int argc, char **argv)
+{
+    options_t o = {"/dev/ttyUSB0", 115200L, 500L, 0};
+    uint16_t payload[SXL_MAX_PAYLOAD];
+    uint16_t cmd = 0u;
+    uint16_t plen = 0u;
+    int i = 1;
+    int rc = parse_options(argc, argv, &o, &i);
+    if (rc >= 0) {
+        return rc;
+    }
     if (i >= argc) {
         return usage("missing command");
     }
     if (strcmp(argv[i], "decode") == 0) {
         return cmd_decode(argc - i - 1, &argv[i + 1]);
     }
-    if (strcmp(argv[i], "faults") == 0) {
+    if (strcmp(argv[i], "faults") == 0 || strcmp(argv[i], "profile") == 0) {
+        const bool faults = strcmp(argv[i], "faults") == 0;
         if (argc - i != 1) {
             return usage("this command takes no arguments");
         }
+        payload[0] = 0u;
         if (o.print_only) {
-            flen = sxl_encode(SXL_CMD_GET_FAULT_RECORD, NULL, 0u, frame, (uint16_t)SXL_MAX_FRAME);
-            print_frame(frame, flen);
-            return 0;
+            return faults ? print_request(SXL_CMD_GET_FAULT_RECORD, NULL, 0u)
+                          : print_request(SXL_CMD_GET_PROFILE, payload, 1u);
         }
-        return cmd_faults(&o);
-    }
-    if (strcmp(argv[i], "profile") == 0) {
-        uint16_t stage;
-        if (argc - i != 1) {
-            return usage("this command takes no arguments");
-        }
-        if (o.print_only) {
-            payload[0] = 0u;
-            flen = sxl_encode(SXL_CMD_GET_PROFILE, payload, 1u, frame, (uint16_t)SXL_MAX_FRAME);
-            print_frame(frame, flen);
-            return 0;
-        }
-        rc = open_port(&o, &fd);
-        if (rc != 0) {
-            return rc;
-        }
-        for (stage = 0u; stage < SXL_PF_STAGES && rc == 0; stage++) {
-            payload[0] = stage;
-            rc = exchange(fd, &o, SXL_CMD_GET_PROFILE, payload, 1u, &reply);
-            if (rc == 0) {
-                rc = print_profile_row(&reply, stage == 0u);
-            }
-        }
-        close(fd);
-        return rc;
+        return faults ? cmd_faults(&o) : cmd_profile(&o);
     }
     rc = build_request(argc - i, &argv[i], &cmd, payload, &plen);
     if (rc != 0) {
         return rc;
     }
-    flen = sxl_encode(cmd, payload, plen, frame, (uint16_t)SXL_MAX_FRAME);
-    if (flen == 0u) {
-        return fail(EXIT_USAGE, "cannot encode the request");
-    }
-    if (o.print_only) {
-        print_frame(frame, flen);
-        return 0;
-    }
-    rc = open_port(&o, &fd);
-    if (rc != 0) {
-        return rc;
-    }
-    rc = write_all(fd, frame, flen);
-    if (rc == 0) {
-        rc = read_reply(fd, cmd, o.timeout_ms, &reply);
-    }
-    close(fd);
-    if (rc != 0) {
-        return rc;
-    }
-    return print_reply(&reply);
+    return o.print_only ? print_request(cmd, payload, plen) : cmd_single(&o, cmd, payload, plen);
 }

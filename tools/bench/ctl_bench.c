@@ -74,19 +74,21 @@ static void worst_step_replay(int16_t controller, int arith, size_t n)
     }
 }
 
-int main(int argc, char **argv)
+typedef struct {
+    bool worst_step;
+    double reps;
+    size_t n; /* operating points read */
+} bench_args_t;
+
+/* Options and trace files; 0 on success, else the exit status. */
+static int parse_args(int argc, char **argv, bench_args_t *args)
 {
-    const char *const *names = controller_names;
-    bool worst_step = false;
-    double reps_d = 5.0;
     double vdc = 540.0;
-    size_t n = 0;
     int traces = 0;
     int a;
-    int16_t controller;
     for (a = 1; a < argc; a++) {
         if (strcmp(argv[a], "--reps") == 0 && a + 1 < argc) {
-            if (parse_positive("--reps", argv[++a], &reps_d) != 0) {
+            if (parse_positive("--reps", argv[++a], &args->reps) != 0) {
                 return 2;
             }
         } else if (strcmp(argv[a], "--vdc") == 0 && a + 1 < argc) {
@@ -94,7 +96,7 @@ int main(int argc, char **argv)
                 return 2;
             }
         } else if (strcmp(argv[a], "--worst-step") == 0) {
-            worst_step = true;
+            args->worst_step = true;
         } else if (argv[a][0] == '-') {
             fprintf(stderr,
                     "ctl-bench: unknown option '%s' (usage: ctl-bench [--reps N] [--vdc V] "
@@ -102,76 +104,99 @@ int main(int argc, char **argv)
                     argv[a]);
             return 2;
         } else {
-            const long got = trace_csv_read(argv[a], points, n, BENCH_MAX_POINTS, vdc, "ctl-bench");
+            const long got =
+                trace_csv_read(argv[a], points, args->n, BENCH_MAX_POINTS, vdc, "ctl-bench");
             if (got < 0) {
                 return 1;
             }
-            n = (size_t)got;
+            args->n = (size_t)got;
             traces++;
         }
     }
-    if (traces == 0 || n == 0) {
+    if (traces == 0 || args->n == 0) {
         fprintf(stderr, "ctl-bench: no operating points (usage: ctl-bench [--reps N] [--vdc V] "
                         "TRACE.csv...)\n");
         return 2;
     }
-    n = bench_prepare(points, n);
-    (void)flt_bench_prepare(points, n);
-    printf("points %zu reps %d\n", n, (int)reps_d);
-    if (worst_step) {
-        for (controller = 0; controller < 3; controller++) {
-            int arith;
-            for (arith = 0; arith < 2; arith++) {
-                if ((arith ? flt_bench_setup(controller) : bench_setup(controller)) != 0) {
-                    fprintf(stderr, "ctl-bench: controller %s did not initialise\n",
-                            names[controller]);
-                    return 1;
-                }
-                worst_step_replay(controller, arith, n);
-            }
-        }
-        return 0;
+    return 0;
+}
+
+static int setup_controller(int16_t controller, int arith)
+{
+    if ((arith ? flt_bench_setup(controller) : bench_setup(controller)) != 0) {
+        fprintf(stderr, "ctl-bench: controller %s (%s) did not initialise\n",
+                controller_names[controller], arith ? "float" : "fixed");
+        return 1;
     }
+    return 0;
+}
+
+static int run_worst_steps(size_t n)
+{
+    int16_t controller;
+    int arith;
     for (controller = 0; controller < 3; controller++) {
-        int arith;
+        for (arith = 0; arith < 2; arith++) {
+            if (setup_controller(controller, arith) != 0) {
+                return 1;
+            }
+            worst_step_replay(controller, arith, n);
+        }
+    }
+    return 0;
+}
+
+/* The measured passes: every controller in both arithmetics, then the protection check. */
+static int run_measured(size_t n, double reps)
+{
+    int16_t controller;
+    int arith;
+    for (controller = 0; controller < 3; controller++) {
         for (arith = 0; arith < 2; arith++) {
             char label[32];
-            double t0;
-            double t1;
+            double t0, t1;
             uint32_t sum;
-            snprintf(label, sizeof label, "%s_%s", names[controller], arith ? "float" : "fixed");
-            if ((arith ? flt_bench_setup(controller) : bench_setup(controller)) != 0) {
-                fprintf(stderr, "ctl-bench: controller %s did not initialise\n", label);
+            snprintf(label, sizeof label, "%s_%s", controller_names[controller],
+                     arith ? "float" : "fixed");
+            if (setup_controller(controller, arith) != 0) {
                 return 1;
             }
             CALLGRIND_TOGGLE_COLLECT;
             t0 = now_s();
-            sum = arith ? flt_bench_run((int32_t)reps_d) : bench_run((int32_t)reps_d);
+            sum = arith ? flt_bench_run((int32_t)reps) : bench_run((int32_t)reps);
             t1 = now_s();
             CALLGRIND_TOGGLE_COLLECT;
             CALLGRIND_DUMP_STATS_AT(label);
             printf("%s steps %zu ns_per_step %.1f checksum %08x digest %08x\n", label,
-                   n * (size_t)reps_d, 1e9 * (t1 - t0) / ((double)n * reps_d), (unsigned)sum,
+                   n * (size_t)reps, 1e9 * (t1 - t0) / ((double)n * reps), (unsigned)sum,
                    (unsigned)(arith ? flt_bench_digest() : bench_digest()));
         }
     }
-    {
-        int arith;
-        for (arith = 0; arith < 2; arith++) {
-            const char *label = arith ? "protect_float" : "protect_fixed";
-            double t0;
-            double t1;
-            uint32_t sum;
-            CALLGRIND_TOGGLE_COLLECT;
-            t0 = now_s();
-            sum =
-                arith ? flt_bench_protect_run((int32_t)reps_d) : bench_protect_run((int32_t)reps_d);
-            t1 = now_s();
-            CALLGRIND_TOGGLE_COLLECT;
-            CALLGRIND_DUMP_STATS_AT(label);
-            printf("%s steps %zu ns_per_step %.1f checksum %08x\n", label, n * (size_t)reps_d,
-                   1e9 * (t1 - t0) / ((double)n * reps_d), (unsigned)sum);
-        }
+    for (arith = 0; arith < 2; arith++) {
+        const char *label = arith ? "protect_float" : "protect_fixed";
+        double t0, t1;
+        uint32_t sum;
+        CALLGRIND_TOGGLE_COLLECT;
+        t0 = now_s();
+        sum = arith ? flt_bench_protect_run((int32_t)reps) : bench_protect_run((int32_t)reps);
+        t1 = now_s();
+        CALLGRIND_TOGGLE_COLLECT;
+        CALLGRIND_DUMP_STATS_AT(label);
+        printf("%s steps %zu ns_per_step %.1f checksum %08x\n", label, n * (size_t)reps,
+               1e9 * (t1 - t0) / ((double)n * reps), (unsigned)sum);
     }
     return 0;
+}
+
+int main(int argc, char **argv)
+{
+    bench_args_t args = {false, 5.0, 0u};
+    const int rc = parse_args(argc, argv, &args);
+    if (rc != 0) {
+        return rc;
+    }
+    args.n = bench_prepare(points, args.n);
+    (void)flt_bench_prepare(points, args.n);
+    printf("points %zu reps %d\n", args.n, (int)args.reps);
+    return args.worst_step ? run_worst_steps(args.n) : run_measured(args.n, args.reps);
 }
