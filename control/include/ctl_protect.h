@@ -47,8 +47,8 @@
 /* A current channel counts as converting if its word changed within this many periods
  * (sensor noise moves a live 12-bit word every few periods even at zero current). */
 #define CTL_PROTECT_ALIVE_PERIODS 1000
-#define CTL_PROTECT_OPEN_PHASE_WINDOW                                                              \
-    400 /* periods: 40 ms at 10 kHz, > 1 electrical period at 300 r/min */
+/* Shortest open-phase window (periods: 40 ms at 10 kHz); it also spans an electrical turn. */
+#define CTL_PROTECT_OPEN_PHASE_WINDOW 400
 
 /* Thresholds and filters as a user sets them, in SI units; part of the parameter set
  * (ctl_params_t), so the per-unit limits below follow every applied set. Defaults in
@@ -152,8 +152,9 @@ typedef struct {
     ctl_q expected_angle; /* and the angle (turns) it should have turned through */
     ctl_q last_theta;
     bool have_last;
-    ctl_q open_sum[6];
-    int16_t open_count;
+    ctl_q open_sum[6];  /* sum of |i| / 64 per phase over the window */
+    int16_t open_count; /* periods in the window */
+    ctl_q open_turns;   /* electrical turns the window spans */
     /* log */
     ctl_fault_record_t log[CTL_PROTECT_LOG_SIZE];
     volatile uint16_t log_write;   /* records appended (ISR side), modulo 2^16 */

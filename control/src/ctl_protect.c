@@ -4,6 +4,8 @@
 #include "ctl_constants.h"
 #include "ctl_pu.h"
 
+static void open_phase_restart(ctl_protect_t *p);
+
 void ctl_protect_settings_default(ctl_protect_settings_t *s)
 {
     s->overcurrent_a = 15.0f; /* hardware trip is the first line */
@@ -104,10 +106,7 @@ static void reset_filters(ctl_protect_t *p)
     p->expected_angle = CTL_Q(0.0);
     p->have_last = false;
     p->last_theta = CTL_Q(0.0);
-    for (k = 0; k < 6; k++) {
-        p->open_sum[k] = CTL_Q(0.0);
-    }
-    p->open_count = 0;
+    open_phase_restart(p);
 }
 
 void ctl_protect_init(ctl_protect_t *p)
@@ -237,6 +236,21 @@ static uint16_t check_adc(ctl_protect_t *p, const ctl_protect_limits_t *l,
     return f;
 }
 
+static void open_phase_restart(ctl_protect_t *p)
+{
+    int16_t k;
+    for (k = 0; k < 6; k++) {
+        p->open_sum[k] = CTL_Q(0.0);
+    }
+    p->open_count = 0;
+    p->open_turns = CTL_Q(0.0);
+}
+
+/* Mean |i| per phase over a window of at least CTL_PROTECT_OPEN_PHASE_WINDOW periods that also
+ * spans one electrical turn: a healthy phase then carries current for part of it whatever the
+ * current vector's angle, while near standstill (a reversal's zero crossing) one phase may
+ * rightly carry none for a long time. A window that reaches 4 times its length without a turn
+ * (below about 125 r/min at 10 kHz, 3 pole pairs) is dropped unjudged. */
 static uint16_t check_open_phase(ctl_protect_t *p, const ctl_protect_limits_t *l,
                                  const ctl_protect_input_t *in)
 {
@@ -244,24 +258,24 @@ static uint16_t check_open_phase(ctl_protect_t *p, const ctl_protect_limits_t *l
     uint16_t f = 0u;
     int16_t k;
     if (!in->running) {
-        for (k = 0; k < 6; k++) {
-            p->open_sum[k] = CTL_Q(0.0);
-        }
-        p->open_count = 0;
+        open_phase_restart(p);
         return 0u;
     }
-    /* Mean |i| per phase over a window longer than an electrical period at low speed. */
-    for (k = 0; k < 6; k++) {
-        p->open_sum[k] = ctl_add(p->open_sum[k], ctl_abs(in->i_phase[k]));
+    for (k = 0; k < 6; k++) { /* sums of |i| / 64: 1,600 periods at 3 pu stay in range */
+        p->open_sum[k] = ctl_add(p->open_sum[k], ctl_mul(ctl_abs(in->i_phase[k]), CTL_Q(0.015625)));
     }
+    p->open_turns = ctl_add(p->open_turns, ctl_abs(ctl_mul(in->omega_e, l->ts_turns)));
     p->open_count++;
-    if (p->open_count < CTL_PROTECT_OPEN_PHASE_WINDOW) {
+    if (p->open_count < CTL_PROTECT_OPEN_PHASE_WINDOW || p->open_turns < CTL_Q(1.0)) {
+        if (p->open_count >= 4 * CTL_PROTECT_OPEN_PHASE_WINDOW) {
+            open_phase_restart(p);
+        }
         return 0u;
     }
     for (k = 0; k < 6; k++) {
         mean = ctl_add(mean, ctl_mul(p->open_sum[k], CTL_K_ONE_SIXTH));
     }
-    if (mean > ctl_mul_int(l->open_phase_min_mean, CTL_PROTECT_OPEN_PHASE_WINDOW)) {
+    if (mean > ctl_mul_int(ctl_mul(l->open_phase_min_mean, CTL_Q(0.015625)), p->open_count)) {
         const ctl_q floor = ctl_mul(mean, l->open_phase_ratio);
         for (k = 0; k < 6; k++) {
             if (p->open_sum[k] < floor) {
@@ -269,10 +283,7 @@ static uint16_t check_open_phase(ctl_protect_t *p, const ctl_protect_limits_t *l
             }
         }
     }
-    for (k = 0; k < 6; k++) {
-        p->open_sum[k] = CTL_Q(0.0);
-    }
-    p->open_count = 0;
+    open_phase_restart(p);
     return f;
 }
 

@@ -210,6 +210,31 @@ static void test_open_phase(void **state)
     assert_in_range(n, 1, 2 * CTL_PROTECT_OPEN_PHASE_WINDOW);
 }
 
+/* Near standstill under torque (a reversal crossing zero speed: 5 r/min, 7 A at right angles to
+ * phase A's axis) phase A carries almost nothing and the current vector barely turns: no phase is
+ * judged open until the window spans an electrical turn; a window that never does is dropped. */
+static void slow_stationary_vector(ctl_protect_input_t *in, int32_t n)
+{
+    static const double deg[6] = {0.0, 120.0, 240.0, 30.0, 150.0, 270.0};
+    const double w = 5.0 * TEST_PI / 30.0 * 3.0; /* electrical rad/s */
+    const double theta = 1.5707963 + w * 1.0e-4 * (double)n;
+    int k;
+    for (k = 0; k < 6; k++) {
+        in->i_phase[k] = amps(7.0 * cos(theta - deg[k] * TEST_PI / 180.0));
+    }
+    in->theta_e = ctl_wrap_turn(ctl_from_float((float)fmod(theta / (2.0 * TEST_PI), 1.0)));
+    in->omega_e = ctl_from_float((float)(w / CTL_BASE_OMEGA_RAD_S));
+}
+
+static void test_open_phase_not_judged_without_a_turn(void **state)
+{
+    (void)state;
+    /* phase A's current ~ cos(90 deg): under 0.3 A of 7 A for the whole 20 * window */
+    assert_int_equal(periods_to_detect(slow_stationary_vector, CTL_FAULT_OPEN_PHASE,
+                                       20 * CTL_PROTECT_OPEN_PHASE_WINDOW),
+                     -1);
+}
+
 /* Healthy operation over a long run never reports anything (no false trips). */
 static void test_no_false_trip(void **state)
 {
@@ -348,6 +373,7 @@ int main(void)
         cmocka_unit_test_setup(test_detection_latency_of_each_fault, setup),
         cmocka_unit_test_setup(test_stopped_encoder_under_torque, setup),
         cmocka_unit_test_setup(test_open_phase, setup),
+        cmocka_unit_test_setup(test_open_phase_not_judged_without_a_turn, setup),
         cmocka_unit_test_setup(test_no_false_trip, setup),
         cmocka_unit_test_setup(test_records_and_latch, setup),
         cmocka_unit_test_setup(test_full_log_keeps_a_new_root_cause, setup),
