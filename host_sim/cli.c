@@ -21,13 +21,16 @@ void sim_cli_usage(FILE *f)
         "                   [--arith {fixed,float}] [--seed N] [--out DIR]\n"
         "                   [--ddc-direction {flux-error,xy-table}] [--duty-levels N] "
         "[--ddc-torque-guard | --paper-ddc]\n"
+        "                   [--delay-angle {period-start,mid-period}] "
+        "[--pulse-pattern {by-ones,fewest-transitions}]\n"
         "                   [--flux-ref {constant,mtpa}] [--torque-limit NM] [--trip-current A] "
         "[--lxy H] [--vdc V] [--dead-time S]\n"
         "                   [--sensor-span A]\n"
         "                   [--psi5 WB] [--psi7 WB] [--integrator {exact,rk4}] [--plant-step S]\n"
         "                   [--fine-rate HZ]\n"
         "                   [--no-dead-time] [--no-harmonics] [--no-adc-offset] [--no-adc-gain]\n"
-        "                   [--no-adc-noise] [--no-encoder-quant] [--ideal] [--no-trace] [--no-fine] "
+        "                   [--no-adc-noise] [--no-encoder-quant] [--ideal] [--no-trace] "
+        "[--no-fine] "
         "[--no-protect]\n"
         "                   [--quiet]\n"
         "                   [--fault-time S]\n"
@@ -49,6 +52,7 @@ typedef enum {
     OPT_SET_BOOL, /* flag: the bool field := flag_value */
     OPT_SET_INT,  /* flag: the int field := flag_value */
     OPT_IDEAL,    /* flag: every non-ideality off */
+    OPT_PAPER,    /* flag: the paper's DDC, every improvement off */
     OPT_NUMBER,   /* decimal number in [lo, hi] into a double */
     OPT_INTEGER,  /* decimal integer in [lo, hi] into an int */
     OPT_SEED,     /* unsigned 64-bit integer */
@@ -76,6 +80,8 @@ static const char *const ariths[] = {"fixed", "float", NULL};
 static const char *const directions[] = {"flux-error", "xy-table", NULL};
 static const char *const flux_refs[] = {"constant", "mtpa", NULL};
 static const char *const integrators[] = {"exact", "rk4", NULL}; /* plant_integrator_t order */
+static const char *const delay_angles[] = {"period-start", "mid-period", NULL};
+static const char *const pulse_patterns[] = {"by-ones", "fewest-transitions", NULL};
 
 #define F(member) offsetof(sim_cli_t, member)
 #define FLAG(n, k, m, g, v)                                                                        \
@@ -101,6 +107,8 @@ enum {
     G_DIRECTION,
     G_FLUX_REF,
     G_GUARD,
+    G_DELAY_ANGLE,
+    G_PULSE_PATTERN,
     G_LAMBDA,
     G_FS,
     G_SPEED,
@@ -137,7 +145,9 @@ static const opt_t options[] = {
     CHOICE("--ddc-direction", cfg.ddc_direction, G_DIRECTION, directions),
     CHOICE("--flux-ref", cfg.flux_ref_mode, G_FLUX_REF, flux_refs),
     FLAG("--ddc-torque-guard", OPT_SET_INT, cfg.ddc_torque_guard, G_GUARD, 1),
-    FLAG("--paper-ddc", OPT_SET_INT, cfg.ddc_torque_guard, G_GUARD, 0),
+    {"--paper-ddc", OPT_PAPER, OPT_RUN, 0u, G_GUARD, 0.0, 0.0, 0, NULL},
+    CHOICE("--delay-angle", cfg.mid_period_angle, G_DELAY_ANGLE, delay_angles),
+    CHOICE("--pulse-pattern", cfg.fewest_transitions, G_PULSE_PATTERN, pulse_patterns),
     NUM("--lambda", cfg.lambda, G_LAMBDA, 0.0, 10000.0),
     NUM("--fs", cfg.fs_hz, G_FS, 1000.0, 100000.0),
     NUM("--speed", cfg.speed_rpm, G_SPEED, -6000.0, 6000.0),
@@ -303,6 +313,11 @@ static int apply_option(const opt_t *opt, const char *v, sim_cli_t *o, char *err
     case OPT_IDEAL:
         set_ideal(&o->cfg.plant);
         return 1;
+    case OPT_PAPER:
+        o->cfg.ddc_torque_guard = 0;
+        o->cfg.mid_period_angle = 0;
+        o->cfg.fewest_transitions = 0;
+        return 1;
     case OPT_NUMBER:
         if (parse_number(v, opt->lo, opt->hi, (double *)(void *)(base + opt->field)) != 0) {
             return cli_fail(err, len, "bad value for %s: '%s'", opt->name, v);
@@ -416,6 +431,12 @@ static int cli_parse(int argc, char **argv, sim_cli_t *o, char *err, size_t len,
                             a, "");
         }
         seen[opt->group] = 1;
+        if (opt->kind == OPT_PAPER) { /* it also sets what these two set */
+            if (seen[G_DELAY_ANGLE] || seen[G_PULSE_PATTERN]) {
+                return cli_fail(err, len, "%s repeats --delay-angle or --pulse-pattern%s", a, "");
+            }
+            seen[G_DELAY_ANGLE] = seen[G_PULSE_PATTERN] = 1;
+        }
         if (opt->kind == OPT_IDEAL) {
             int g;
             for (g = G_IDEAL + 1; g <= G_IDEAL + 6; g++) {

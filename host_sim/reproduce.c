@@ -176,6 +176,7 @@ int sim_reproduce(const char *out_dir, int jobs, bool plots, int quiet)
     }
     memset(cases, 0, bytes);
     rep_cases_first_batch(cases, &n, out_dir);
+    rep_cases_improvement_sweep(cases, &n, out_dir);
     n1 = n;
     if (!quiet) {
         fprintf(stderr, "reproduce: %d runs, %d workers\n", n1, jobs);

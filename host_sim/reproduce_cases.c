@@ -13,16 +13,16 @@ const double rep_paper_rip_ddc[3] = {0.29, 0.31, 0.58};
 
 typedef enum {
     REP_PLAIN,
-    REP_GUARD,         /* the core's DDC torque guard on */
-    REP_FS_7K5,        /* 7.5 kHz sampling */
-    REP_LXY_5MH,       /* plant x-y inductance 5 mH */
-    REP_LXY_20MH,      /* 20 mH */
-    REP_FLOAT,         /* float build of the core */
-    REP_XY_TABLE,      /* DDC direction from the x-y table */
-    REP_IDEAL,         /* every non-ideality off */
-    REP_TRIP_20A,      /* 20 A hardware over-current trip, board sensors */
-    REP_PROTECT,       /* the drive's protection at its default limits, board sensors */
-    REP_BOARD_SENSORS  /* the board's +-20 A sensors */
+    REP_GUARD,        /* the core's DDC torque guard on */
+    REP_FS_7K5,       /* 7.5 kHz sampling */
+    REP_LXY_5MH,      /* plant x-y inductance 5 mH */
+    REP_LXY_20MH,     /* 20 mH */
+    REP_FLOAT,        /* float build of the core */
+    REP_XY_TABLE,     /* DDC direction from the x-y table */
+    REP_IDEAL,        /* every non-ideality off */
+    REP_TRIP_20A,     /* 20 A hardware over-current trip, board sensors */
+    REP_PROTECT,      /* the drive's protection at its default limits, board sensors */
+    REP_BOARD_SENSORS /* the board's +-20 A sensors */
 } rep_variant_t;
 
 typedef struct {
@@ -70,12 +70,24 @@ static void rep_apply_variant(sim_config_t *c, rep_variant_t v)
         p->current_sensor_span_a = REP_BASELINE_SENSOR_SPAN_A;
     }
     switch (v) {
-    case REP_GUARD: c->ddc_torque_guard = 1; break;
-    case REP_FS_7K5: c->fs_hz = 7500.0; break;
-    case REP_LXY_5MH: p->lxy_h = 0.005; break;
-    case REP_LXY_20MH: p->lxy_h = 0.020; break;
-    case REP_FLOAT: c->arith = 1; break;
-    case REP_XY_TABLE: c->ddc_direction = 1; break;
+    case REP_GUARD: /* the product's DDC: the core's defaults */
+        c->ddc_torque_guard = c->mid_period_angle = c->fewest_transitions = -1;
+        break;
+    case REP_FS_7K5:
+        c->fs_hz = 7500.0;
+        break;
+    case REP_LXY_5MH:
+        p->lxy_h = 0.005;
+        break;
+    case REP_LXY_20MH:
+        p->lxy_h = 0.020;
+        break;
+    case REP_FLOAT:
+        c->arith = 1;
+        break;
+    case REP_XY_TABLE:
+        c->ddc_direction = 1;
+        break;
     case REP_IDEAL:
         p->dead_time_on = p->harmonics_on = false;
         p->adc_offset_on = p->adc_gain_on = p->adc_noise_on = p->encoder_quant_on = false;
@@ -88,8 +100,11 @@ static void rep_apply_variant(sim_config_t *c, rep_variant_t v)
         c->protect = true;
         p->current_sensor_span_a = board_span;
         break;
-    case REP_BOARD_SENSORS: p->current_sensor_span_a = board_span; break;
-    case REP_PLAIN: break;
+    case REP_BOARD_SENSORS:
+        p->current_sensor_span_a = board_span;
+        break;
+    case REP_PLAIN:
+        break;
     }
 }
 
@@ -112,7 +127,10 @@ static rep_case_t *rep_add(rep_case_t *cases, int *n, const char *dir, const cha
     c->cfg.scenario = scen;
     c->cfg.lambda = lambda;
     c->cfg.seed = 1u;
-    c->cfg.ddc_torque_guard = 0; /* the paper's method unless a case asks for the guard */
+    /* the paper's method (every improvement off) unless a case asks otherwise */
+    c->cfg.ddc_torque_guard = 0;
+    c->cfg.mid_period_angle = 0;
+    c->cfg.fewest_transitions = 0;
     /* MPTC-49 peaks near 30 A (beyond the 15 A limit): the firmware trips it within
      * milliseconds (row protect_mptc49_l100), so its comparison rows run with the software
      * protection out of reach */
@@ -160,7 +178,8 @@ void rep_cases_first_batch(rep_case_t *cases, int *n, const char *dir)
         (void)snprintf(name, sizeof name, "fault_%s", sim_fault_info((sim_fault_t)k)->name);
         c = rep_add(cases, n, dir, "fault", name, 0, SIM_SCEN_STEADY, 100.0);
         c->cfg.fault = (sim_fault_t)k;
-        c->cfg.ddc_torque_guard = -1; /* the product's DDC, as `sixphase-sim run` */
+        /* the product's DDC, as `sixphase-sim run` */
+        c->cfg.ddc_torque_guard = c->cfg.mid_period_angle = c->cfg.fewest_transitions = -1;
     }
 }
 
@@ -187,6 +206,34 @@ void rep_cases_equal_switching(rep_case_t *cases, int *n, const char *dir)
         c = rep_add(cases, n, dir, "eqsw", name, 1, SIM_SCEN_STEADY, rep_paper_lambda[li]);
         rep_apply_variant(&c->cfg, REP_PLAIN);
         c->cfg.fs_hz = fs;
+    }
+}
+
+const char *const rep_sweep_variant[REP_SWEEP_VARIANTS] = {"paper", "guard", "product",
+                                                           "product_mid"};
+const char *const rep_sweep_label[REP_SWEEP_VARIANTS] = {"the paper's DDC", "+ torque guard",
+                                                         "+ fewest transitions (product default)",
+                                                         "+ mid-period angle (option)"};
+
+void rep_cases_improvement_sweep(rep_case_t *cases, int *n, const char *dir)
+{
+    int v, li, seed;
+    for (li = 0; li < REP_SWEEP_LAMBDAS; li++) {
+        const double lambda = 20.0 * (li + 1);
+        for (v = 0; v < REP_SWEEP_VARIANTS; v++) {
+            for (seed = 1; seed <= REP_SWEEP_SEEDS; seed++) {
+                char name[64];
+                rep_case_t *c;
+                (void)snprintf(name, sizeof name, "imp_%s_l%.0f_s%d", rep_sweep_variant[v], lambda,
+                               seed);
+                c = rep_add(cases, n, dir, "improve", name, 0, SIM_SCEN_STEADY, lambda);
+                c->cfg.seed = (uint64_t)seed;
+                c->cfg.out_dir = NULL; /* metrics only */
+                c->cfg.ddc_torque_guard = (v >= 1) ? 1 : 0;
+                c->cfg.fewest_transitions = (v >= 2) ? 1 : 0;
+                c->cfg.mid_period_angle = (v >= 3) ? 1 : 0;
+            }
+        }
     }
 }
 

@@ -12,7 +12,7 @@
 
 #include "sim.h"
 
-#define REP_MAX_CASES 64
+#define REP_MAX_CASES 256
 #define REP_BASELINE_SENSOR_SPAN_A 50.0
 
 typedef struct {
@@ -35,6 +35,16 @@ void rep_cases_first_batch(rep_case_t *cases, int *n, const char *dir);
 /* After the first batch: MPTC-49 at the sampling frequency that gives DDC's switching
  * frequency at each lambda (eqsw_mptc49_l*), appended. */
 void rep_cases_equal_switching(rep_case_t *cases, int *n, const char *dir);
+
+/* The improvements over the paper's DDC, side by side (docs/improvements.md): each variant at
+ * lambda 20, 40, .., 200, seeds 1..REP_SWEEP_SEEDS (cases imp_<variant>_l<lambda>_s<seed>,
+ * no output files). */
+#define REP_SWEEP_SEEDS 3
+#define REP_SWEEP_LAMBDAS 10
+#define REP_SWEEP_VARIANTS 4
+extern const char *const rep_sweep_variant[REP_SWEEP_VARIANTS]; /* names */
+extern const char *const rep_sweep_label[REP_SWEEP_VARIANTS];
+void rep_cases_improvement_sweep(rep_case_t *cases, int *n, const char *dir);
 
 /* The case of that name if it ran, else NULL. */
 const rep_case_t *rep_find(const rep_case_t *cases, int n, const char *name);

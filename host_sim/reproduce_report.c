@@ -83,13 +83,12 @@ static void rep_intro(FILE *f, const rep_case_t *cases, int n)
     if (ref) {
         rep_params(f, &ref->cfg, &ref->res);
     }
-    fprintf(f,
-            "Metrics (brief §7): THD = mean over the six phase currents of each one's THD, the "
-            "plant's current at 100 kHz over the last whole fundamental periods of the analysis "
-            "window (all frequencies; the column THD_50 keeps harmonics 2..50 only, as a power "
-            "analyser shows); torque ripple = standard deviation (and peak-to-peak) of the "
-            "plant's electromagnetic torque over the same periods at the same resolution; x-y "
-            "rms over the same periods; f_sw = leg transitions / 2 / window / 6.\n\n");
+    fprintf(f, "Metrics (brief §7): THD = mean over the six phase currents of each one's THD, the "
+               "plant's current at 100 kHz over the last whole fundamental periods of the analysis "
+               "window (all frequencies; the column THD_50 keeps harmonics 2..50 only, as a power "
+               "analyser shows); torque ripple = standard deviation (and peak-to-peak) of the "
+               "plant's electromagnetic torque over the same periods at the same resolution; x-y "
+               "rms over the same periods; f_sw = leg transitions / 2 / window / 6.\n\n");
     fprintf(f,
             "Sensors: the board's phase-current sensors span +-20 A. MPTC-49 and MPTC-13 reach "
             "26-37 A, so on the board they would decide on clipped measurements; the comparison "
@@ -153,11 +152,13 @@ static void rep_section_steady(FILE *f, const rep_case_t *cases, int n)
         rep_row_lambda(f, cases, n, "steady_mptc49", "MPTC-49", li, false);
         rep_row_lambda(f, cases, n, "steady_mptc13", "MPTC-13", li, false);
         rep_row_lambda(f, cases, n, "steady_ddc", "DDC", li, true);
-        rep_row_lambda(f, cases, n, "guard_ddc", "DDC + torque guard", li, true);
+        rep_row_lambda(f, cases, n, "guard_ddc", "DDC, product", li, true);
     }
-    fprintf(f, "\n\"DDC\" is the paper's method (`ddc_torque_guard` off, `--paper-ddc`); \"DDC + "
-               "torque guard\" is the core's default, which limits how far the flux weighting may "
-               "move the duty (docs/improvements.md), not part of the paper.\n");
+    fprintf(f, "\n\"DDC\" is the paper's method (every improvement off, `--paper-ddc`); \"DDC, "
+               "product\" is the core's defaults: the torque guard, which limits how far the flux "
+               "weighting may move the duty, and the zero-vector arrangement with the fewest "
+               "transitions (docs/improvements.md, section 8), not part of the paper. MPTC-49 and "
+               "MPTC-13 run as the paper describes them.\n");
     fprintf(f, "\nThe paper's \"conventional MPTC\" columns are repeated on the MPTC-13 rows for "
                "comparison; the paper evaluates 49 candidates (section 3.1) and mentions the "
                "13-candidate variant (section 3.2). Peak A: largest phase current at the control "
@@ -301,6 +302,7 @@ static void rep_section_variants(FILE *f, const rep_case_t *cases, int n)
         {"ddc_xytable_l200", "DDC, direction from x-y table, lambda 200"},
         {"trip20_ddc_l100", "DDC, 20 A hardware over-current trip"},
         {"steady_ddc_l200", "DDC, flux-error direction, lambda 200"},
+        {"guard_ddc_l100", "DDC, the product's defaults (section 8)"},
         {"steady_mptc49_l100", "MPTC-49, fixed Q24, +-50 A sensors (comparison)"},
         {"board_mptc49_l100", "MPTC-49, the board's +-20 A sensors"},
         {"float_mptc49_l100", "MPTC-49, float build"},
@@ -361,6 +363,9 @@ static void rep_section_all_runs(FILE *f, const rep_case_t *cases, int n)
     for (i = 0; i < n; i++) {
         const rep_case_t *c = &cases[i];
         char t1[32], t2[32], t3[32], t4[64];
+        if (strcmp(c->group, "improve") == 0) {
+            continue; /* summarised in section 8 */
+        }
         if (!c->ok) {
             fprintf(f, "| %s | failed: %s | | | | | | | | | |\n", c->name, c->err);
             continue;
@@ -374,7 +379,92 @@ static void rep_section_all_runs(FILE *f, const rep_case_t *cases, int n)
                 c->res.fs_hz / 1000.0, c->cfg.plant.current_sensor_span_a, t1, t2, t3, t4);
     }
     fprintf(f, "\nPer-run traces (trace.csv, one row per control period) and metrics.json are in "
-               "runs/ (not committed: regenerate with `cmake --workflow --preset reproduce`).\n");
+               "runs/ (not committed: regenerate with `cmake --workflow --preset reproduce`).\n\n");
+}
+
+/* Means over the sweep's seeds of one variant at one lambda; false if a run is missing. */
+typedef struct {
+    double thd, ripple, fsw, speed_min;
+} rep_sweep_cell_t;
+
+static bool rep_sweep_cell(const rep_case_t *cases, int n, int v, double lambda,
+                           rep_sweep_cell_t *out)
+{
+    int seed;
+    memset(out, 0, sizeof *out);
+    out->speed_min = 1e30;
+    for (seed = 1; seed <= REP_SWEEP_SEEDS; seed++) {
+        char name[64];
+        const rep_case_t *c;
+        (void)snprintf(name, sizeof name, "imp_%s_l%.0f_s%d", rep_sweep_variant[v], lambda, seed);
+        c = rep_find(cases, n, name);
+        if (!c || c->res.thd_percent < 0.0) {
+            return false;
+        }
+        out->thd += c->res.thd_percent / REP_SWEEP_SEEDS;
+        out->ripple += c->res.torque_ripple_nm / REP_SWEEP_SEEDS;
+        out->fsw += c->res.switching_freq_hz / REP_SWEEP_SEEDS;
+        out->speed_min = fmin(out->speed_min, c->res.speed_mean_rpm);
+    }
+    return true;
+}
+
+/* The issue-13 goals for the product's DDC against the paper's, over the sweep. */
+static void rep_sweep_goals(FILE *f, const rep_case_t *cases, int n)
+{
+    double thd_lo = 1e30, thd_hi = 0.0, rip_hi = 0.0;
+    int li, below = 0, fsw_ok = 0, speed_ok = 0, total = 0;
+    for (li = 0; li < REP_SWEEP_LAMBDAS; li++) {
+        rep_sweep_cell_t p, d;
+        if (!rep_sweep_cell(cases, n, 0, 20.0 * (li + 1), &p) ||
+            !rep_sweep_cell(cases, n, 2, 20.0 * (li + 1), &d)) {
+            continue;
+        }
+        total++;
+        thd_lo = fmin(thd_lo, d.thd);
+        thd_hi = fmax(thd_hi, d.thd);
+        rip_hi = fmax(rip_hi, d.ripple);
+        below += (d.thd < p.thd && d.ripple < p.ripple);
+        fsw_ok += (d.fsw <= p.fsw);
+        speed_ok += (d.speed_min > 1490.0);
+    }
+    fprintf(f,
+            "\nGoals for the product's DDC at lambda 20..200 (issue 13), measured above: speed "
+            "held at %d of %d lambdas; largest ripple %.3f N m (goal <= 0.22: %s); THD spread "
+            "%.2f pp (goal <= 1.0: %s); THD and ripple both below the paper's DDC at %d of %d "
+            "lambdas; switching frequency not above the paper's at %d of %d.\n",
+            speed_ok, total, rip_hi, rip_hi <= 0.22 ? "met" : "not met", thd_hi - thd_lo,
+            thd_hi - thd_lo <= 1.0 ? "met" : "not met", below, total, fsw_ok, total);
+}
+
+static void rep_section_improvements(FILE *f, const rep_case_t *cases, int n)
+{
+    int li, v;
+    fprintf(f, "## 8. Improvements over the paper's DDC, side by side (1500 r/min, rated load, "
+               "10 kHz)\n\n");
+    fprintf(f,
+            "Each variant adds one change to the one before (docs/improvements.md); every cell "
+            "is the mean over seeds 1..%d: six-phase THD %% / torque ripple std N m / "
+            "switching frequency Hz, and the lowest mean speed r/min of the seeds.\n\n",
+            REP_SWEEP_SEEDS);
+    fprintf(f, "| lambda |");
+    for (v = 0; v < REP_SWEEP_VARIANTS; v++) {
+        fprintf(f, " %s |", rep_sweep_label[v]);
+    }
+    fprintf(f, "\n|---|---|---|---|---|\n");
+    for (li = 0; li < REP_SWEEP_LAMBDAS; li++) {
+        fprintf(f, "| %d |", 20 * (li + 1));
+        for (v = 0; v < REP_SWEEP_VARIANTS; v++) {
+            rep_sweep_cell_t c;
+            if (rep_sweep_cell(cases, n, v, 20.0 * (li + 1), &c)) {
+                fprintf(f, " %.2f / %.3f / %.0f / %.0f |", c.thd, c.ripple, c.fsw, c.speed_min);
+            } else {
+                fprintf(f, " n/a |");
+            }
+        }
+        fprintf(f, "\n");
+    }
+    rep_sweep_goals(f, cases, n);
 }
 
 int rep_write_report(const char *dir, const rep_case_t *cases, int n)
@@ -394,6 +484,7 @@ int rep_write_report(const char *dir, const rep_case_t *cases, int n)
     rep_section_variants(f, cases, n);
     rep_section_faults(f, cases, n);
     rep_section_all_runs(f, cases, n);
+    rep_section_improvements(f, cases, n);
     return (fclose(f) == 0) ? 0 : -1;
 }
 

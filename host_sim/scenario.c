@@ -52,6 +52,8 @@ void sim_config_default(sim_config_t *c)
     c->ddc_direction = -1;
     c->flux_ref_mode = -1;
     c->ddc_torque_guard = -1;
+    c->mid_period_angle = -1;
+    c->fewest_transitions = -1;
     c->protect = true;
     c->fault = SIM_FAULT_NONE;
     c->fault_time_s = 0.0;

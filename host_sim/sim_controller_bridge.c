@@ -63,6 +63,12 @@ static int bridge_init(const sim_ctl_config_t *cfg)
     if (cfg->ddc_direction >= 0) {
         p.ddc_direction = (ctl_ddc_direction_t)cfg->ddc_direction;
     }
+    if (cfg->mid_period_angle >= 0) {
+        p.mid_period_angle = (cfg->mid_period_angle != 0);
+    }
+    if (cfg->fewest_transitions >= 0) {
+        p.fewest_transitions = (cfg->fewest_transitions != 0);
+    }
     if (cfg->ddc_torque_guard >= 0) {
         p.ddc_torque_guard = (cfg->ddc_torque_guard != 0);
     }
@@ -154,6 +160,8 @@ static void bridge_status(sim_ctl_status_t *st)
     st->p_ddc_direction = (int)prm->ddc_direction;
     st->p_flux_ref_mode = (int)prm->flux_ref_mode;
     st->p_ddc_torque_guard = prm->ddc_torque_guard ? 1 : 0;
+    st->p_mid_period_angle = prm->mid_period_angle ? 1 : 0;
+    st->p_fewest_transitions = prm->fewest_transitions ? 1 : 0;
     st->faults_latched = (unsigned)drive_faults_latched(&bridge_drive);
     st->fault_records = (int)ctl_protect_log_pending(&bridge_drive.protect);
 }

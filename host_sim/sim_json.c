@@ -128,7 +128,8 @@ static void sim_print_plant_json(FILE *f, const plant_params_t *p)
             "  \"nonidealities\": {\"dead_time\": %s, \"pm_harmonics\": %s, "
             "\"adc_quantisation\": true, \"adc_offset\": %s, \"adc_offset_counts\": %.6g, "
             "\"adc_gain_error\": %s, \"adc_gain_error_max\": %.6g, \"adc_noise\": %s, "
-            "\"adc_noise_counts\": %.6g, \"current_sensor_span_a\": %.6g, \"encoder_quantisation\": %s, "
+            "\"adc_noise_counts\": %.6g, \"current_sensor_span_a\": %.6g, "
+            "\"encoder_quantisation\": %s, "
             "\"encoder_lines\": %u}\n",
             p->dead_time_on ? "true" : "false", p->harmonics_on ? "true" : "false",
             p->adc_offset_on ? "true" : "false", p->adc_offset_counts,
@@ -154,10 +155,12 @@ void sim_print_metrics_json(FILE *f, const sim_config_t *c, const sim_result_t *
             "  \"controller_params\": {\"lambda_nm_per_wb\": %.6g, \"speed_kp_nm_per_rad_s\": "
             "%.6g, \"speed_ki_nm_per_rad\": %.6g, \"torque_limit_nm\": %.6g, "
             "\"flux_ref_wb\": %.6g, \"flux_ref_mode\": %d, \"duty_levels\": %d, "
-            "\"ddc_direction\": %d, \"ddc_torque_guard\": %s},\n",
+            "\"ddc_direction\": %d, \"ddc_torque_guard\": %s, \"mid_period_angle\": %s, "
+            "\"fewest_transitions\": %s},\n",
             r->lambda, r->p_speed_kp, r->p_speed_ki, r->p_torque_limit, r->p_flux_ref_wb,
             r->p_flux_ref_mode, r->p_duty_levels, r->p_ddc_direction,
-            r->p_ddc_torque_guard ? "true" : "false");
+            r->p_ddc_torque_guard ? "true" : "false", r->p_mid_period_angle ? "true" : "false",
+            r->p_fewest_transitions ? "true" : "false");
     sim_print_plant_json(f, &c->plant);
     fprintf(f, "}\n");
 }

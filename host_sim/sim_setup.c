@@ -41,6 +41,8 @@ static void setup_controller_config(const sim_run_t *rs, sim_ctl_config_t *cc)
     cc->ddc_direction = c->ddc_direction;
     cc->flux_ref_mode = c->flux_ref_mode;
     cc->ddc_torque_guard = c->ddc_torque_guard;
+    cc->mid_period_angle = c->mid_period_angle;
+    cc->fewest_transitions = c->fewest_transitions;
     cc->j_kgm2 = p->j_kgm2;
     cc->flux_ref_wb = 0.0;
     cc->r_ohm = p->r_ohm;
@@ -68,9 +70,8 @@ static int setup_timing(sim_run_t *rs, char *err, size_t err_len)
     if (rs->k_win < 0) {
         rs->k_win = 0;
     }
-    rs->n_fine = (int)ceil(((c->fine_rate_hz > 0.0) ? c->fine_rate_hz : SIM_DEFAULT_FINE_RATE_HZ) /
-                               c->fs_hz -
-                           1e-9);
+    rs->n_fine = (int)ceil(
+        ((c->fine_rate_hz > 0.0) ? c->fine_rate_hz : SIM_DEFAULT_FINE_RATE_HZ) / c->fs_hz - 1e-9);
     if (rs->n_fine < 4) {
         rs->n_fine = 4;
     }

@@ -112,6 +112,7 @@ typedef struct {
     ctl_q torque_ref_direct;
     int16_t applied_vector; /* command in force during the current period */
     ctl_q applied_duty;
+    int16_t applied_edges; /* its legs' states at the period boundary (S_A = bit 5) */
     ctl_diag_t diag;
     ctl_stage_hook_t stage_hook; /* 0: none */
 } ctl_t;

@@ -46,9 +46,17 @@ typedef struct {
     float lambda_nm_per_wb; /* flux weight of the cost */
     int16_t duty_levels;    /* DDC: levels k/(n-1), k = 0..n-1; paper: 6 */
     ctl_ddc_direction_t ddc_direction;
-    /* improvement over the paper (docs/improvements.md), on by default; false = the paper */
-    bool ddc_torque_guard; /* flux weighting moves the duty at most one level from the
-                            * level that best meets the torque reference */
+    /* improvements over the paper (docs/improvements.md); false = the paper */
+    bool ddc_torque_guard;   /* (default on) flux weighting moves the duty at most one level
+                              * from the level that best meets the torque reference */
+    bool mid_period_angle;   /* every controller: each period's voltage enters the prediction
+                              * at the rotor angle of the period's middle (false, the default:
+                              * at its start, the paper's Eq. 17; measured no better in closed
+                              * loop) */
+    bool fewest_transitions; /* (default on) the zero vector (u00 or u77) and its place (edges or
+                              * middle) that switch the fewest legs, the period boundary included
+                              * (false: u77 in the middle for vectors with four or more upper
+                              * switches on, u00 at the edges otherwise) */
     ctl_flux_ref_mode_t flux_ref_mode;
     float flux_ref_wb; /* used when flux_ref_mode is constant */
     /* speed loop */

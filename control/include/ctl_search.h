@@ -20,8 +20,10 @@ typedef struct {
     const ctl_model_t *model;
     ctl_q id2_free; /* k+2 currents with zero voltage over k+1 -> k+2 */
     ctl_q iq2_free;
-    ctl_q sin1; /* rotor angle used for the k+1 -> k+2 step */
-    ctl_q cos1;
+    ctl_q sin1;   /* rotor angle at which the k+1 -> k+2 voltage enters the prediction: k+1, or */
+    ctl_q cos1;   /* the middle of that period (ctl_params_t.mid_period_angle) */
+    ctl_q sin_k1; /* rotor angle at k+1 (where the predicted flux is) */
+    ctl_q cos_k1;
     ctl_q vdc;
     ctl_q torque_ref;
     ctl_q flux_ref;

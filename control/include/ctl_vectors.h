@@ -34,15 +34,14 @@ static inline int16_t ctl_vector_leg(int16_t vector, int16_t leg)
     return (int16_t)((vector >> (5 - leg)) & 1);
 }
 
-/* Number of legs whose upper switch is on. */
+/* Number of legs whose upper switch is on: the bits of the 6-bit state, counted in pairs,
+ * then nibbles (no loop: it runs for every command). */
 static inline int16_t ctl_vector_ones(int16_t vector)
 {
-    int16_t n = 0;
-    int16_t leg;
-    for (leg = 0; leg < 6; leg++) {
-        n = (int16_t)(n + ctl_vector_leg(vector, leg));
-    }
-    return n;
+    uint16_t v = (uint16_t)((uint16_t)vector & 077u);
+    v = (uint16_t)(v - ((v >> 1) & 0x15u));
+    v = (uint16_t)((v & 0x33u) + ((v >> 2) & 0x33u));
+    return (int16_t)((v + (v >> 4)) & 0x0Fu);
 }
 
 #endif /* CTL_VECTORS_H */

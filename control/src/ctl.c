@@ -4,6 +4,7 @@
 #include "ctl_constants.h"
 #include "ctl_ddc.h"
 #include "ctl_mptc.h"
+#include "ctl_pulse.h"
 #include "ctl_search.h"
 #include "ctl_vectors.h"
 #include "ctl_vsd.h"
@@ -13,6 +14,7 @@ void ctl_reset(ctl_t *c)
     ctl_speed_pi_reset(&c->speed_pi);
     c->applied_vector = 0;
     c->applied_duty = CTL_Q(0.0);
+    c->applied_edges = 0;
 }
 
 /* The speed loop's gains follow the configuration in force; its integrator is kept across a
@@ -105,15 +107,15 @@ static void command_off(ctl_cmd_t *cmd)
     cmd->enable = false;
 }
 
-/* Leg duties of "vector for duty d, zero vector for the rest", centred pulses. With three
- * or fewer upper switches on, u00 fills the edges (v in the middle); otherwise u77 fills the
- * middle (v at the edges): either way each leg of v switches at most twice per period. */
-static void command_from_choice(int16_t vector, ctl_q duty, int16_t vector_in_force, ctl_cmd_t *cmd)
+/* Leg duties of the choice, the zero vector arranged as ctl_pulse.h says, and the legs'
+ * states at the period boundary. */
+static void command_from_choice(int16_t vector, ctl_q duty, const ctl_t *c, bool fewest,
+                                ctl_cmd_t *cmd, int16_t *edges)
 {
     int16_t leg;
     const bool zero = (duty <= CTL_Q(0.0)) || vector == 0 || vector == 077;
     const bool high_zero =
-        zero ? (ctl_vector_ones(vector_in_force) > 3) : (ctl_vector_ones(vector) > 3);
+        ctl_pulse_high_zero(vector, zero, c->applied_vector, c->applied_edges, fewest);
     const ctl_q d = ctl_clamp(duty, CTL_Q(0.0), CTL_Q(1.0));
     for (leg = 0; leg < CTL_PHASES; leg++) {
         const bool on = ctl_vector_leg(vector, leg) != 0;
@@ -128,25 +130,23 @@ static void command_from_choice(int16_t vector, ctl_q duty, int16_t vector_in_fo
     cmd->vector = zero ? (high_zero ? 077 : 0) : vector;
     cmd->duty = zero ? CTL_Q(0.0) : d;
     cmd->enable = true;
+    *edges = ctl_pulse_edges(vector, zero, high_zero, d >= CTL_Q(1.0));
 }
 
-/* Rotor angle one period ahead: delta = omega Ts (rad). For |delta| <= 0.5 rad (7 times
- * rated speed at 10 kHz) rotate the sample angle's sine and cosine by short series of
- * sin/cos delta (error < 2e-5 there, < 1e-8 at rated speed); beyond that look the angle up
- * again. */
-static void advance_angle(const ctl_model_t *model, const ctl_meas_t *m, ctl_q s0, ctl_q c0,
-                          ctl_horizon_t *h)
+/* The sample angle advanced by delta (rad). For |delta| <= 0.5 rad (7 times rated speed at
+ * 10 kHz) rotate its sine and cosine by short series of sin/cos delta (error < 2e-5 there,
+ * < 1e-8 at rated speed); beyond that look the angle up again. */
+static inline void advance_angle(ctl_q theta_e, ctl_q s0, ctl_q c0, ctl_q delta, ctl_q *s, ctl_q *c)
 {
-    const ctl_q delta = ctl_mul(m->omega_e, model->ts);
     if (ctl_abs(delta) <= CTL_Q(0.5)) {
         const ctl_q d2 = ctl_mul(delta, delta);
         const ctl_q sd = ctl_mul(delta, ctl_mul_dec(CTL_Q(1.0), d2, CTL_K_ONE_SIXTH));
         const ctl_q cd = ctl_mul_dec(CTL_Q(1.0), ctl_mul(d2, CTL_Q(0.5)),
                                      ctl_mul_dec(CTL_Q(1.0), d2, CTL_K_ONE_TWELFTH));
-        h->sin1 = ctl_mul_add(s0, cd, c0, sd);
-        h->cos1 = ctl_mul_sub(c0, cd, s0, sd);
+        *s = ctl_mul_add(s0, cd, c0, sd);
+        *c = ctl_mul_sub(c0, cd, s0, sd);
     } else {
-        ctl_sincos_pu(ctl_add(m->theta_e, ctl_mul(delta, CTL_K_INV_TWO_PI)), &h->sin1, &h->cos1);
+        ctl_sincos_pu(ctl_add(theta_e, ctl_mul(delta, CTL_K_INV_TWO_PI)), s, c);
     }
 }
 
@@ -164,23 +164,36 @@ static void predict(const ctl_t *c, const ctl_config_t *cfg, const ctl_meas_t *m
                     ctl_q *iq1)
 {
     const ctl_vsd_t *applied = &ctl_vector_vsd[c->applied_vector];
+    const ctl_q delta = ctl_mul(m->omega_e, cfg->model.ts); /* rotation over one period */
+    const bool mid = cfg->params.mid_period_angle;
     ctl_vsd_t u0 = {CTL_Q(0.0), CTL_Q(0.0), CTL_Q(0.0), CTL_Q(0.0)};
     ctl_q ud0 = CTL_Q(0.0);
     ctl_q uq0 = CTL_Q(0.0);
     if (c->applied_duty != CTL_Q(0.0)) { /* a zero vector in force applies no voltage */
         const ctl_q applied_scale = ctl_mul(c->applied_duty, m->vdc);
+        ctl_q s = smp->s0;
+        ctl_q co = smp->c0;
+        if (mid) {
+            advance_angle(m->theta_e, smp->s0, smp->c0, ctl_mul(delta, CTL_Q(0.5)), &s, &co);
+        }
         u0.alpha = ctl_mul(applied->alpha, applied_scale);
         u0.beta = ctl_mul(applied->beta, applied_scale);
         u0.x = ctl_mul(applied->x, applied_scale);
         u0.y = ctl_mul(applied->y, applied_scale);
-        ud0 = ctl_mul_add(u0.alpha, smp->c0, u0.beta, smp->s0);
-        uq0 = ctl_mul_sub(u0.beta, smp->c0, u0.alpha, smp->s0);
+        ud0 = ctl_mul_add(u0.alpha, co, u0.beta, s);
+        uq0 = ctl_mul_sub(u0.beta, co, u0.alpha, s);
     }
     ctl_predict_dq(&cfg->model, smp->id, smp->iq, m->omega_e, ud0, uq0, id1, iq1);
     *ix1 = ctl_predict_xy(&cfg->model, smp->vsd.x, u0.x);
     *iy1 = ctl_predict_xy(&cfg->model, smp->vsd.y, u0.y);
     h->model = &cfg->model;
-    advance_angle(&cfg->model, m, smp->s0, smp->c0, h);
+    advance_angle(m->theta_e, smp->s0, smp->c0, delta, &h->sin_k1, &h->cos_k1);
+    if (mid) {
+        advance_angle(m->theta_e, smp->s0, smp->c0, ctl_mul(delta, CTL_Q(1.5)), &h->sin1, &h->cos1);
+    } else {
+        h->sin1 = h->sin_k1;
+        h->cos1 = h->cos_k1;
+    }
     ctl_predict_dq_free(&cfg->model, *id1, *iq1, m->omega_e, &h->id2_free, &h->iq2_free);
     h->vdc = m->vdc;
     h->lambda = cfg->lambda;
@@ -194,7 +207,7 @@ static void select_ddc(const ctl_t *c, const ctl_config_t *cfg, const ctl_horizo
     ctl_ddc_config_t ddc;
     const ctl_q psi_d1 = ctl_flux_d(&cfg->model, id1);
     const ctl_q psi_q1 = ctl_flux_q(&cfg->model, iq1);
-    ctl_park_inverse(psi_d1, psi_q1, h->sin1, h->cos1, &f.psi_alpha, &f.psi_beta);
+    ctl_park_inverse(psi_d1, psi_q1, h->sin_k1, h->cos_k1, &f.psi_alpha, &f.psi_beta);
     f.psi_mag_sq = ctl_mul_add(psi_d1, psi_d1, psi_q1, psi_q1);
     f.psi_x = ctl_mul(cfg->model.lxy, ix1);
     f.psi_y = ctl_mul(cfg->model.lxy, iy1);
@@ -274,7 +287,8 @@ void ctl_step(ctl_t *c, const ctl_meas_t *m, ctl_cmd_t *cmd)
                         &choice);
     }
 
-    command_from_choice(choice.vector, choice.duty, c->applied_vector, cmd);
+    command_from_choice(choice.vector, choice.duty, c, cfg->params.fewest_transitions, cmd,
+                        &c->applied_edges);
     c->applied_vector = cmd->vector;
     c->applied_duty = cmd->duty;
     record_diag(c, cfg, &smp, &h, &choice);

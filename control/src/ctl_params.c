@@ -18,7 +18,9 @@ void ctl_params_default(ctl_params_t *p)
     p->lambda_nm_per_wb = 100.0f;
     p->duty_levels = 6;
     p->ddc_direction = CTL_DDC_DIRECTION_FLUX_ERROR;
-    p->ddc_torque_guard = true; /* improvement (docs/improvements.md); false = the paper */
+    p->ddc_torque_guard = true;  /* improvements (docs/improvements.md); false = the paper */
+    p->mid_period_angle = false; /* measured: no closed-loop gain (docs/improvements.md) */
+    p->fewest_transitions = true;
     p->flux_ref_mode = CTL_FLUX_REF_MTPA;
     p->flux_ref_wb = 0.26f;
     p->speed_kp_nm_per_rad_s = 1.5f;

@@ -70,7 +70,7 @@ void prof_init(uint32_t period_cycles, uint32_t cycles_per_second)
     p->read_cost = best;
     /* load = busy / period, in permille, without a division per ISR (prof_permille) */
     p->period_cycles = (period_cycles >= PROF_MIN_PERIOD_CYCLES) ? period_cycles : 0u;
-    p->permille_k = (p->period_cycles != 0u) ? 65536000uL / p->period_cycles : 0u;
+    p->permille_k = (p->period_cycles != 0u) ? (uint32_t)65536000u / p->period_cycles : 0u;
     p->cycles_per_us = cycles_per_second / 1000000u;
     p->load_permille_last = 0u;
     p->load_permille_max = 0u;

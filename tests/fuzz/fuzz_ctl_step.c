@@ -60,10 +60,21 @@ static float take_float(stream_t *s)
     return f;
 }
 
+/* A leg the vector leaves off (the vector is neither u00 nor u77). */
+static int16_t first_leg_off(int16_t vector)
+{
+    int16_t leg = 0;
+    while (leg < CTL_PHASES - 1 && ctl_vector_leg(vector, leg) != 0) {
+        leg++;
+    }
+    return leg;
+}
+
 static void check_command(const ctl_cmd_t *cmd)
 {
     int16_t leg;
     bool zero;
+    bool high_zero;
     if (!cmd->enable) {
         for (leg = 0; leg < CTL_PHASES; leg++) {
             if (cmd->leg_duty[leg] != CTL_Q(0.0)) {
@@ -79,6 +90,8 @@ static void check_command(const ctl_cmd_t *cmd)
         abort();
     }
     zero = cmd->vector == 0 || cmd->vector == 077;
+    /* one arrangement for every leg: u00 at the edges (on: d) or u77 in the middle (off: 1 - d) */
+    high_zero = !zero && cmd->leg_duty[first_leg_off(cmd->vector)] != CTL_Q(0.0);
     for (leg = 0; leg < CTL_PHASES; leg++) {
         const ctl_q d = cmd->leg_duty[leg];
         const bool on = ctl_vector_leg(cmd->vector, leg) != 0;
@@ -88,7 +101,7 @@ static void check_command(const ctl_cmd_t *cmd)
         }
         if (zero) {
             expected = on ? CTL_Q(1.0) : CTL_Q(0.0);
-        } else if (ctl_vector_ones(cmd->vector) > 3) {
+        } else if (high_zero) {
             expected = on ? CTL_Q(1.0) : ctl_sub(CTL_Q(1.0), cmd->duty);
         } else {
             expected = on ? cmd->duty : CTL_Q(0.0);
