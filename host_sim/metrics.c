@@ -117,8 +117,8 @@ static void metrics_moments(const double *const *x, int channels, size_t n,
 
 /* One combination's THD from the basis projections and covariance. */
 static int metrics_thd_of(const metrics_projections_t *pr,
-                          double cov[METRICS_MAX_CHANNELS][METRICS_MAX_CHANNELS],
-                          const double *w, int channels, size_t n, metrics_thd_t *out)
+                          double cov[METRICS_MAX_CHANNELS][METRICS_MAX_CHANNELS], const double *w,
+                          int channels, size_t n, metrics_thd_t *out)
 {
     double q1 = 0.0, sum_h = 0.0, q2 = 0.0;
     int h, j, l;

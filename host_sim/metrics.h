@@ -71,10 +71,10 @@ double metrics_first_reach(const double *t, const double *x, size_t n, double t_
 /* The same two, one sample at a time (a run of any length keeps no history). */
 typedef struct {
     double t_from, final_value, tol_abs;
-    bool started;      /* a sample at or after t_from was seen */
-    double t_first;    /* the first such sample's time */
-    bool have_out;     /* some sample was outside the band */
-    bool out_pending;  /* the latest sample was outside: the settling instant is still open */
+    bool started;       /* a sample at or after t_from was seen */
+    double t_first;     /* the first such sample's time */
+    bool have_out;      /* some sample was outside the band */
+    bool out_pending;   /* the latest sample was outside: the settling instant is still open */
     double t_after_out; /* time of the sample after the latest one outside */
 } metrics_settle_t;
 

@@ -144,8 +144,7 @@ static void rep_write_gitignore(const char *out_dir)
     }
 }
 
-static int rep_write_all(const char *out_dir, const rep_case_t *cases, int n, double wall,
-                         int jobs)
+static int rep_write_all(const char *out_dir, const rep_case_t *cases, int n, double wall, int jobs)
 {
     rep_write_gitignore(out_dir);
     if (rep_write_summary(out_dir, cases, n) != 0 || rep_write_report(out_dir, cases, n) != 0 ||
@@ -190,8 +189,9 @@ int sim_reproduce(const char *out_dir, int jobs, bool plots, int quiet)
         (void)rep_plot(out_dir, quiet);
     }
     if (rc == 0 && !quiet) {
-        fprintf(stderr, "reproduce: %d runs, %d failed, %.1f s wall (runs %.1f s); report "
-                        "%s/report.md\n",
+        fprintf(stderr,
+                "reproduce: %d runs, %d failed, %.1f s wall (runs %.1f s); report "
+                "%s/report.md\n",
                 n, failures, rep_now() - t0, wall, out_dir);
     }
     (void)munmap(cases, bytes);

@@ -49,4 +49,3 @@ int sim_check_out_dir(const char *dir, char *err, size_t err_len)
     (void)remove(probe);
     return 0;
 }
-

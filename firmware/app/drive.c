@@ -447,7 +447,8 @@ bool drive_set_current_span(drive_t *d, float full_span_a)
         !(full_span_a >= DRIVE_CURRENT_SPAN_MIN_A && full_span_a <= DRIVE_CURRENT_SPAN_MAX_A)) {
         return false;
     }
-    d->current_pu_per_count = ctl_from_float(full_span_a / (float)(HAL_ADC_FULL_SCALE + 1u) / CTL_BASE_CURRENT_A_F);
+    d->current_pu_per_count =
+        ctl_from_float(full_span_a / (float)(HAL_ADC_FULL_SCALE + 1u) / CTL_BASE_CURRENT_A_F);
     return true;
 }
 

@@ -494,7 +494,8 @@ static void test_current_span_scales_the_phase_currents(void **state)
     mock_adc.phase[0] = (uint16_t)(2048 + 500);
     mock_adc.phase[1] = (uint16_t)(2048 - 500);
     run_isr(1);
-    assert_true(d.meas.i_phase[0] > ctl_from_float(1.21f) && d.meas.i_phase[0] < ctl_from_float(1.23f));
+    assert_true(d.meas.i_phase[0] > ctl_from_float(1.21f) &&
+                d.meas.i_phase[0] < ctl_from_float(1.23f));
     assert_int_equal(d.state, DRIVE_STATE_RUN);
     mock_adc.phase[0] = (uint16_t)(2048 + OVER_LIMIT_COUNTS); /* 41.5 A */
     mock_adc.phase[1] = (uint16_t)(2048 - OVER_LIMIT_COUNTS);

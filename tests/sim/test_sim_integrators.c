@@ -158,9 +158,9 @@ static void replay_period(void *ctx, const sim_trace_row_t *row, const sim_perio
 
 static double six_phase_thd(const replay_plant_t *rp, size_t first, size_t n)
 {
-    static const double each[6][METRICS_MAX_CHANNELS] = {
-        {1, 0, 0, 0, 0, 0}, {0, 1, 0, 0, 0, 0}, {0, 0, 1, 0, 0, 0},
-        {0, 0, 0, 1, 0, 0}, {0, 0, 0, 0, 1, 0}, {0, 0, 0, 0, 0, 1}};
+    static const double each[6][METRICS_MAX_CHANNELS] = {{1, 0, 0, 0, 0, 0}, {0, 1, 0, 0, 0, 0},
+                                                         {0, 0, 1, 0, 0, 0}, {0, 0, 0, 1, 0, 0},
+                                                         {0, 0, 0, 0, 1, 0}, {0, 0, 0, 0, 0, 1}};
     const double *ph[6];
     metrics_thd_t th[6];
     double sum = 0.0;
@@ -194,8 +194,9 @@ static void compare_replays(const replay_t *rep, const char *name)
     assert_true(periods >= 5);
     thd_ex = six_phase_thd(ex, first, n - first);
     thd_rk = six_phase_thd(rk, first, n - first);
-    print_message("%-10s currents differ by %.4f %% rms; THD %.3f %% exact, %.3f %% RK4 (%+.3f pp)\n",
-                  name, 100.0 * rel, thd_ex, thd_rk, thd_ex - thd_rk);
+    print_message(
+        "%-10s currents differ by %.4f %% rms; THD %.3f %% exact, %.3f %% RK4 (%+.3f pp)\n", name,
+        100.0 * rel, thd_ex, thd_rk, thd_ex - thd_rk);
     assert_true(rel <= 1e-3);
     assert_true(fabs(thd_ex - thd_rk) <= 0.1);
 }
