@@ -36,7 +36,8 @@ set(SIXPHASE_SXLINK_NAMES_SOURCES
 
 # Serial commands of the drive.
 set(SIXPHASE_DRIVE_LINK_SOURCES
-    firmware/app/drive_link.c)
+    firmware/app/drive_link.c
+    firmware/app/link_service.c)
 
 # F28335 register-level HAL.
 set(SIXPHASE_HAL_F28335_SOURCES

@@ -35,6 +35,8 @@ void sim_cli_usage(FILE *f)
         "                   [--quiet]\n"
         "                   [--fault-time S]\n"
         "  sixphase-sim reproduce --out DIR [--jobs N] [--no-plots] [--quiet]\n"
+        "  sixphase-sim serve [run options] [--rate N | --fast] [--baud B]: the firmware on a\n"
+        "                   virtual board behind a pseudo-terminal (its path on stdout)\n"
         "numbers are plain decimals (1500, -0.5, 2e-6); each option at most once\n"
         "--duration: 0.01 to 36000 s (10 h); memory stays flat, trace.csv grows by about 1.7 MB\n"
         "per simulated second at 10 kHz (--no-trace leaves it out)\n"
@@ -63,6 +65,7 @@ typedef enum {
 
 #define OPT_RUN 1u
 #define OPT_REPRODUCE 2u
+#define OPT_SERVE 4u
 
 typedef struct {
     const char *name;
@@ -132,13 +135,19 @@ enum {
     G_TRACE,
     G_FINE,
     G_PLOTS,
+    G_PACING,
+    G_BAUD,
     G_IDEAL
 };
 
 static const opt_t options[] = {
-    {"--quiet", OPT_SET_INT, OPT_RUN | OPT_REPRODUCE, F(quiet), G_QUIET, 0.0, 0.0, 1, NULL},
+    {"--quiet", OPT_SET_INT, OPT_RUN | OPT_REPRODUCE | OPT_SERVE, F(quiet), G_QUIET, 0.0, 0.0, 1,
+     NULL},
     {"--out", OPT_DIRECTORY, OPT_RUN | OPT_REPRODUCE, F(cfg.out_dir), G_OUT, 0.0, 0.0, 0, NULL},
     {"--jobs", OPT_INTEGER, OPT_REPRODUCE, F(jobs), G_JOBS, 1.0, 64.0, 0, NULL},
+    {"--rate", OPT_NUMBER, OPT_SERVE, F(serve_rate), G_PACING, 0.01, 1000.0, 0, NULL},
+    {"--fast", OPT_SET_INT, OPT_SERVE, F(serve_fast), G_PACING, 0.0, 0.0, 1, NULL},
+    {"--baud", OPT_INTEGER, OPT_SERVE, F(serve_baud), G_BAUD, 1200.0, 4000000.0, 0, NULL},
     CHOICE("--controller", cfg.controller, G_CONTROLLER, controllers),
     {"--scenario", OPT_SCENARIO, OPT_RUN, F(cfg.scenario), G_SCENARIO, 0.0, 0.0, 0, NULL},
     CHOICE("--arith", cfg.arith, G_ARITH, ariths),
@@ -371,6 +380,8 @@ static void cli_defaults(sim_cli_t *o)
     memset(o, 0, sizeof *o);
     sim_config_default(&o->cfg);
     o->jobs = 2;
+    o->serve_rate = 1.0;
+    o->serve_baud = 115200;
 }
 
 /* What no single option can see: combinations that cannot work. */
@@ -464,4 +475,9 @@ int sim_cli_parse_run(int argc, char **argv, sim_cli_t *out, char *err, size_t e
 int sim_cli_parse_reproduce(int argc, char **argv, sim_cli_t *out, char *err, size_t err_len)
 {
     return cli_parse(argc, argv, out, err, err_len, OPT_REPRODUCE);
+}
+
+int sim_cli_parse_serve(int argc, char **argv, sim_cli_t *out, char *err, size_t err_len)
+{
+    return cli_parse(argc, argv, out, err, err_len, OPT_RUN | OPT_SERVE);
 }

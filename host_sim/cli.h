@@ -16,11 +16,17 @@ typedef struct {
     int quiet;
     int jobs;     /* reproduce: parallel workers */
     int no_plots; /* reproduce: leave the figures out */
+    /* serve: pacing (rate times real time; fast: as fast as possible) and the line's baud */
+    double serve_rate;
+    int serve_fast;
+    int serve_baud;
 } sim_cli_t;
 
 /* argv[0] is the first option (after the sub-command). 0 on success. */
 int sim_cli_parse_run(int argc, char **argv, sim_cli_t *out, char *err, size_t err_len);
 int sim_cli_parse_reproduce(int argc, char **argv, sim_cli_t *out, char *err, size_t err_len);
+/* serve takes the run options (none required) and its own. */
+int sim_cli_parse_serve(int argc, char **argv, sim_cli_t *out, char *err, size_t err_len);
 
 void sim_cli_usage(FILE *f);
 

@@ -4,6 +4,7 @@
 
 #include "cli.h"
 #include "reproduce.h"
+#include "serve.h"
 #include "sim.h"
 
 int main(int argc, char **argv)
@@ -42,6 +43,19 @@ int main(int argc, char **argv)
         }
         return sim_reproduce(cli.cfg.out_dir, cli.jobs, !cli.no_plots, cli.quiet);
     }
-    fprintf(stderr, "sixphase-sim: unknown command '%s' (expected run or reproduce)\n", argv[1]);
+    if (strcmp(argv[1], "serve") == 0) {
+        sim_serve_options_t so;
+        if (sim_cli_parse_serve(argc - 2, argv + 2, &cli, err, sizeof err) != 0) {
+            fprintf(stderr, "sixphase-sim: %s\n", err);
+            return 2;
+        }
+        so.rate = cli.serve_rate;
+        so.fast = cli.serve_fast != 0;
+        so.baud = cli.serve_baud;
+        so.quiet = cli.quiet != 0;
+        return sim_serve(&cli.cfg, &so);
+    }
+    fprintf(stderr, "sixphase-sim: unknown command '%s' (expected run, reproduce or serve)\n",
+            argv[1]);
     return 2;
 }

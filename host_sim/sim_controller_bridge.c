@@ -10,6 +10,9 @@
 #include "ctl.h"
 #include "ctl_pu.h"
 #include "drive.h"
+#include "hal_cycles.h"
+#include "link_service.h"
+#include "profile.h"
 #include "sim_ctl.h"
 
 #if SIM_BRIDGE_FLOAT
@@ -21,6 +24,8 @@
 #endif
 
 static drive_t bridge_drive;
+static link_service_t bridge_link;
+static bool bridge_board; /* serving as the virtual board: the ISR is timed and profiled */
 
 /* Thresholds no measurement can reach: the simulator's way of watching a controller that
  * would trip the drive. An ordinary parameter set (the firmware accepts the same values over
@@ -100,7 +105,24 @@ static int bridge_init(const sim_ctl_config_t *cfg)
     return (bridge_drive.state == DRIVE_STATE_FAULT) ? 2 : 0;
 }
 
-static void bridge_isr(void) { drive_control_isr(&bridge_drive); }
+/* On the virtual board the ISR is timed as fw_isr times it on the board, in hal_cycles (host
+ * nanoseconds), for the status and profile readouts. */
+static void bridge_isr(void)
+{
+    uint32_t dt;
+    uint32_t t0;
+    if (!bridge_board) {
+        drive_control_isr(&bridge_drive);
+        return;
+    }
+    t0 = hal_cycles_now();
+    drive_control_isr(&bridge_drive);
+    dt = (uint32_t)(hal_cycles_now() - t0);
+    bridge_drive.isr_cycles_last = dt;
+    if (dt > bridge_drive.isr_cycles_max) {
+        bridge_drive.isr_cycles_max = dt;
+    }
+}
 static void bridge_request_run(void) { drive_request_run(&bridge_drive); }
 static void bridge_set_speed_rpm(double rpm) { drive_set_speed_ref_rpm(&bridge_drive, (float)rpm); }
 static void bridge_set_torque_nm(double nm) { drive_set_torque_ref_nm(&bridge_drive, (float)nm); }
@@ -166,7 +188,17 @@ static void bridge_status(sim_ctl_status_t *st)
     st->fault_records = (int)ctl_protect_log_pending(&bridge_drive.protect);
 }
 
+/* A partial frame older than 20 ms (of hal_cycles, host time on the simulator) is dropped. */
+static void bridge_link_init(void)
+{
+    link_service_init(&bridge_link, hal_cycles_per_second() / 50u);
+    bridge_board = true;
+    ctl_set_stage_hook(&bridge_drive.ctl, prof_ctl_stage); /* stage timing, as fw_startup */
+}
+static void bridge_link_step(void) { link_service_step(&bridge_link, &bridge_drive); }
+static unsigned long bridge_link_frames(void) { return (unsigned long)bridge_link.frames_handled; }
+
 const sim_ctl_ops_t SIM_BRIDGE_OPS = {
-    SIM_BRIDGE_ARITH,   bridge_init,           bridge_isr,
-    bridge_request_run, bridge_set_speed_rpm,  bridge_set_torque_nm,
-    bridge_status,      bridge_report_overrun, bridge_read_fault_record};
+    SIM_BRIDGE_ARITH,         bridge_init,          bridge_isr,       bridge_request_run,
+    bridge_set_speed_rpm,     bridge_set_torque_nm, bridge_status,    bridge_report_overrun,
+    bridge_read_fault_record, bridge_link_init,     bridge_link_step, bridge_link_frames};

@@ -78,6 +78,11 @@ typedef struct {
     void (*report_overrun)(void); /* the platform's overrun detection fired */
     /* oldest unread fault record: 1 and removed from the log, or 0 when the log is empty */
     int (*read_fault_record)(sim_fault_record_t *r);
+    /* the background loop's serial link (firmware/app/link_service.c) over hal_serial:
+     * link_init once after init, link_step as often as the background loop would run */
+    void (*link_init)(void);
+    void (*link_step)(void);
+    unsigned long (*link_frames)(void); /* requests handled */
 } sim_ctl_ops_t;
 
 /* Defined by the two builds of the bridge. The float build's symbols are all

@@ -147,7 +147,7 @@ static void loop_next_command(sim_run_t *rs, const sim_ctl_status_t *st)
     }
 }
 
-static int loop_period(sim_run_t *rs, sim_result_t *r, long k)
+int sim_loop_period(sim_run_t *rs, sim_result_t *r, long k)
 {
     const double t = (double)k * rs->ts;
     const bool in_win = (k >= rs->k_win);
@@ -191,7 +191,7 @@ int sim_loop_run(sim_run_t *rs, sim_result_t *r, char *err, size_t err_len)
     }
     rs->wall0_s = sim_wall_now();
     for (k = 0; k < rs->n_periods; k++) {
-        if (loop_period(rs, r, k) != 0) {
+        if (sim_loop_period(rs, r, k) != 0) {
             (void)snprintf(err, err_len, "plant state diverged");
             return -1;
         }

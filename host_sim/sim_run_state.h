@@ -42,7 +42,7 @@ typedef struct {
     double applied_duty;
     long k_detect;      /* first period in FAULT; -1: none */
     long cal_isr_calls; /* drive ISR calls of the calibration */
-    double isr_wall_s; /* host time in the timed drive ISR calls */
+    double isr_wall_s;  /* host time in the timed drive ISR calls */
     long isr_timed;
     double wall0_s, wall1_s;
 } sim_run_t;
@@ -55,6 +55,10 @@ int sim_setup_calibrate(sim_run_t *rs, sim_result_t *r, char *err, size_t err_le
 
 /* Release what sim_setup took; ok false deletes partial output files. */
 void sim_teardown(sim_run_t *rs, bool ok);
+
+/* One control period k (events, sensors, the drive's ISR, the plant over the period, the
+ * recorder and metrics); -1 when the plant diverged. */
+int sim_loop_period(sim_run_t *rs, sim_result_t *r, long k);
 
 /* The scenario: every control period. */
 int sim_loop_run(sim_run_t *rs, sim_result_t *r, char *err, size_t err_len);

@@ -13,6 +13,7 @@
 #include "drive.h"
 #include "f28335_hal.h"
 #include "hal_board.h"
+#include "link_service.h"
 #include "sxlink.h"
 
 #define FW_PWM_HZ HAL_BOARD_PWM_HZ
@@ -40,14 +41,7 @@ typedef struct {
     bool clock_ok;
     bool hal_ok;
     uint16_t unexpected_isr;
-    sxl_decoder_t rx;
-    sxl_frame_t req;
-    sxl_frame_t reply;
-    uint16_t tx[SXL_MAX_FRAME];
-    uint16_t tx_len;
-    uint16_t tx_pos;
-    uint32_t last_rx_cycles;
-    uint32_t frames_handled;
+    link_service_t link;
 } fw_state_t;
 
 extern drive_t fw_drive;

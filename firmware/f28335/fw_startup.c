@@ -89,11 +89,7 @@ bool fw_startup(void)
     }
     fw_state.hal_ok = hal_ok;
     fw_state.unexpected_isr = 0u;
-    fw_state.tx_len = 0u;
-    fw_state.tx_pos = 0u;
-    fw_state.frames_handled = 0u;
-    fw_state.last_rx_cycles = hal_cycles_now();
-    sxl_decoder_init(&fw_state.rx);
+    link_service_init(&fw_state.link, FW_LINK_GAP_CYCLES);
 
     drive_init(&fw_drive, &p);
     ctl_set_stage_hook(&fw_drive.ctl, prof_ctl_stage); /* stage timing (profile.h) */

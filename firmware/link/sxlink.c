@@ -66,6 +66,14 @@ static void count_error(sxl_decoder_t *d)
     }
 }
 
+void sxl_decoder_abandon(sxl_decoder_t *d)
+{
+    if (d->n != 0u) {
+        count_error(d);
+        d->n = 0u;
+    }
+}
+
 static bool length_valid(uint16_t len) { return len != 0u && len <= SXL_MAX_PAYLOAD + 1u; }
 
 /* Drop the held bytes before index k, then anything up to the next start byte. */

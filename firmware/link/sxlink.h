@@ -151,6 +151,9 @@ void sxl_decoder_init(sxl_decoder_t *d);
 void sxl_decoder_reset(sxl_decoder_t *d);
 /* True while no frame is partially received. */
 bool sxl_decoder_idle(const sxl_decoder_t *d);
+/* Give up a partial frame (the line went quiet in the middle of it): counted as a receive
+ * error, the decoder hunts for the next start. Nothing to give up: nothing happens. */
+void sxl_decoder_abandon(sxl_decoder_t *d);
 /* One received byte. SXL_RX_FRAME: a frame ended with this byte, in *out. Otherwise the
  * last start given up with this byte (SXL_RX_ERR_*), or SXL_RX_NONE. Bounded work per byte:
  * at most SXL_MAX_FRAME starts are looked at, and only one whose length ends here is

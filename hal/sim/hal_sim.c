@@ -8,6 +8,7 @@
 
 #include "hal_board.h"
 #include "hal_cycles.h"
+#include "hal_serial.h"
 
 hal_sim_bus_t hal_sim_bus;
 
@@ -129,6 +130,55 @@ bool hal_encoder_init(uint32_t lines, uint16_t pole_pairs, uint32_t elec_offset)
 }
 
 void hal_encoder_read(hal_encoder_sample_t *s) { *s = hal_sim_bus.encoder; }
+
+/* ---- hal_serial.h and its line side ---- */
+
+bool hal_sim_uart_arrive(uint16_t byte)
+{
+    hal_sim_bus_t *b = &hal_sim_bus;
+    if (b->uart_rx_count >= HAL_SIM_UART_FIFO) {
+        b->uart_rx_overruns++;
+        return false;
+    }
+    b->uart_rx[(b->uart_rx_head + b->uart_rx_count) % HAL_SIM_UART_FIFO] = (uint16_t)(byte & 0xFFu);
+    b->uart_rx_count++;
+    return true;
+}
+
+bool hal_serial_read(uint16_t *byte)
+{
+    hal_sim_bus_t *b = &hal_sim_bus;
+    if (b->uart_rx_count == 0u) {
+        return false;
+    }
+    *byte = b->uart_rx[b->uart_rx_head];
+    b->uart_rx_head = (uint16_t)((b->uart_rx_head + 1u) % HAL_SIM_UART_FIFO);
+    b->uart_rx_count--;
+    return true;
+}
+
+bool hal_serial_write(uint16_t byte)
+{
+    hal_sim_bus_t *b = &hal_sim_bus;
+    if (b->uart_tx_count >= HAL_SIM_UART_FIFO) {
+        return false;
+    }
+    b->uart_tx[(b->uart_tx_head + b->uart_tx_count) % HAL_SIM_UART_FIFO] = (uint16_t)(byte & 0xFFu);
+    b->uart_tx_count++;
+    return true;
+}
+
+bool hal_sim_uart_depart(uint16_t *byte)
+{
+    hal_sim_bus_t *b = &hal_sim_bus;
+    if (b->uart_tx_count == 0u) {
+        return false;
+    }
+    *byte = b->uart_tx[b->uart_tx_head];
+    b->uart_tx_head = (uint16_t)((b->uart_tx_head + 1u) % HAL_SIM_UART_FIFO);
+    b->uart_tx_count--;
+    return true;
+}
 
 /* ---- hal_cycles.h: host monotonic clock in nanoseconds ---- */
 

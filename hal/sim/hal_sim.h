@@ -16,6 +16,8 @@
 #include "hal_encoder.h"
 #include "hal_pwm.h"
 
+#define HAL_SIM_UART_FIFO 16
+
 typedef struct {
     /* PWM, written by the application */
     uint32_t carrier_hz;
@@ -35,12 +37,22 @@ typedef struct {
     uint16_t encoder_pole_pairs;
     uint32_t encoder_elec_offset;
     bool encoder_initialised;
+    /* serial port (hal_serial.h): 16-byte FIFOs as the board's SCI has; the virtual board moves
+     * bytes between them and the outside at the baud rate */
+    uint16_t uart_rx[HAL_SIM_UART_FIFO], uart_tx[HAL_SIM_UART_FIFO];
+    uint16_t uart_rx_head, uart_rx_count, uart_tx_head, uart_tx_count;
+    uint32_t uart_rx_overruns; /* bytes that arrived with the receive FIFO full (lost) */
 } hal_sim_bus_t;
 
 extern hal_sim_bus_t hal_sim_bus;
 
 /* Clear the bus to its power-on state (outputs forced off, no samples). */
 void hal_sim_reset(void);
+
+/* The line side of the serial port: a byte arriving (false, and counted as an overrun, when
+ * the receive FIFO is full) and the next byte leaving the transmit FIFO (false when empty). */
+bool hal_sim_uart_arrive(uint16_t byte);
+bool hal_sim_uart_depart(uint16_t *byte);
 
 /* Physical quantity to 12-bit ADC counts: round to nearest, clamp to 0..4095. Currents over a
  * sensor span of full_span_a (-span/2 .. +span/2, zero at mid scale; the reference board's is

@@ -5,6 +5,7 @@
  */
 #include "f28335_hal.h"
 #include "f28335_internal.h"
+#include "hal_serial.h"
 
 #define SCI_RXBUF_FE 0x8000u /* SCIFFFE: framing error of this FIFO entry */
 #define SCI_RXBUF_PE 0x4000u /* SCIFFPE: parity error of this FIFO entry */
@@ -101,3 +102,7 @@ bool f28335_sci_write(uint16_t byte)
 }
 
 uint16_t f28335_sci_errors(void) { return sci_error_count; }
+
+/* hal_serial.h on the board: SCI-A. */
+bool hal_serial_read(uint16_t *byte) { return f28335_sci_read(byte); }
+bool hal_serial_write(uint16_t byte) { return f28335_sci_write(byte); }

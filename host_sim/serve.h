@@ -1,0 +1,30 @@
+/*
+ * `sixphase-sim serve`: the virtual board. The firmware application runs as on the board -
+ * the drive's control ISR every period against the plant, and the background loop's serial
+ * link (firmware/app/link_service.c) - with the SCI modelled at its baud rate (10 bits per
+ * byte, 16-byte FIFOs) and its line connected to a pseudo-terminal, whose path is printed on
+ * stdout. sixphase-link talks to it as to a board (`sixphase-link -d PATH ...`).
+ *
+ * Nothing is commanded by the simulator: the drive powers up, calibrates its current offsets
+ * (about 0.1 s) and waits in READY for the host. The rotor starts at standstill; --load puts a
+ * constant load torque on it; a fault-<name> scenario injects that fault at --fault-time.
+ */
+#ifndef SIM_SERVE_H
+#define SIM_SERVE_H
+
+#include <stdbool.h>
+
+#include "sim.h"
+
+typedef struct {
+    double rate; /* simulated seconds per wall second (1: real time) */
+    bool fast;   /* as fast as the host can */
+    long baud;
+    bool quiet; /* no summary on stderr at the end */
+} sim_serve_options_t;
+
+/* Serves until the configured duration (default 10 h) or SIGINT / SIGTERM; returns the
+ * process exit status (0 after a clean stop, 1 when the set-up failed, with a message). */
+int sim_serve(const sim_config_t *c, const sim_serve_options_t *o);
+
+#endif /* SIM_SERVE_H */
