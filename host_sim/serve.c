@@ -121,7 +121,8 @@ static void serve_pace(double wall0, double t, double rate)
 }
 
 /* The run's configuration as the virtual board needs it: standstill, nothing commanded, the
- * load constant (0 unless given), served until the duration or a signal. */
+ * load constant (0 unless given), served until the duration or a signal; with --out, the
+ * per-period trace.csv of the whole session (no fine.csv). */
 static void serve_config(const sim_config_t *c, sim_config_t *s)
 {
     *s = *c;
@@ -129,7 +130,7 @@ static void serve_config(const sim_config_t *c, sim_config_t *s)
     s->speed_rpm = 0.0;
     s->load_nm = (c->load_nm > -1e9) ? c->load_nm : 0.0;
     s->duration_s = (c->duration_s > 0.0) ? c->duration_s : SIM_MAX_DURATION_S;
-    s->out_dir = NULL;
+    s->write_fine = false;
 }
 
 static int serve_loop(sim_run_t *rs, serve_line_t *line, const sim_serve_options_t *o,

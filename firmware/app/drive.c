@@ -1,6 +1,7 @@
 #include "drive.h"
 
 #include "ctl_pu.h"
+#include "drive_capture.h"
 #include "hal_board.h"
 #include "hal_cycles.h"
 #include "hal_pwm.h"
@@ -125,6 +126,7 @@ void drive_init(drive_t *d, const ctl_params_t *p)
         ctl_from_float((float)HAL_BOARD_CURRENT_A_PER_COUNT / CTL_BASE_CURRENT_A_F);
     d->vdc_pu_per_count = ctl_from_float((float)HAL_BOARD_VDC_V_PER_COUNT / CTL_BASE_VOLTAGE_V_F);
     d->isr_latency_cycles = 0u;
+    capture_init(&d->capture);
     prof_init((uint32_t)((float)hal_cycles_per_second() * p->sample_time_s + 0.5f),
               hal_cycles_per_second());
     hal_pwm_force_off();
@@ -272,6 +274,7 @@ void drive_control_isr(drive_t *d)
 {
     prof_begin(d->isr_latency_cycles);
     drive_control_step(d);
+    drive_capture_period(d);
     prof_end();
 }
 

@@ -30,6 +30,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 
+#include "capture.h"
 #include "ctl.h"
 #include "ctl_protect.h"
 #include "hal_adc.h"
@@ -105,6 +106,8 @@ typedef struct {
     /* period start to ISR entry, set by the platform before each drive_control_isr call
      * (cycles; 0 where it cannot be measured); goes into the profile (profile.h) */
     uint32_t isr_latency_cycles;
+    /* the capture buffer (oscilloscope): recorded by the ISR, armed and read over the link */
+    capture_t capture;
 } drive_t;
 
 /* Configure the controller; HAL peripherals must be initialised already. */

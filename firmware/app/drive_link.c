@@ -274,6 +274,90 @@ static uint16_t on_set_controller(drive_t *d, const sxl_frame_t *req, sxl_frame_
     return handle_set_controller(d, req);
 }
 
+static uint16_t on_capture_arm(drive_t *d, const sxl_frame_t *req, sxl_frame_t *reply,
+                               uint16_t rx_errors)
+{
+    const uint16_t *p = req->payload;
+    capture_setup_t s;
+    int16_t k;
+    (void)reply;
+    (void)rx_errors;
+    s.n_channels = (int16_t)p[SXL_CA_CHANNELS];
+    for (k = 0; k < CAPTURE_CHANNELS; k++) {
+        s.signal[k] = (int16_t)p[SXL_CA_SIGNAL + (uint16_t)k];
+    }
+    s.length = sxl_get_u16(&p[SXL_CA_LENGTH]);
+    s.decimation = sxl_get_u16(&p[SXL_CA_DECIMATION]);
+    s.trigger = (capture_trigger_t)p[SXL_CA_TRIGGER];
+    s.trigger_signal = (int16_t)p[SXL_CA_TRIG_SIGNAL];
+    s.trigger_level = sxl_get_i16(&p[SXL_CA_TRIG_LEVEL]);
+    s.pre_percent = p[SXL_CA_PRE];
+    switch (capture_arm(&d->capture, &s)) {
+    case CAPTURE_OK:
+        return SXL_OK;
+    case CAPTURE_ERR_NO_ROOM:
+        return SXL_ERR_NO_ROOM;
+    case CAPTURE_ERR_BUSY:
+        return SXL_ERR_REFUSED;
+    default:
+        return SXL_ERR_VALUE;
+    }
+}
+
+static uint16_t on_capture_status(drive_t *d, const sxl_frame_t *req, sxl_frame_t *reply,
+                                  uint16_t rx_errors)
+{
+    const capture_t *c = &d->capture;
+    uint16_t *out = &reply->payload[1];
+    int16_t k;
+    (void)req;
+    (void)rx_errors;
+    out[SXL_CS_STATE] = (uint16_t)c->state;
+    out[SXL_CS_CHANNELS] = (uint16_t)c->setup.n_channels;
+    for (k = 0; k < CAPTURE_CHANNELS; k++) {
+        out[SXL_CS_SIGNAL + (uint16_t)k] =
+            (k < c->setup.n_channels) ? (uint16_t)c->setup.signal[k] : 0xFFu;
+    }
+    sxl_put_u16(&out[SXL_CS_LENGTH], c->setup.length);
+    sxl_put_u16(&out[SXL_CS_DECIMATION], c->setup.decimation);
+    sxl_put_u16(&out[SXL_CS_COUNT], c->count);
+    sxl_put_u16(&out[SXL_CS_TRIGGER], c->trigger_index);
+    sxl_put_u32(&out[SXL_CS_PERIOD], c->first_period);
+    sxl_put_u32(&out[SXL_CS_TS_NS], (uint32_t)(d->params_bg.sample_time_s * 1.0e9f + 0.5f));
+    reply->len = (uint16_t)(1u + SXL_CS_SIZE);
+    return SXL_OK;
+}
+
+static uint16_t on_capture_read(drive_t *d, const sxl_frame_t *req, sxl_frame_t *reply,
+                                uint16_t rx_errors)
+{
+    const int16_t ch = (int16_t)req->payload[0];
+    const uint16_t first = sxl_get_u16(&req->payload[1]);
+    uint16_t n = 0u;
+    (void)rx_errors;
+    if (ch >= d->capture.setup.n_channels) {
+        return SXL_ERR_VALUE;
+    }
+    while (n < SXL_CR_MAX && (uint32_t)first + n < d->capture.count) {
+        sxl_put_u16(&reply->payload[1 + SXL_CR_SAMPLES + 2u * n],
+                    (uint16_t)capture_read(&d->capture, ch, (uint16_t)(first + n)));
+        n++;
+    }
+    reply->payload[1 + SXL_CR_COUNT] = n;
+    reply->len = (uint16_t)(1u + SXL_CR_SAMPLES + 2u * n);
+    return SXL_OK;
+}
+
+static uint16_t on_capture_stop(drive_t *d, const sxl_frame_t *req, sxl_frame_t *reply,
+                                uint16_t rx_errors)
+{
+    (void)req;
+    (void)reply;
+    (void)rx_errors;
+    capture_stop(&d->capture);
+    return SXL_OK;
+}
+
 #define LINK_ANY_LENGTH 0xFFFFu /* the handler checks the length */
 
 static const struct {
@@ -290,6 +374,10 @@ static const struct {
     {SXL_CMD_STOP, 0u, on_stop},
     {SXL_CMD_CLEAR_FAULT, 0u, on_clear_fault},
     {SXL_CMD_SET_CONTROLLER, LINK_ANY_LENGTH, on_set_controller},
+    {SXL_CMD_CAPTURE_ARM, SXL_CA_SIZE, on_capture_arm},
+    {SXL_CMD_CAPTURE_STATUS, 0u, on_capture_status},
+    {SXL_CMD_CAPTURE_READ, 3u, on_capture_read},
+    {SXL_CMD_CAPTURE_STOP, 0u, on_capture_stop},
 };
 
 void drive_link_handle(drive_t *d, const sxl_frame_t *req, sxl_frame_t *reply, uint16_t rx_errors)

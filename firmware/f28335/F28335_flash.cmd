@@ -57,6 +57,8 @@ SECTIONS
                    *(ramfuncs)
                    *fw_isr.*obj(.text)
                    *drive.*obj(.text)
+                   *drive_capture.*obj(.text)
+                   *capture.*obj(.text)
                    *profile.*obj(.text)
                    *ctl.*obj(.text)
                    *ctl_q.*obj(.text)
@@ -86,6 +88,7 @@ SECTIONS
                    *ctl_q.*obj(.econst)
                    *ctl_vsd.*obj(.econst)
                    *drive.*obj(.econst)
+                   *drive_capture.*obj(.econst)
                    *f28335_adc.*obj(.econst)
                 }
                 LOAD = FLASHA,

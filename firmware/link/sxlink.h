@@ -22,8 +22,9 @@
 #define SXL_MAX_PAYLOAD 48u
 #define SXL_MAX_FRAME (SXL_MAX_PAYLOAD + 5u)
 /* Protocol version. 2: fault fields in the status, SXL_CMD_GET_FAULT_RECORD; 3: why the last
- * run or clear was refused, in the status, and the result SXL_ERR_BUSY. */
-#define SXL_VERSION 3u
+ * run or clear was refused, in the status, and the result SXL_ERR_BUSY; 4: the capture buffer
+ * (SXL_CMD_CAPTURE_*, SXL_ERR_NO_ROOM). */
+#define SXL_VERSION 4u
 
 /* Commands (host -> drive). A reply carries CMD | SXL_REPLY and starts with
  * a result byte. */
@@ -37,6 +38,10 @@
 #define SXL_CMD_STOP 0x13u
 #define SXL_CMD_CLEAR_FAULT 0x14u
 #define SXL_CMD_SET_CONTROLLER 0x15u /* uint8 controller, uint32 lambda in 0.001 N*m/Wb */
+#define SXL_CMD_CAPTURE_ARM 0x20u    /* SXL_CA_* setup -> result only */
+#define SXL_CMD_CAPTURE_STATUS 0x21u /* none -> SXL_CS_* */
+#define SXL_CMD_CAPTURE_READ 0x22u   /* uint8 channel, uint16 first sample -> SXL_CR_* */
+#define SXL_CMD_CAPTURE_STOP 0x23u   /* none -> result only; the record is discarded */
 #define SXL_REPLY 0x80u
 
 /* Result byte of every reply. */
@@ -46,6 +51,36 @@
 #define SXL_ERR_UNKNOWN 3u /* unknown command */
 #define SXL_ERR_REFUSED 4u /* not allowed in the present state */
 #define SXL_ERR_BUSY 5u    /* the previous parameter set is still being applied: retry */
+#define SXL_ERR_NO_ROOM 6u /* capture: length x channels above the buffer */
+
+/* Capture setup (SXL_CMD_CAPTURE_ARM payload). Signals: firmware/link/capture_signals.h;
+ * unused channels 0xFF. Results: SXL_ERR_VALUE for an unknown signal, no channel, decimation
+ * or length 0, pre-trigger above 100 % or an unknown trigger; SXL_ERR_NO_ROOM when length x
+ * channels exceeds the buffer; SXL_ERR_REFUSED while a capture is armed or triggered. */
+#define SXL_CA_CHANNELS 0u     /* uint8 1..4 */
+#define SXL_CA_SIGNAL 1u       /* uint8 x 4 */
+#define SXL_CA_LENGTH 5u       /* uint16 samples per channel */
+#define SXL_CA_DECIMATION 7u   /* uint16 one sample every N control periods (N >= 1) */
+#define SXL_CA_TRIGGER 9u      /* uint8 0 immediate, 1 rising, 2 falling, 3 fault */
+#define SXL_CA_TRIG_SIGNAL 10u /* uint8 */
+#define SXL_CA_TRIG_LEVEL 11u  /* int16 in the trigger signal's sample units */
+#define SXL_CA_PRE 13u         /* uint8 pre-trigger share, % */
+#define SXL_CA_SIZE 14u
+/* Capture status (reply to SXL_CMD_CAPTURE_STATUS, after the result byte). */
+#define SXL_CS_STATE 0u      /* uint8 0 idle, 1 armed, 2 triggered, 3 done */
+#define SXL_CS_CHANNELS 1u   /* uint8 */
+#define SXL_CS_SIGNAL 2u     /* uint8 x 4 */
+#define SXL_CS_LENGTH 6u     /* uint16 */
+#define SXL_CS_DECIMATION 8u /* uint16 */
+#define SXL_CS_COUNT 10u     /* uint16 valid samples per channel */
+#define SXL_CS_TRIGGER 12u   /* uint16 the trigger sample's index in the record */
+#define SXL_CS_PERIOD 14u    /* uint32 control-period count of the first sample */
+#define SXL_CS_TS_NS 18u     /* uint32 control period, ns */
+#define SXL_CS_SIZE 22u
+/* Capture read (reply to SXL_CMD_CAPTURE_READ, after the result byte). */
+#define SXL_CR_COUNT 0u   /* uint8 samples that follow (0 past the record) */
+#define SXL_CR_SAMPLES 1u /* int16 x count */
+#define SXL_CR_MAX 20u    /* samples per read */
 
 /* Controller ids of SXL_CMD_SET_CONTROLLER (same values as ctl_controller_t). */
 #define SXL_CONTROLLER_DDC 0u

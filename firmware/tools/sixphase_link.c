@@ -27,26 +27,28 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "link_tool.h"
 #include "sxlink.h"
-
-#define EXIT_USAGE 2
-#define EXIT_IO 1
-
-typedef struct {
-    const char *device;
-    long baud;
-    long timeout_ms;
-    int print_only;
-} options_t;
 
 /* Bound on the records "faults" reads, so a misbehaving device cannot loop it forever
  * (the drive's log holds 8). */
 #define FAULTS_MAX_RECORDS 256
 static const char *const controller_names[] = {"ddc", "mptc49", "mptc13"};
-static const char *const result_names[] = {"ok",      "bad length", "bad value", "unknown command",
-                                           "refused", "busy, retry"};
+static const char *const result_names[] = {"ok",
+                                           "bad length",
+                                           "bad value",
+                                           "unknown command",
+                                           "refused",
+                                           "busy, retry",
+                                           "no room in the capture buffer"};
 
-static int fail(int code, const char *fmt, ...)
+const char *result_name(uint16_t result)
+{
+    return (result < sizeof result_names / sizeof result_names[0]) ? result_names[result]
+                                                                   : "unknown result";
+}
+
+int fail(int code, const char *fmt, ...)
 {
     va_list ap;
     fputs("sixphase-link: error: ", stderr);
@@ -63,11 +65,11 @@ static int usage(const char *why)
                 "%s (usage: sixphase-link [-d DEVICE] [-b BAUD] [-t MS] [-n] "
                 "ping|status|profile|faults|run|stop|clear|speed RPM|torque NM|controller "
                 "ddc|mptc49|mptc13 "
-                "LAMBDA|decode HEX...)",
+                "LAMBDA|capture SIGNALS [...]|decode HEX...)",
                 why);
 }
 
-static int parse_long(const char *s, long lo, long hi, long *out)
+int parse_long(const char *s, long lo, long hi, long *out)
 {
     char *end = NULL;
     long v;
@@ -118,7 +120,7 @@ static speed_t baud_constant(long baud)
     }
 }
 
-static int open_port(const options_t *o, int *fd_out)
+int open_port(const options_t *o, int *fd_out)
 {
     struct termios tio;
     const speed_t sp = baud_constant(o->baud);
@@ -385,8 +387,8 @@ static void print_frame(const uint16_t *frame, uint16_t n)
 #define BUSY_RETRY_US 2000
 
 /* Send one request and wait for its reply; 0 on success. */
-static int exchange(int fd, const options_t *o, uint16_t cmd, const uint16_t *payload, uint16_t len,
-                    sxl_frame_t *reply)
+int exchange(int fd, const options_t *o, uint16_t cmd, const uint16_t *payload, uint16_t len,
+             sxl_frame_t *reply)
 {
     uint16_t frame[SXL_MAX_FRAME];
     const uint16_t flen = sxl_encode(cmd, payload, len, frame, (uint16_t)SXL_MAX_FRAME);
@@ -566,9 +568,13 @@ static int parse_options(int argc, char **argv, options_t *o, int *next)
             continue;
         }
         if (strcmp(opt, "-h") == 0 || strcmp(opt, "--help") == 0) {
-            printf("usage: sixphase-link [-d DEVICE] [-b BAUD] [-t MS] [-n] COMMAND [ARGS]\n"
-                   "commands: ping status profile faults run stop clear speed RPM torque NM\n"
-                   "          controller ddc|mptc49|mptc13 LAMBDA decode HEXBYTE...\n");
+            printf(
+                "usage: sixphase-link [-d DEVICE] [-b BAUD] [-t MS] [-n] COMMAND [ARGS]\n"
+                "commands: ping status profile faults run stop clear speed RPM torque NM\n"
+                "          controller ddc|mptc49|mptc13 LAMBDA decode HEXBYTE...\n"
+                "          capture SIG[,SIG...] [--length N] [--decimate N] [--pre PCT]\n"
+                "                  [--trigger immediate|fault|rising:SIG:LEVEL|falling:SIG:LEVEL]\n"
+                "                  [--wait S] [--out FILE.csv] [--plot FILE.png]\n");
             return 0;
         }
         if (i + 1 >= argc) {
@@ -665,6 +671,9 @@ int main(int argc, char **argv)
     }
     if (strcmp(argv[i], "decode") == 0) {
         return cmd_decode(argc - i - 1, &argv[i + 1]);
+    }
+    if (strcmp(argv[i], "capture") == 0) {
+        return cmd_capture(&o, argc - i - 1, &argv[i + 1]);
     }
     if (strcmp(argv[i], "faults") == 0 || strcmp(argv[i], "profile") == 0) {
         const bool faults = strcmp(argv[i], "faults") == 0;

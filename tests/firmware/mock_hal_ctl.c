@@ -178,3 +178,9 @@ const ctl_diag_t *ctl_diag(const ctl_t *c)
     (void)c;
     return &mock_diag;
 }
+
+/* The capture's flux signal: |psi_s| of the diagnostics (the real core takes a root). */
+ctl_q ctl_diag_flux_est(const ctl_diag_t *d)
+{
+    return ctl_add(ctl_abs(d->psi_d_est), ctl_abs(d->psi_q_est));
+}

@@ -11,6 +11,7 @@
 #define _DEFAULT_SOURCE /* cfmakeraw */
 
 #include <fcntl.h>
+#include <math.h>
 #include <poll.h>
 #include <setjmp.h>
 #include <signal.h>
@@ -27,10 +28,14 @@
 
 #include <cmocka.h>
 
+#include "capture_signals.h"
 #include "drive.h"
 #include "sxlink.h"
 
 static pid_t server;
+static const char *server_scenario = "fault-encoder-jump";
+static const char *server_fault_time = "1.5";
+static char trace_dir[] = "/tmp/sixphase-serve-XXXXXX";
 static int port = -1;
 static char port_path[160];
 static sxl_decoder_t dec;
@@ -114,12 +119,14 @@ static int start_server(void **state)
     ssize_t n = 0;
     struct termios t;
     (void)state;
+    assert_non_null(mkdtemp(trace_dir));
     assert_int_equal(pipe(out), 0);
     server = fork();
     if (server == 0) {
         (void)dup2(out[1], 1);
-        execl(SIXPHASE_SIM_EXE, SIXPHASE_SIM_EXE, "serve", "--scenario", "fault-encoder-jump",
-              "--fault-time", "1.5", "--duration", "60", "--quiet", (char *)NULL);
+        execl(SIXPHASE_SIM_EXE, SIXPHASE_SIM_EXE, "serve", "--scenario", server_scenario,
+              "--fault-time", server_fault_time, "--duration", "60", "--out", trace_dir, "--quiet",
+              (char *)NULL);
         _exit(127);
     }
     (void)close(out[1]);
@@ -255,6 +262,175 @@ static void test_host_tool_times_out(void **state)
     assert_true(WIFEXITED(rc) && WEXITSTATUS(rc) != 0);
 }
 
+/* ---- the capture buffer over the link ---- */
+
+static uint32_t cap_first_period;
+static int cap_count;
+static int16_t cap_samples[4][512];
+
+/* Arms a capture, waits until it is done (within 3 s) and reads every channel. */
+static void capture(const uint16_t *signals, int n, uint16_t length, uint16_t trigger, uint16_t pre,
+                    sxl_frame_t *st)
+{
+    uint16_t setup[SXL_CA_SIZE] = {0};
+    const double deadline = now_s() + 3.0;
+    int k;
+    setup[SXL_CA_CHANNELS] = (uint16_t)n;
+    for (k = 0; k < 4; k++) {
+        setup[SXL_CA_SIGNAL + (unsigned)k] = (k < n) ? signals[k] : 0xFFu;
+    }
+    sxl_put_u16(&setup[SXL_CA_LENGTH], length);
+    sxl_put_u16(&setup[SXL_CA_DECIMATION], 1u);
+    setup[SXL_CA_TRIGGER] = trigger;
+    setup[SXL_CA_PRE] = pre;
+    assert_int_equal(request(SXL_CMD_CAPTURE_ARM, setup, SXL_CA_SIZE, st), 0);
+    do {
+        assert_int_equal(request(SXL_CMD_CAPTURE_STATUS, NULL, 0, st), 0);
+        sleep_s(0.02);
+    } while (st->payload[1 + SXL_CS_STATE] != 3u && now_s() < deadline);
+    assert_int_equal(st->payload[1 + SXL_CS_STATE], 3u);
+    cap_count = (int)sxl_get_u16(&st->payload[1 + SXL_CS_COUNT]);
+    cap_first_period = sxl_get_u32(&st->payload[1 + SXL_CS_PERIOD]);
+    for (k = 0; k < n; k++) {
+        int j = 0;
+        while (j < cap_count) {
+            uint16_t q[3] = {(uint16_t)k, 0u, 0u};
+            sxl_frame_t r;
+            int m, i;
+            sxl_put_u16(&q[1], (uint16_t)j);
+            assert_int_equal(request(SXL_CMD_CAPTURE_READ, q, 3, &r), 0);
+            m = (int)r.payload[1 + SXL_CR_COUNT];
+            assert_true(m > 0);
+            for (i = 0; i < m; i++) {
+                cap_samples[k][j++] =
+                    sxl_get_i16(&r.payload[1u + SXL_CR_SAMPLES + 2u * (unsigned)i]);
+            }
+        }
+    }
+}
+
+/* Torque and flux references, 300 periods while running (compared with the trace later). */
+static void test_capture_while_running(void **state)
+{
+    static const uint16_t sig[2] = {CAPTURE_TORQUE_REF, CAPTURE_FLUX_REF};
+    uint16_t bad[SXL_CA_SIZE] = {0};
+    sxl_frame_t st;
+    (void)state;
+    capture(sig, 2, 300u, 0u, 0u, &st);
+    assert_int_equal(cap_count, 300);
+    bad[SXL_CA_CHANNELS] = 2u;
+    bad[SXL_CA_SIGNAL] = 200u; /* unknown signal */
+    assert_int_equal(request(SXL_CMD_CAPTURE_ARM, bad, SXL_CA_SIZE, &st), SXL_ERR_VALUE);
+    bad[SXL_CA_SIGNAL] = CAPTURE_I_A;
+    bad[SXL_CA_SIGNAL + 1] = CAPTURE_I_B;
+    sxl_put_u16(&bad[SXL_CA_LENGTH], 2000u); /* 2 x 2000 > 2048 */
+    sxl_put_u16(&bad[SXL_CA_DECIMATION], 1u);
+    assert_int_equal(request(SXL_CMD_CAPTURE_ARM, bad, SXL_CA_SIZE, &st), SXL_ERR_NO_ROOM);
+    sxl_put_u16(&bad[SXL_CA_LENGTH], 100u);
+    sxl_put_u16(&bad[SXL_CA_DECIMATION], 0u);
+    assert_int_equal(request(SXL_CMD_CAPTURE_ARM, bad, SXL_CA_SIZE, &st), SXL_ERR_VALUE);
+    sxl_put_u16(&bad[SXL_CA_DECIMATION], 1u);
+    bad[SXL_CA_TRIGGER] = 2u; /* falling through 0 by i_a: armed, then armed again */
+    assert_int_equal(request(SXL_CMD_CAPTURE_ARM, bad, SXL_CA_SIZE, &st), 0);
+    assert_int_equal(request(SXL_CMD_CAPTURE_ARM, bad, SXL_CA_SIZE, &st), SXL_ERR_REFUSED);
+    assert_int_equal(request(SXL_CMD_CAPTURE_STOP, NULL, 0, &st), 0);
+}
+
+/* After the server stopped (its trace.csv complete): the captured references equal the
+ * simulator's trace sample for sample, within one step of the 16-bit scaling. Trace row k is
+ * control period k, whose ISR is the drive's period k + 1. */
+static void test_capture_matches_the_trace(void **state)
+{
+    char path[200], line[1024];
+    FILE *f;
+    long row = -1;
+    int matched = 0;
+    const double step_t = 17.188733853924696 / 8192.0, step_f = 0.57295779513082321 / 16384.0;
+    (void)state;
+    (void)snprintf(path, sizeof path, "%s/trace.csv", trace_dir);
+    f = fopen(path, "r");
+    assert_non_null(f);
+    while (fgets(line, sizeof line, f)) {
+        double v[20];
+        int j;
+        const long period = row + 1; /* the drive's count of this row's ISR */
+        row++;
+        if (row == 0 || period < (long)cap_first_period ||
+            period >= (long)cap_first_period + cap_count) {
+            continue;
+        }
+        j = (int)(period - (long)cap_first_period);
+        assert_int_equal(sscanf(line,
+                                "%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,"
+                                "%lf,%lf,%lf,%lf",
+                                &v[0], &v[1], &v[2], &v[3], &v[4], &v[5], &v[6], &v[7], &v[8],
+                                &v[9], &v[10], &v[11], &v[12], &v[13], &v[14], &v[15], &v[16],
+                                &v[17]),
+                         18);
+        assert_true(fabs(cap_samples[0][j] * step_t - v[16]) <= step_t + 1e-5);
+        assert_true(fabs(cap_samples[1][j] * step_f - v[17]) <= step_f + 1e-5);
+        matched++;
+    }
+    fclose(f);
+    (void)remove(path);
+    (void)rmdir(trace_dir);
+    assert_int_equal(matched, cap_count);
+}
+
+/* Post-mortem: a gate of leg A stuck on at 1.0 s; the capture armed on the fault trigger
+ * before it holds the currents rising to the 15 A trip, the trip at 90 % of the record. */
+static void test_post_mortem_over_current(void **state)
+{
+    static const uint16_t sig[4] = {CAPTURE_I_A, CAPTURE_I_B, CAPTURE_I_C, CAPTURE_I_D_PHASE};
+    const double amp = 10.0 / 4096.0; /* A per sample step: 8 pu / 2^15 */
+    uint16_t p[4];
+    sxl_frame_t r, st;
+    double early = 0.0, at_trip = 0.0;
+    int j, k, trig;
+    (void)state;
+    assert_true(wait_for(is_ready, 2.0, &r));
+    sxl_put_u32(p, 15000u);
+    assert_int_equal(request(SXL_CMD_SET_SPEED, p, 4, &r), 0);
+    assert_int_equal(request(SXL_CMD_RUN, NULL, 0, &r), 0);
+    capture(sig, 4, 400u, 3u, 90u, &st);
+    trig = (int)sxl_get_u16(&st.payload[1 + SXL_CS_TRIGGER]);
+    assert_int_equal(trig, 360);
+    for (j = 0; j < cap_count; j++) {
+        for (k = 0; k < 4; k++) {
+            const double a = fabs(cap_samples[k][j] * amp);
+            if (j < 100) {
+                early = fmax(early, a);
+            } else if (j <= trig) {
+                at_trip = fmax(at_trip, a);
+            }
+        }
+    }
+    print_message("post-mortem: largest phase current %.1f A early, %.1f A at the trip\n", early,
+                  at_trip);
+    assert_true(at_trip >= 15.0);
+    assert_true(early < at_trip);
+    status(&r);
+    assert_int_equal(st_u8(&r, SXL_ST_FAULT), DRIVE_FAULT_OVERCURRENT);
+}
+
+static int start_over_current_server(void **state)
+{
+    server_scenario = "fault-overcurrent";
+    server_fault_time = "1.0";
+    (void)snprintf(trace_dir, sizeof trace_dir, "/tmp/sixphase-serve-XXXXXX");
+    return start_server(state);
+}
+
+static int stop_and_clean(void **state)
+{
+    char path[200];
+    (void)stop_server(state);
+    (void)snprintf(path, sizeof path, "%s/trace.csv", trace_dir);
+    (void)remove(path);
+    (void)rmdir(trace_dir);
+    return 0;
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -262,8 +438,14 @@ int main(void)
         cmocka_unit_test(test_run_reaches_speed),
         cmocka_unit_test(test_controller_and_lambda_change_while_running),
         cmocka_unit_test(test_garbage_is_counted_and_skipped),
+        cmocka_unit_test(test_capture_while_running),
         cmocka_unit_test(test_fault_records_and_restart),
         cmocka_unit_test(test_host_tool_times_out),
     };
-    return cmocka_run_group_tests(tests, start_server, stop_server);
+    const struct CMUnitTest after[] = {cmocka_unit_test(test_capture_matches_the_trace)};
+    const struct CMUnitTest post_mortem[] = {cmocka_unit_test(test_post_mortem_over_current)};
+    int failed = cmocka_run_group_tests(tests, start_server, stop_server);
+    failed += cmocka_run_group_tests(after, NULL, NULL);
+    failed += cmocka_run_group_tests(post_mortem, start_over_current_server, stop_and_clean);
+    return failed;
 }

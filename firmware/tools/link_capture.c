@@ -1,0 +1,303 @@
+/*
+ * sixphase-link capture: arm the drive's capture buffer, wait for the record, read it and
+ * write it as CSV (time in s from the trigger, each channel in its SI unit) and, with
+ * --plot, as a PNG through matplotlib (firmware/tools/plot_capture.py).
+ *
+ *   capture SIG[,SIG...] [--length N] [--decimate N] [--pre PCT] [--wait S]
+ *           [--trigger immediate|fault|rising:SIG:LEVEL|falling:SIG:LEVEL]
+ *           [--out FILE.csv] [--plot FILE.png]
+ *
+ * Signals and their scaling: firmware/link/capture_signals.h. LEVEL is in the trigger
+ * signal's SI unit. Defaults: 500 samples, every period, immediate trigger, 10 % before it,
+ * 10 s wait, CSV on stdout.
+ */
+#define _DEFAULT_SOURCE /* usleep */
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "capture_signals.h"
+#include "link_tool.h"
+
+#ifndef SIXPHASE_PLOT_CAPTURE
+#define SIXPHASE_PLOT_CAPTURE ""
+#endif
+#ifndef SIXPHASE_PLOT_PYTHON
+#define SIXPHASE_PLOT_PYTHON ""
+#endif
+
+#define CAP_NAME(id, name, unit, base, exponent) name,
+#define CAP_UNIT(id, name, unit, base, exponent) unit,
+#define CAP_SCALE(id, name, unit, base, exponent) ((base) / (double)(1L << (15 - (exponent)))),
+static const char *const cap_names[] = {CAPTURE_SIGNAL_LIST(CAP_NAME)};
+static const char *const cap_units[] = {CAPTURE_SIGNAL_LIST(CAP_UNIT)};
+static const double cap_scale[] = {CAPTURE_SIGNAL_LIST(CAP_SCALE)}; /* SI per sample step */
+#undef CAP_NAME
+#undef CAP_UNIT
+#undef CAP_SCALE
+
+#define CAP_MAX_CHANNELS 4
+#define CAP_MAX_SAMPLES 2048
+
+typedef struct {
+    uint16_t setup[SXL_CA_SIZE];
+    int n_channels;
+    int signal[CAP_MAX_CHANNELS];
+    double wait_s;
+    const char *out, *plot;
+} capture_request_t;
+
+static int cap_signal(const char *name, size_t len)
+{
+    int k;
+    for (k = 0; k < CAPTURE_SIGNAL_COUNT; k++) {
+        if (strlen(cap_names[k]) == len && strncmp(cap_names[k], name, len) == 0) {
+            return k;
+        }
+    }
+    return -1;
+}
+
+static int cap_parse_signals(const char *list, capture_request_t *q)
+{
+    const char *p = list;
+    while (*p != '\0') {
+        const char *end = strchr(p, ',');
+        const size_t len = end ? (size_t)(end - p) : strlen(p);
+        const int s = cap_signal(p, len);
+        if (s < 0) {
+            return fail(EXIT_USAGE, "unknown signal '%.*s' (capture_signals.h lists them)",
+                        (int)len, p);
+        }
+        if (q->n_channels == CAP_MAX_CHANNELS) {
+            return fail(EXIT_USAGE, "at most %d signals", CAP_MAX_CHANNELS);
+        }
+        q->signal[q->n_channels++] = s;
+        p = end ? end + 1 : p + len;
+    }
+    return (q->n_channels == 0) ? fail(EXIT_USAGE, "no signal to capture") : 0;
+}
+
+/* immediate | fault | rising:SIG:LEVEL | falling:SIG:LEVEL into the setup. */
+static int cap_parse_trigger(const char *t, uint16_t *setup)
+{
+    const char *sig = strchr(t, ':');
+    const char *lvl = sig ? strchr(sig + 1, ':') : NULL;
+    int s;
+    char *end = NULL;
+    double level;
+    if (strcmp(t, "immediate") == 0 || strcmp(t, "fault") == 0) {
+        setup[SXL_CA_TRIGGER] = (t[0] == 'i') ? 0u : 3u;
+        return 0;
+    }
+    if (!sig || !lvl || (strncmp(t, "rising:", 7) != 0 && strncmp(t, "falling:", 8) != 0)) {
+        return fail(EXIT_USAGE,
+                    "bad trigger '%s' (immediate, fault, rising:SIG:LEVEL, "
+                    "falling:SIG:LEVEL)",
+                    t);
+    }
+    s = cap_signal(sig + 1, (size_t)(lvl - sig - 1));
+    level = strtod(lvl + 1, &end);
+    if (s < 0 || *end != '\0' || end == lvl + 1 || !isfinite(level) ||
+        fabs(level / cap_scale[s]) > 32767.0) {
+        return fail(EXIT_USAGE, "bad trigger signal or level in '%s'", t);
+    }
+    setup[SXL_CA_TRIGGER] = (t[0] == 'r') ? 1u : 2u;
+    setup[SXL_CA_TRIG_SIGNAL] = (uint16_t)s;
+    sxl_put_u16(&setup[SXL_CA_TRIG_LEVEL], (uint16_t)(int16_t)lround(level / cap_scale[s]));
+    return 0;
+}
+
+static int cap_option(capture_request_t *q, const char *opt, const char *v)
+{
+    long n;
+    if (strcmp(opt, "--length") == 0 || strcmp(opt, "--decimate") == 0) {
+        if (!parse_long(v, 1, 65535, &n)) {
+            return fail(EXIT_USAGE, "bad value for %s: '%s'", opt, v);
+        }
+        sxl_put_u16(&q->setup[opt[2] == 'l' ? SXL_CA_LENGTH : SXL_CA_DECIMATION], (uint16_t)n);
+    } else if (strcmp(opt, "--pre") == 0) {
+        if (!parse_long(v, 0, 100, &n)) {
+            return fail(EXIT_USAGE, "bad value for --pre: '%s' (0..100)", v);
+        }
+        q->setup[SXL_CA_PRE] = (uint16_t)n;
+    } else if (strcmp(opt, "--wait") == 0) {
+        if (!parse_long(v, 1, 3600, &n)) {
+            return fail(EXIT_USAGE, "bad value for --wait: '%s' (1..3600 s)", v);
+        }
+        q->wait_s = (double)n;
+    } else if (strcmp(opt, "--trigger") == 0) {
+        return cap_parse_trigger(v, q->setup);
+    } else if (strcmp(opt, "--out") == 0 || strcmp(opt, "--plot") == 0) {
+        *(opt[2] == 'o' ? &q->out : &q->plot) = v;
+    } else {
+        return fail(EXIT_USAGE, "unknown capture option '%s'", opt);
+    }
+    return 0;
+}
+
+static int cap_parse(int argc, char **argv, capture_request_t *q)
+{
+    int i, k, rc;
+    memset(q, 0, sizeof *q);
+    q->wait_s = 10.0;
+    sxl_put_u16(&q->setup[SXL_CA_LENGTH], 500u);
+    sxl_put_u16(&q->setup[SXL_CA_DECIMATION], 1u);
+    q->setup[SXL_CA_PRE] = 10u;
+    if (argc < 1) {
+        return fail(EXIT_USAGE, "capture needs signals (capture SIG[,SIG...] [options])");
+    }
+    if ((rc = cap_parse_signals(argv[0], q)) != 0) {
+        return rc;
+    }
+    for (i = 1; i < argc; i += 2) {
+        if (i + 1 >= argc) {
+            return fail(EXIT_USAGE, "option %s needs a value", argv[i]);
+        }
+        if ((rc = cap_option(q, argv[i], argv[i + 1])) != 0) {
+            return rc;
+        }
+    }
+    q->setup[SXL_CA_CHANNELS] = (uint16_t)q->n_channels;
+    for (k = 0; k < CAP_MAX_CHANNELS; k++) {
+        q->setup[SXL_CA_SIGNAL + (uint16_t)k] =
+            (k < q->n_channels) ? (uint16_t)q->signal[k] : 0xFFu;
+    }
+    if ((long)sxl_get_u16(&q->setup[SXL_CA_LENGTH]) * q->n_channels > CAP_MAX_SAMPLES) {
+        return fail(EXIT_USAGE, "buffer too small: length x signals above %d", CAP_MAX_SAMPLES);
+    }
+    return 0;
+}
+
+/* Arm, then poll the status until the record is done (or the wait runs out). */
+static int cap_arm_and_wait(int fd, const options_t *o, const capture_request_t *q, sxl_frame_t *st)
+{
+    double waited = 0.0;
+    int rc = exchange(fd, o, SXL_CMD_CAPTURE_ARM, q->setup, SXL_CA_SIZE, st);
+    if (rc == 0 && st->payload[0] != SXL_OK) {
+        return fail(EXIT_IO, "drive refused the capture: %s", result_name(st->payload[0]));
+    }
+    while (rc == 0) {
+        rc = exchange(fd, o, SXL_CMD_CAPTURE_STATUS, NULL, 0, st);
+        if (rc == 0 && st->payload[1 + SXL_CS_STATE] == 3u) {
+            return 0;
+        }
+        if (waited >= q->wait_s) {
+            return fail(EXIT_IO, "no complete record after %.0f s (trigger not met?)", waited);
+        }
+        usleep(50000);
+        waited += 0.05;
+    }
+    return rc;
+}
+
+static int cap_read(int fd, const options_t *o, int ch, int count, int16_t *out)
+{
+    int j = 0;
+    while (j < count) {
+        uint16_t req[3];
+        sxl_frame_t r;
+        int n, k, rc;
+        req[0] = (uint16_t)ch;
+        sxl_put_u16(&req[1], (uint16_t)j);
+        rc = exchange(fd, o, SXL_CMD_CAPTURE_READ, req, 3, &r);
+        if (rc != 0) {
+            return rc;
+        }
+        n = (int)r.payload[1 + SXL_CR_COUNT];
+        if (r.payload[0] != SXL_OK || n == 0) {
+            return fail(EXIT_IO, "capture read failed at sample %d", j);
+        }
+        for (k = 0; k < n && j < count; k++) {
+            out[j++] = sxl_get_i16(&r.payload[1u + SXL_CR_SAMPLES + 2u * (unsigned)k]);
+        }
+    }
+    return 0;
+}
+
+static int cap_write_csv(FILE *f, const capture_request_t *q, const sxl_frame_t *st,
+                         int16_t samples[][CAP_MAX_SAMPLES])
+{
+    const int count = (int)sxl_get_u16(&st->payload[1 + SXL_CS_COUNT]);
+    const int trig = (int)sxl_get_u16(&st->payload[1 + SXL_CS_TRIGGER]);
+    const double dt = 1e-9 * (double)sxl_get_u32(&st->payload[1 + SXL_CS_TS_NS]) *
+                      (double)sxl_get_u16(&st->payload[1 + SXL_CS_DECIMATION]);
+    int j, k;
+    fprintf(f, "t_s");
+    for (k = 0; k < q->n_channels; k++) {
+        fprintf(f, ",%s_%s", cap_names[q->signal[k]], cap_units[q->signal[k]]);
+    }
+    fprintf(f, "\n");
+    for (j = 0; j < count; j++) {
+        fprintf(f, "%.7f", (double)(j - trig) * dt);
+        for (k = 0; k < q->n_channels; k++) {
+            fprintf(f, ",%.6g", (double)samples[k][j] * cap_scale[q->signal[k]]);
+        }
+        fprintf(f, "\n");
+    }
+    return ferror(f) ? fail(EXIT_IO, "cannot write the CSV") : 0;
+}
+
+static int cap_plot(const char *csv, const char *png)
+{
+    pid_t pid;
+    int status = 0;
+    if (SIXPHASE_PLOT_CAPTURE[0] == '\0' || SIXPHASE_PLOT_PYTHON[0] == '\0') {
+        return fail(EXIT_IO, "no Python with matplotlib was found at configure time: no plot");
+    }
+    pid = fork();
+    if (pid == 0) {
+        execl(SIXPHASE_PLOT_PYTHON, SIXPHASE_PLOT_PYTHON, SIXPHASE_PLOT_CAPTURE, csv, png,
+              (char *)NULL);
+        _exit(127);
+    }
+    if (pid < 0 || waitpid(pid, &status, 0) < 0 || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+        return fail(EXIT_IO, "the plot failed (python3 with matplotlib needed)");
+    }
+    return 0;
+}
+
+static int cap_output(const capture_request_t *q, const sxl_frame_t *st,
+                      int16_t samples[][CAP_MAX_SAMPLES])
+{
+    FILE *f = q->out ? fopen(q->out, "w") : stdout;
+    int rc;
+    if (!f) {
+        return fail(EXIT_IO, "cannot write %s", q->out);
+    }
+    rc = cap_write_csv(f, q, st, samples);
+    if (q->out && fclose(f) != 0 && rc == 0) {
+        rc = fail(EXIT_IO, "cannot write %s", q->out);
+    }
+    if (rc == 0 && q->plot) {
+        rc = q->out ? cap_plot(q->out, q->plot) : fail(EXIT_USAGE, "--plot needs --out");
+    }
+    return rc;
+}
+
+int cmd_capture(const options_t *o, int argc, char **argv)
+{
+    static int16_t samples[CAP_MAX_CHANNELS][CAP_MAX_SAMPLES];
+    capture_request_t q;
+    sxl_frame_t st;
+    int fd = -1, k, rc = cap_parse(argc, argv, &q);
+    if (rc != 0) {
+        return rc;
+    }
+    if (o->print_only) {
+        return fail(EXIT_USAGE, "capture is an exchange of several requests: no -n");
+    }
+    if ((rc = open_port(o, &fd)) != 0) {
+        return rc;
+    }
+    rc = cap_arm_and_wait(fd, o, &q, &st);
+    for (k = 0; rc == 0 && k < q.n_channels; k++) {
+        rc = cap_read(fd, o, k, (int)sxl_get_u16(&st.payload[1 + SXL_CS_COUNT]), samples[k]);
+    }
+    close(fd);
+    return (rc != 0) ? rc : cap_output(&q, &st, samples);
+}
