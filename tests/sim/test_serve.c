@@ -431,6 +431,24 @@ static int stop_and_clean(void **state)
     return 0;
 }
 
+/* --fast serves as fast as the host can and stops at the duration (0.5 s simulated) with a
+ * clean exit; a bad pacing value is refused in one line with exit 2. */
+static void test_fast_pacing_and_bad_rate(void **state)
+{
+    char cmd[400];
+    const double t0 = now_s();
+    int rc;
+    (void)state;
+    (void)snprintf(cmd, sizeof cmd, "%s serve --fast --duration 0.5 --quiet > /dev/null",
+                   SIXPHASE_SIM_EXE);
+    rc = system(cmd);
+    assert_true(WIFEXITED(rc) && WEXITSTATUS(rc) == 0);
+    assert_true(now_s() - t0 < 5.0);
+    (void)snprintf(cmd, sizeof cmd, "%s serve --rate 0 2> /dev/null", SIXPHASE_SIM_EXE);
+    rc = system(cmd);
+    assert_true(WIFEXITED(rc) && WEXITSTATUS(rc) == 2);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -444,8 +462,10 @@ int main(void)
     };
     const struct CMUnitTest after[] = {cmocka_unit_test(test_capture_matches_the_trace)};
     const struct CMUnitTest post_mortem[] = {cmocka_unit_test(test_post_mortem_over_current)};
+    const struct CMUnitTest pacing[] = {cmocka_unit_test(test_fast_pacing_and_bad_rate)};
     int failed = cmocka_run_group_tests(tests, start_server, stop_server);
     failed += cmocka_run_group_tests(after, NULL, NULL);
     failed += cmocka_run_group_tests(post_mortem, start_over_current_server, stop_and_clean);
+    failed += cmocka_run_group_tests(pacing, NULL, NULL);
     return failed;
 }
