@@ -237,8 +237,8 @@ static int inv_apply_events(inverter_t *inv, const inv_schedule_t *sc, int i_ev,
             inv->nominal[leg] = sc->ev[i_ev].state;
             inv->nominal_bits ^= 1u << (5 - leg);
             inv->dead_until[leg] = sc->ev[i_ev].t + inv->td;
-            inv->dead_last = (inv->dead_until[leg] > inv->dead_last) ? inv->dead_until[leg]
-                                                                      : inv->dead_last;
+            inv->dead_last =
+                (inv->dead_until[leg] > inv->dead_last) ? inv->dead_until[leg] : inv->dead_last;
         }
         i_ev++;
     }

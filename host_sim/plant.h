@@ -67,7 +67,7 @@ typedef struct {
     double current_sensor_span_a; /* phase-current sensors read -span .. +span A over the ADC's
                                    * range (the reference board's 20 A, hal_board.h); the drive
                                    * is told the same span (drive_set_current_span) */
-    bool encoder_quant_on; /* angle quantised to 1/(4*lines) turn; speed by edge timing */
+    bool encoder_quant_on;        /* angle quantised to 1/(4*lines) turn; speed by edge timing */
     uint32_t encoder_lines;
 } plant_params_t;
 

@@ -100,8 +100,8 @@ static void exact_rotation(double d, double *c, double *s)
     const double d2 = d * d;
     if (fabs(d) < 0.0625) {
         *c = 1.0 + d2 * (-1.0 / 2.0 + d2 * (1.0 / 24.0 + d2 * (-1.0 / 720.0 + d2 / 40320.0)));
-        *s = d * (1.0 + d2 * (-1.0 / 6.0 + d2 * (1.0 / 120.0 + d2 * (-1.0 / 5040.0 +
-                                                                      d2 / 362880.0))));
+        *s = d *
+             (1.0 + d2 * (-1.0 / 6.0 + d2 * (1.0 / 120.0 + d2 * (-1.0 / 5040.0 + d2 / 362880.0))));
     } else if (fabs(d) < 0.35) {
         *c = 1.0 + d2 * (-1.0 / 2.0 +
                          d2 * (1.0 / 24.0 + d2 * (-1.0 / 720.0 +
@@ -122,12 +122,12 @@ static double exact_exp(double x)
 {
     if (fabs(x) < 0.03125) {
         return 1.0 +
-               x * (1.0 + x * (1.0 / 2.0 +
-                               x * (1.0 / 6.0 +
-                                    x * (1.0 / 24.0 +
-                                         x * (1.0 / 120.0 +
-                                              x * (1.0 / 720.0 +
-                                                   x * (1.0 / 5040.0 + x / 40320.0)))))));
+               x * (1.0 +
+                    x * (1.0 / 2.0 +
+                         x * (1.0 / 6.0 +
+                              x * (1.0 / 24.0 +
+                                   x * (1.0 / 120.0 +
+                                        x * (1.0 / 720.0 + x * (1.0 / 5040.0 + x / 40320.0)))))));
     }
     if (fabs(x) < 0.125) {
         return 1.0 +
@@ -152,21 +152,22 @@ static void exact_cos_sin_q(double q, double h, double *c, double *s)
     const double z = q * h * h;
     if (fabs(z) < 0.03) {
         *c = 1.0 + z * (-1.0 / 2.0 +
-                        z * (1.0 / 24.0 + z * (-1.0 / 720.0 + z * (1.0 / 40320.0 +
-                                                                   z * (-1.0 / 3628800.0)))));
-        *s = h * (1.0 + z * (-1.0 / 6.0 +
-                             z * (1.0 / 120.0 + z * (-1.0 / 5040.0 + z * (1.0 / 362880.0 +
-                                                                          z * (-1.0 / 39916800.0))))));
+                        z * (1.0 / 24.0 +
+                             z * (-1.0 / 720.0 + z * (1.0 / 40320.0 + z * (-1.0 / 3628800.0)))));
+        *s = h * (1.0 +
+                  z * (-1.0 / 6.0 +
+                       z * (1.0 / 120.0 +
+                            z * (-1.0 / 5040.0 + z * (1.0 / 362880.0 + z * (-1.0 / 39916800.0))))));
     } else if (fabs(z) < 0.25) {
         *c = 1.0 + z * (-1.0 / 2.0 +
                         z * (1.0 / 24.0 +
                              z * (-1.0 / 720.0 +
                                   z * (1.0 / 40320.0 + z * (-1.0 / 3628800.0 + z / 479001600.0)))));
-        *s = h * (1.0 + z * (-1.0 / 6.0 +
-                             z * (1.0 / 120.0 +
-                                  z * (-1.0 / 5040.0 +
-                                       z * (1.0 / 362880.0 +
-                                            z * (-1.0 / 39916800.0 + z / 6227020800.0))))));
+        *s = h * (1.0 +
+                  z * (-1.0 / 6.0 +
+                       z * (1.0 / 120.0 +
+                            z * (-1.0 / 5040.0 + z * (1.0 / 362880.0 + z * (-1.0 / 39916800.0 +
+                                                                            z / 6227020800.0))))));
     } else if (q > 0.0) {
         const double b = sqrt(q);
         *c = cos(b * h);
@@ -231,10 +232,10 @@ static void exact_dq(const plant_exact_t *e, plant_state_t *s, const double u[4]
     const double free_d = s->i_d - forced_d0, free_q = s->i_q - forced_q0;
     double c, sh;
     exact_cos_sin_q(e->q, h, &c, &sh);
-    s->i_d = forced_d1 + decay * ((c + sh * (e->a[0][0] - e->sigma)) * free_d +
-                                  sh * e->a[0][1] * free_q);
-    s->i_q = forced_q1 + decay * (sh * e->a[1][0] * free_d +
-                                  (c + sh * (e->a[1][1] - e->sigma)) * free_q);
+    s->i_d = forced_d1 +
+             decay * ((c + sh * (e->a[0][0] - e->sigma)) * free_d + sh * e->a[0][1] * free_q);
+    s->i_q = forced_q1 +
+             decay * (sh * e->a[1][0] * free_d + (c + sh * (e->a[1][1] - e->sigma)) * free_q);
 }
 
 /* x-y: forced response u / R + k5 e^{j 5 th} + k7 e^{-j 7 th} at both ends, free e^{-a h}. */

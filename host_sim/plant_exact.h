@@ -37,19 +37,19 @@ typedef struct {
     double five_psi5, seven_psi7, inv_lxy, a_xy; /* a_xy = R / L_xy */
     bool harm;
     /* at the held speed */
-    double omega_m, w_e;     /* mechanical and electrical rad/s */
-    double a[2][2];          /* d-q system matrix */
-    double sigma, q;         /* (A - sigma I)^2 = -q I */
-    double x[2][2];          /* forced d-q response per rotor-frame volt */
-    double p0_d, p0_q;       /* forced d-q response to the PM back-EMF */
-    double k5_re, k5_im;     /* forced x-y response to the 5th-harmonic EMF, per e^{j 5 th} */
-    double k7_re, k7_im;     /* forced x-y response to the 7th-harmonic EMF, per e^{-j 7 th} */
+    double omega_m, w_e; /* mechanical and electrical rad/s */
+    double a[2][2];      /* d-q system matrix */
+    double sigma, q;     /* (A - sigma I)^2 = -q I */
+    double x[2][2];      /* forced d-q response per rotor-frame volt */
+    double p0_d, p0_q;   /* forced d-q response to the PM back-EMF */
+    double k5_re, k5_im; /* forced x-y response to the 5th-harmonic EMF, per e^{j 5 th} */
+    double k7_re, k7_im; /* forced x-y response to the 7th-harmonic EMF, per e^{-j 7 th} */
 } plant_exact_t;
 
 /* The instant an interval starts from, with what its end gives the next interval for free. */
 typedef struct {
-    double c5, s5, c7, s7;  /* e^{j 5 th}, e^{j 7 th} of the electrical angle */
-    double harm_x, harm_y;  /* forced x-y response to the harmonic EMF (continuous in time) */
+    double c5, s5, c7, s7; /* e^{j 5 th}, e^{j 7 th} of the electrical angle */
+    double harm_x, harm_y; /* forced x-y response to the harmonic EMF (continuous in time) */
     double torque_nm;
 } plant_exact_point_t;
 

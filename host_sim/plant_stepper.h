@@ -30,10 +30,10 @@ typedef struct {
     plant_exact_point_t point; /* the present instant of the period being integrated */
     plant_stepper_key_t key;
     bool have_key;
-    bool use_exact;   /* this period */
-    bool lock_mech;   /* this period */
+    bool use_exact;                 /* this period */
+    bool lock_mech;                 /* this period */
     double omega_start, omega_prev; /* mechanical speed at this and the last period start */
-    int starts_seen;  /* periods started (saturates at 2) */
+    int starts_seen;                /* periods started (saturates at 2) */
 } plant_stepper_t;
 
 void plant_stepper_init(plant_stepper_t *st);

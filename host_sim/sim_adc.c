@@ -14,13 +14,13 @@ void sim_adc_init(sim_adc_t *adc, const plant_params_t *p, uint64_t seed)
     for (k = 0; k < HAL_ADC_PHASES; k++) {
         uo = 2.0 * sim_rng_uniform(&adc->rng) - 1.0;
         ug = 2.0 * sim_rng_uniform(&adc->rng) - 1.0;
-        adc->offset_a[k] =
-            p->adc_offset_on ? uo * p->adc_offset_counts * adc->a_per_count : 0.0;
+        adc->offset_a[k] = p->adc_offset_on ? uo * p->adc_offset_counts * adc->a_per_count : 0.0;
         adc->gain[k] = p->adc_gain_on ? 1.0 + ug * p->adc_gain_error : 1.0;
     }
     uo = 2.0 * sim_rng_uniform(&adc->rng) - 1.0;
     ug = 2.0 * sim_rng_uniform(&adc->rng) - 1.0;
-    adc->vdc_offset_v = p->adc_offset_on ? uo * p->adc_offset_counts * HAL_BOARD_VDC_V_PER_COUNT : 0.0;
+    adc->vdc_offset_v =
+        p->adc_offset_on ? uo * p->adc_offset_counts * HAL_BOARD_VDC_V_PER_COUNT : 0.0;
     adc->vdc_gain = p->adc_gain_on ? 1.0 + ug * p->adc_gain_error : 1.0;
     adc->clipped = 0;
 }

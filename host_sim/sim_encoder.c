@@ -15,7 +15,8 @@
 void sim_encoder_init(sim_encoder_t *enc, double ts)
 {
     long len = lround(1e-3 / ts);
-    enc->ring_len = (int)((len < 1) ? 1 : ((len > SIM_ENCODER_RING_MAX) ? SIM_ENCODER_RING_MAX : len));
+    enc->ring_len =
+        (int)((len < 1) ? 1 : ((len > SIM_ENCODER_RING_MAX) ? SIM_ENCODER_RING_MAX : len));
     enc->ring_pos = 0;
     enc->first = true;
     enc->edge_speed_rev_s = 0.0;

@@ -5,8 +5,8 @@
 #include <stdbool.h>
 
 #define ZIG_LAYERS 128
-#define ZIG_R 3.442619855899          /* start of the tail */
-#define ZIG_V 9.91256303526217e-3     /* area of each layer */
+#define ZIG_R 3.442619855899      /* start of the tail */
+#define ZIG_V 9.91256303526217e-3 /* area of each layer */
 
 static double zig_x[ZIG_LAYERS + 1]; /* layer edges, zig_x[0] the base strip's equivalent width */
 static double zig_ratio[ZIG_LAYERS]; /* zig_x[i + 1] / zig_x[i]: inside the layer's core box */
