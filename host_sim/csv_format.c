@@ -67,9 +67,10 @@ static uint64_t csv_round_scaled(double a, double scale)
 {
     const double product = a * scale;
     const double error = fma(a, scale, -product); /* product + error == a * scale exactly */
-    const double whole = floor(product);
-    const double frac = product - whole; /* exact */
-    uint64_t q = (uint64_t)whole;
+    /* floor without the library call: product is in [0, 2^50), where truncation is floor and
+     * the signed conversion exact */
+    uint64_t q = (uint64_t)(int64_t)product;
+    const double frac = product - (double)(int64_t)q; /* exact */
     /* below 1/4 the exact fraction stays below 1/2 whatever the (< 1/16) error */
     if (frac >= 0.25) {
         const double above_half = frac - 0.5; /* exact: frac is within a factor 2 of 0.5 */

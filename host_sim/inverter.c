@@ -3,8 +3,15 @@
 
 #include <math.h>
 
-#define INV_MAX_LEG_EVENTS (3 * PLANT_PHASES)
-#define INV_MAX_BREAKS (4 * INV_MAX_LEG_EVENTS + PLANT_PHASES + 4)
+#define INV_H3 0.86602540378443864676 /* sqrt(3)/2, as plant.c has it */
+
+/* Transition instants per period: the start, the rising and the falling edges of six legs. */
+#define INV_MAX_EDGES (1 + 2 * PLANT_PHASES)
+/* Instants the voltage may change at: the edges, their dead-interval ends, the ends carried
+ * over from the last period and the period end. */
+#define INV_MAX_BREAKS (2 * INV_MAX_EDGES + PLANT_PHASES + 1)
+
+#define INV_LEG_BIT(k) (1u << (5 - (k))) /* S_A = bit 5 */
 
 void inverter_init(inverter_t *inv, const plant_params_t *p, double ts)
 {
@@ -13,7 +20,6 @@ void inverter_init(inverter_t *inv, const plant_params_t *p, double ts)
     inv->ts = ts;
     inv->td = p->dead_time_on ? p->dead_time_s : 0.0;
     for (k = 0; k < PLANT_PHASES; k++) {
-        inv->nominal[k] = 0;
         inv->dead_until[k] = -1.0;
     }
     inv->nominal_bits = 0u;
@@ -26,21 +32,24 @@ void inverter_init(inverter_t *inv, const plant_params_t *p, double ts)
     for (st = 0u; st < 64u; st++) {
         plant_vector_voltage(st, 1.0, inv->u_table[st]);
     }
+    inv->u_vdc_of = -1.0; /* no DC link voltage is negative: inv_voltages builds u_vdc */
     plant_stepper_init(&inv->stepper);
 }
 
+/* The legs commanded at one instant: legs with equal duties switch together, so one edge per
+ * distinct instant. A leg whose pulse is too short to separate its edges in floating point is
+ * in both masks: set first, then cleared, as the rising edge comes before the falling one. */
 typedef struct {
     double t;
-    int leg;
-    int state;
-} inv_event_t;
+    unsigned set, clear; /* legs commanded to 1, to 0 (S_A = bit 5) */
+} inv_edge_t;
 
-/* The period's commanded leg transitions and the sorted instants at which the voltage may
- * change (transitions, ends of dead intervals, the period end). */
+/* The period's edges in time order, and the sorted instants at which the voltage may change
+ * (edges, ends of dead intervals, the period end). */
 typedef struct {
-    inv_event_t ev[INV_MAX_LEG_EVENTS];
+    inv_edge_t edge[INV_MAX_EDGES];
     double br[INV_MAX_BREAKS];
-    int n_ev, n_br;
+    int n_edges, n_br;
 } inv_schedule_t;
 
 /* Where the plant is sampled for the caller within the period. */
@@ -94,7 +103,6 @@ static void inv_forced_off(inverter_t *inv, const plant_params_t *p, plant_state
     inv_coast(p, s, t_load, lock_mech, inv->ts);
     plant_sync_angle(p, s);
     for (k = 0; k < PLANT_PHASES; k++) {
-        inv->nominal[k] = 0;
         inv->dead_until[k] = -1.0;
     }
     inv->nominal_bits = 0u;
@@ -102,14 +110,6 @@ static void inv_forced_off(inverter_t *inv, const plant_params_t *p, plant_state
     inv->eff = 0u;
     inv->off = true;
     inv->intervals = 0;
-}
-
-static void inv_add_event(inv_schedule_t *sc, double t, int leg, int state)
-{
-    sc->ev[sc->n_ev].t = t;
-    sc->ev[sc->n_ev].leg = leg;
-    sc->ev[sc->n_ev].state = state;
-    sc->n_ev++;
 }
 
 /* Inserts v into the sorted a[0..n) (n + 1 entries after). */
@@ -122,30 +122,37 @@ static void inv_insert_sorted(double *a, int n, double v)
     a[n] = v;
 }
 
-/* Merges the sorted a[0..na) and b[0..nb) into out; returns the count. */
-static int inv_merge(const double *a, int na, const double *b, int nb, double *out)
+/* Appends the legs commanded at t, merged into the last edge when that is at the same instant. */
+static void inv_add_edge(inv_schedule_t *sc, double t, unsigned set, unsigned clear)
 {
-    int i = 0, j = 0, n = 0;
-    while (i < na || j < nb) {
-        out[n++] = (j >= nb || (i < na && a[i] <= b[j])) ? a[i++] : b[j++];
+    const int n = sc->n_edges;
+    if (n > 0 && sc->edge[n - 1].t == t) {
+        sc->edge[n - 1].set |= set;
+        sc->edge[n - 1].clear |= clear;
+    } else {
+        sc->edge[n].t = t;
+        sc->edge[n].set = set;
+        sc->edge[n].clear = clear;
+        sc->n_edges = n + 1;
     }
-    return n;
 }
 
-/* Events in time order without a general sort: transitions at the period start first, then
+/* Edges in time order without a general sort: the transitions at the period start first, then
  * the rising edges (the longest pulse first) and the falling edges (the shortest first), since
  * a duty d rises at (1 - d) Ts / 2 and falls at (1 + d) Ts / 2. */
-static void inv_schedule_events(const inverter_t *inv, const double duty[PLANT_PHASES],
-                                inv_schedule_t *sc)
+static void inv_schedule_edges(const inverter_t *inv, const double duty[PLANT_PHASES],
+                               inv_schedule_t *sc)
 {
     int by_duty[PLANT_PHASES], n_mid = 0, k;
     double d_of[PLANT_PHASES];
-    sc->n_ev = 0;
+    unsigned start_set = 0u, start_clear = 0u;
     for (k = 0; k < PLANT_PHASES; k++) {
-        const int s0 = (duty[k] >= 1.0) ? 1 : 0;
+        const unsigned bit = INV_LEG_BIT(k);
         const double d = (duty[k] < 0.0) ? 0.0 : ((duty[k] > 1.0) ? 1.0 : duty[k]);
-        if (s0 != inv->nominal[k]) {
-            inv_add_event(sc, 0.0, k, s0);
+        if (duty[k] >= 1.0) {
+            start_set |= bit & ~inv->nominal_bits;
+        } else {
+            start_clear |= bit & inv->nominal_bits;
         }
         d_of[k] = d;
         if (d > 0.0 && d < 1.0) { /* insertion by falling duty */
@@ -157,92 +164,147 @@ static void inv_schedule_events(const inverter_t *inv, const double duty[PLANT_P
             by_duty[i] = k;
         }
     }
+    sc->n_edges = 0;
+    if ((start_set | start_clear) != 0u) {
+        inv_add_edge(sc, 0.0, start_set, start_clear);
+    }
     for (k = 0; k < n_mid; k++) {
-        inv_add_event(sc, 0.5 * (1.0 - d_of[by_duty[k]]) * inv->ts, by_duty[k], 1);
+        inv_add_edge(sc, 0.5 * (1.0 - d_of[by_duty[k]]) * inv->ts, INV_LEG_BIT(by_duty[k]), 0u);
     }
     for (k = n_mid - 1; k >= 0; k--) {
-        inv_add_event(sc, 0.5 * (1.0 + d_of[by_duty[k]]) * inv->ts, by_duty[k], 0);
+        inv_add_edge(sc, 0.5 * (1.0 + d_of[by_duty[k]]) * inv->ts, 0u, INV_LEG_BIT(by_duty[k]));
     }
 }
 
-/* Appends v unless it equals the last entry (legs with equal duties switch together). */
-static void inv_push_unique(double *a, int *n, double v)
-{
-    if (*n == 0 || a[*n - 1] != v) {
-        a[(*n)++] = v;
-    }
-}
-
-/* Breakpoints: the distinct event times, the ends of their dead intervals and of those carried
- * over from the last period, each list already sorted, merged; the period end last. */
+/* Breakpoints: the edges and the ends of their dead intervals (two sorted lists, the second the
+ * first shifted by the dead time) merged, the ends carried over from the last period inserted,
+ * the period end last. */
 static void inv_schedule(const inverter_t *inv, const double duty[PLANT_PHASES], inv_schedule_t *sc)
 {
-    double times[INV_MAX_LEG_EVENTS], ends[INV_MAX_LEG_EVENTS], carried[PLANT_PHASES];
-    double both[2 * INV_MAX_LEG_EVENTS];
-    int n_times = 0, n_ends = 0, n_carried = 0, n_both, k;
-    inv_schedule_events(inv, duty, sc);
-    for (k = 0; k < PLANT_PHASES; k++) {
-        if (inv->dead_until[k] > 0.0 && inv->dead_until[k] < inv->ts) {
-            inv_insert_sorted(carried, n_carried++, inv->dead_until[k]);
+    const double ts = inv->ts;
+    int i = 0, j = 0, n = 0, k;
+    inv_schedule_edges(inv, duty, sc);
+    while (i < sc->n_edges) {
+        const double end = sc->edge[j].t + inv->td;
+        if (sc->edge[i].t <= end) {
+            sc->br[n++] = sc->edge[i++].t;
+        } else {
+            sc->br[n++] = end; /* below the next edge, so below ts */
+            j++;
         }
     }
-    for (k = 0; k < sc->n_ev; k++) {
-        inv_push_unique(times, &n_times, sc->ev[k].t);
-        if (inv->td > 0.0 && sc->ev[k].t + inv->td < inv->ts) {
-            inv_push_unique(ends, &n_ends, sc->ev[k].t + inv->td);
+    for (; j < sc->n_edges && sc->edge[j].t + inv->td < ts; j++) {
+        sc->br[n++] = sc->edge[j].t + inv->td;
+    }
+    if (inv->dead_last > 0.0) { /* a dead interval runs into this period */
+        for (k = 0; k < PLANT_PHASES; k++) {
+            if (inv->dead_until[k] > 0.0 && inv->dead_until[k] < ts) {
+                inv_insert_sorted(sc->br, n++, inv->dead_until[k]);
+            }
         }
     }
-    n_both = inv_merge(times, n_times, ends, n_ends, both);
-    sc->n_br = inv_merge(both, n_both, carried, n_carried, sc->br);
-    sc->br[sc->n_br++] = inv->ts;
+    sc->br[n++] = ts;
+    sc->n_br = n;
+}
+
+/* Current of phase k (A..F) as plant_phase_currents computes it (the same rows and order, so the
+ * same sign), from the stationary alpha-beta current and the x-y current. */
+static double inv_phase_current(const plant_state_t *s, int k, double i_alpha, double i_beta)
+{
+    static const double rows[PLANT_PHASES][4] = {
+        {1.0, 0.0, 1.0, 0.0},        {-0.5, INV_H3, -0.5, -INV_H3}, {-0.5, -INV_H3, -0.5, INV_H3},
+        {INV_H3, 0.5, -INV_H3, 0.5}, {-INV_H3, 0.5, INV_H3, 0.5},   {0.0, -1.0, 0.0, -1.0}};
+    const double *r = rows[k];
+    return r[0] * i_alpha + r[1] * i_beta + r[2] * s->i_x + r[3] * s->i_y;
 }
 
 /* Leg states in force from t: the commanded state, or during a dead interval the state the
- * current's sign imposes through the diodes (sign taken at t). */
-static unsigned inv_effective_legs(const inverter_t *inv, const plant_params_t *p,
-                                   const plant_state_t *s, double t, double eps)
+ * current's sign imposes through the diodes (sign taken at t). Only the legs in a dead interval
+ * need their current. */
+static unsigned inv_effective_legs(const inverter_t *inv, const plant_state_t *s, double t,
+                                   double eps)
 {
-    unsigned eff = 0u;
-    bool have_i = false;
-    double iph[PLANT_PHASES];
+    unsigned eff = inv->nominal_bits;
+    double i_alpha, i_beta;
     int k;
     if (!(t < inv->dead_last - eps)) {
-        return inv->nominal_bits; /* no leg in a dead interval */
+        return eff; /* no leg in a dead interval */
     }
+    i_alpha = s->i_d * s->cos_e - s->i_q * s->sin_e;
+    i_beta = s->i_d * s->sin_e + s->i_q * s->cos_e;
     for (k = 0; k < PLANT_PHASES; k++) {
-        int st = inv->nominal[k];
         if (t < inv->dead_until[k] - eps) {
-            if (!have_i) {
-                plant_phase_currents(p, s, iph);
-                have_i = true;
-            }
-            if (iph[k] > 0.0) {
-                st = 0;
-            } else if (iph[k] < 0.0) {
-                st = 1;
+            const double i_k = inv_phase_current(s, k, i_alpha, i_beta);
+            if (i_k > 0.0) {
+                eff &= ~INV_LEG_BIT(k); /* lower diode: leg at 0 */
+            } else if (i_k < 0.0) {
+                eff |= INV_LEG_BIT(k); /* upper diode: leg at Vdc */
             }
         }
-        eff |= (unsigned)st << (5 - k);
     }
     return eff;
 }
 
-/* Apply the commanded transitions due at t; returns the index of the next one. */
-static int inv_apply_events(inverter_t *inv, const inv_schedule_t *sc, int i_ev, double t,
-                            double eps)
+/* Apply the edges due at t (the commanded state, and a dead interval for every leg that
+ * changes); returns the index of the next edge. */
+static int inv_apply_edges(inverter_t *inv, const inv_schedule_t *sc, int i_edge, double t,
+                           double eps)
 {
-    while (i_ev < sc->n_ev && sc->ev[i_ev].t <= t + eps) {
-        const int leg = sc->ev[i_ev].leg;
-        if (inv->nominal[leg] != sc->ev[i_ev].state) {
-            inv->nominal[leg] = sc->ev[i_ev].state;
-            inv->nominal_bits ^= 1u << (5 - leg);
-            inv->dead_until[leg] = sc->ev[i_ev].t + inv->td;
-            inv->dead_last =
-                (inv->dead_until[leg] > inv->dead_last) ? inv->dead_until[leg] : inv->dead_last;
+    while (i_edge < sc->n_edges && sc->edge[i_edge].t <= t + eps) {
+        const inv_edge_t *e = &sc->edge[i_edge];
+        const unsigned rising = e->set & ~inv->nominal_bits;
+        const unsigned falling = e->clear & (inv->nominal_bits | rising);
+        const unsigned changed = rising | falling;
+        inv->nominal_bits = (inv->nominal_bits | rising) & ~falling;
+        if (changed != 0u) {
+            const double end = e->t + inv->td;
+            int k;
+            for (k = 0; k < PLANT_PHASES; k++) {
+                if ((changed & INV_LEG_BIT(k)) != 0u) {
+                    inv->dead_until[k] = end;
+                }
+            }
+            inv->dead_last = (end > inv->dead_last) ? end : inv->dead_last;
         }
-        i_ev++;
+        i_edge++;
     }
-    return i_ev;
+    return i_edge;
+}
+
+/* The caller's sample due at t, if any; returns t_next or the next sample instant before it. */
+static double inv_fine_sample(const inv_samples_t *smp, int *i_smp, const plant_state_t *s,
+                              unsigned eff, double t, double t_next, double eps)
+{
+    while (*i_smp < smp->n && smp->t[*i_smp] < t - eps) {
+        (*i_smp)++;
+    }
+    if (*i_smp < smp->n && smp->t[*i_smp] <= t + eps) {
+        if (smp->cb != 0) {
+            smp->cb(smp->ctx, t, s, eff);
+        }
+        (*i_smp)++;
+    }
+    if (*i_smp < smp->n && smp->t[*i_smp] < t_next) {
+        t_next = smp->t[*i_smp];
+    }
+    return t_next;
+}
+
+/* The stationary-frame voltage of every leg state at the present DC link voltage (the products
+ * p->vdc_v * u_table are formed once, not per interval). */
+static const double (*inv_voltages(inverter_t *inv, const plant_params_t *p))[4]
+{
+    if (p->vdc_v != inv->u_vdc_of) {
+        unsigned st;
+        int j;
+        for (st = 0u; st < 64u; st++) {
+            for (j = 0; j < 4; j++) {
+                inv->u_vdc[st][j] = p->vdc_v * inv->u_table[st][j];
+            }
+        }
+        inv->u_vdc_of = p->vdc_v;
+    }
+    return (const double(*)[4])inv->u_vdc;
 }
 
 /* Integrate the period interval by interval; returns the torque integral. */
@@ -251,45 +313,33 @@ static double inv_run_intervals(inverter_t *inv, const plant_params_t *p, plant_
 {
     const double ts = inv->ts;
     const double eps = ts * 1e-12;
-    int i_ev = 0, i_br = 0, i_smp = 0;
+    const double(*u)[4] = inv_voltages(inv, p);
+    int i_edge = 0, i_br = 0, i_smp = 0, intervals = 0;
     double t = 0.0, te_int = 0.0;
-    inv->intervals = 0;
     while (t < ts - eps) {
-        double t_next = ts, u[4];
+        double t_next = ts;
         unsigned eff;
-        i_ev = inv_apply_events(inv, sc, i_ev, t, eps);
-        eff = inv_effective_legs(inv, p, s, t, eps);
+        i_edge = inv_apply_edges(inv, sc, i_edge, t, eps);
+        eff = inv_effective_legs(inv, s, t, eps);
         if (inv->counting) {
             inv->transitions += popcount6(eff ^ inv->eff);
         }
         inv->eff = eff;
-        /* next breakpoint: leg event, dead end or fine sample */
+        /* next breakpoint: leg edge, dead end or fine sample */
         while (i_br < sc->n_br && sc->br[i_br] <= t + eps) {
             i_br++;
         }
         if (i_br < sc->n_br) {
             t_next = sc->br[i_br];
         }
-        while (i_smp < smp->n && smp->t[i_smp] < t - eps) {
-            i_smp++;
+        if (smp->n > 0) {
+            t_next = inv_fine_sample(smp, &i_smp, s, eff, t, t_next, eps);
         }
-        if (i_smp < smp->n && smp->t[i_smp] <= t + eps) {
-            if (smp->cb != 0) {
-                smp->cb(smp->ctx, t, s, eff);
-            }
-            i_smp++;
-        }
-        if (i_smp < smp->n && smp->t[i_smp] < t_next) {
-            t_next = smp->t[i_smp];
-        }
-        u[0] = p->vdc_v * inv->u_table[eff][0];
-        u[1] = p->vdc_v * inv->u_table[eff][1];
-        u[2] = p->vdc_v * inv->u_table[eff][2];
-        u[3] = p->vdc_v * inv->u_table[eff][3];
-        te_int += plant_stepper_step(&inv->stepper, p, s, u, t_load, t_next - t);
-        inv->intervals++;
+        te_int += plant_stepper_step(&inv->stepper, p, s, u[eff], t_load, t_next - t);
+        intervals++;
         t = t_next;
     }
+    inv->intervals = intervals;
     return te_int;
 }
 

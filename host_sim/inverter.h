@@ -23,10 +23,9 @@ typedef void (*inverter_sample_fn)(void *ctx, double t_rel, const plant_state_t 
                                    unsigned leg_state);
 
 typedef struct {
-    double ts;                 /* carrier period, s */
-    double td;                 /* dead time in force (0 when off), s */
-    int nominal[PLANT_PHASES]; /* commanded state (gate signal before dead band) */
-    unsigned nominal_bits;     /* the same as leg bits (S_A = bit 5) */
+    double ts;             /* carrier period, s */
+    double td;             /* dead time in force (0 when off), s */
+    unsigned nominal_bits; /* commanded state (gate signals before the dead band), S_A = bit 5 */
     double
         dead_until[PLANT_PHASES]; /* end of the running dead interval, relative to period start */
     double dead_last;             /* the latest of dead_until[] */
@@ -35,6 +34,8 @@ typedef struct {
     bool counting;                /* count effective transitions */
     uint64_t transitions;         /* effective leg transitions while counting */
     double u_table[64][4];        /* per-unit-of-Vdc VSD voltage of each state */
+    double u_vdc[64][4];          /* u_table times the DC link voltage u_vdc_of */
+    double u_vdc_of;              /* the voltage u_vdc was built for (V) */
     int intervals;                /* constant-voltage intervals in the last period */
     plant_stepper_t stepper;      /* integrates the plant over the intervals */
 } inverter_t;

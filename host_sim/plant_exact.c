@@ -3,6 +3,14 @@
 
 #include <math.h>
 
+/* The series below are evaluated several times per interval; without forced inlining gcc calls
+ * exact_exp and spills the interval's state around each call. */
+#if defined(__GNUC__)
+#define EXACT_INLINE inline __attribute__((always_inline))
+#else
+#define EXACT_INLINE inline
+#endif
+
 /* Below this resistance the forced responses grow without bound (see plant_exact.h). */
 #define EXACT_MIN_R_OHM 1e-3
 
@@ -95,7 +103,7 @@ void plant_exact_set_speed(plant_exact_t *e, double omega_m)
 
 /* cos and sin of an angle: Taylor series where it is short enough (error below 1e-18 for
  * |d| < 1/16, the usual case: w_e h is a few hundredths; below 1e-13 for |d| < 0.35), else libm. */
-static void exact_rotation(double d, double *c, double *s)
+static EXACT_INLINE void exact_rotation(double d, double *c, double *s)
 {
     const double d2 = d * d;
     if (fabs(d) < 0.0625) {
@@ -118,7 +126,7 @@ static void exact_rotation(double d, double *c, double *s)
 
 /* e^x: Taylor series where it is short enough (relative error below 1e-18 for |x| < 1/32, the
  * usual case: R h / L is a few thousandths; below 1e-17 for |x| < 1/8), else libm. */
-static double exact_exp(double x)
+static EXACT_INLINE double exact_exp(double x)
 {
     if (fabs(x) < 0.03125) {
         return 1.0 +
@@ -147,7 +155,7 @@ static double exact_exp(double x)
 /* C = sum (-q)^k h^2k / (2k)!, S = sum (-q)^k h^(2k+1) / (2k+1)!: cos(b h) and sin(b h) / b with
  * b = sqrt(q) for q > 0, cosh and sinh for q < 0 (real eigenvalues at very low speed). Series
  * in z = q h^2 while |z| < 1/4 (error below 1e-15; below 1e-18 for the usual |z| < 0.03). */
-static void exact_cos_sin_q(double q, double h, double *c, double *s)
+static EXACT_INLINE void exact_cos_sin_q(double q, double h, double *c, double *s)
 {
     const double z = q * h * h;
     if (fabs(z) < 0.03) {

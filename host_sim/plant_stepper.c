@@ -37,11 +37,20 @@ static void stepper_key(const plant_params_t *p, plant_stepper_key_t *k)
     }
 }
 
-static bool stepper_key_equal(const plant_stepper_key_t *a, const plant_stepper_key_t *b)
+/* True when the parameters still match the key (stepper_key's order; checked every period, so
+ * compared in place, without building a key first). */
+static bool stepper_key_matches(const plant_stepper_key_t *k, const plant_params_t *p)
 {
+    const double *v = k->values;
     int n;
-    for (n = 0; n < 16; n++) {
-        if (a->values[n] != b->values[n]) {
+    if (v[0] != p->r_ohm || v[1] != p->ld_h || v[2] != p->lq_h || v[3] != p->lxy_h ||
+        v[4] != p->psi_f_wb || v[5] != p->psi5_wb || v[6] != p->psi7_wb ||
+        v[7] != (double)p->pole_pairs || v[8] != (p->harmonics_on ? 1.0 : 0.0) ||
+        v[9] != (double)p->integrator) {
+        return false;
+    }
+    for (n = 0; n < PLANT_PHASES; n++) {
+        if (v[10 + n] != p->phase_extra_r_ohm[n]) {
             return false;
         }
     }
@@ -60,10 +69,8 @@ static double stepper_held_speed(const plant_stepper_t *st, const plant_state_t 
 void plant_stepper_begin(plant_stepper_t *st, const plant_params_t *p, plant_state_t *s,
                          bool lock_mech)
 {
-    plant_stepper_key_t key;
-    stepper_key(p, &key);
-    if (!st->have_key || !stepper_key_equal(&key, &st->key)) {
-        st->key = key;
+    if (!st->have_key || !stepper_key_matches(&st->key, p)) {
+        stepper_key(p, &st->key);
         st->have_key = true;
         st->use_exact = p->integrator == PLANT_INTEGRATOR_EXACT && plant_exact_applies(p);
         if (st->use_exact) {
@@ -82,15 +89,6 @@ void plant_stepper_begin(plant_stepper_t *st, const plant_params_t *p, plant_sta
         s->omega_m = held; /* what the period's samples see */
     }
     plant_exact_point(&st->exact, s, &st->point);
-}
-
-double plant_stepper_step(plant_stepper_t *st, const plant_params_t *p, plant_state_t *s,
-                          const double u[4], double t_load, double h)
-{
-    if (st->use_exact) {
-        return (h > 0.0) ? plant_exact_step(&st->exact, s, u, h, &st->point) : 0.0;
-    }
-    return plant_integrate_nosync(p, s, u, t_load, st->lock_mech, h);
 }
 
 void plant_stepper_end(const plant_stepper_t *st, const plant_params_t *p, plant_state_t *s,

@@ -45,9 +45,17 @@ void plant_stepper_mark_period(plant_stepper_t *st, const plant_state_t *s);
 void plant_stepper_begin(plant_stepper_t *st, const plant_params_t *p, plant_state_t *s,
                          bool lock_mech);
 
-/* One constant-voltage interval of h seconds; returns the torque integral (N*m*s). */
-double plant_stepper_step(plant_stepper_t *st, const plant_params_t *p, plant_state_t *s,
-                          const double u[4], double t_load, double h);
+/* One constant-voltage interval of h seconds; returns the torque integral (N*m*s). Inline: the
+ * inverter calls it for every interval. */
+static inline double plant_stepper_step(plant_stepper_t *st, const plant_params_t *p,
+                                        plant_state_t *s, const double u[4], double t_load,
+                                        double h)
+{
+    if (st->use_exact) {
+        return (h > 0.0) ? plant_exact_step(&st->exact, s, u, h, &st->point) : 0.0;
+    }
+    return plant_integrate_nosync(p, s, u, t_load, st->lock_mech, h);
+}
 
 /* Close the period of length ts with its torque integral: the speed update of the exact
  * method (RK4 has integrated the mechanics already). */

@@ -25,6 +25,20 @@ void sim_encoder_init(sim_encoder_t *enc, double ts)
 
 void sim_encoder_restart(sim_encoder_t *enc) { enc->first = true; }
 
+/* lround for |q| < 2^31 without the library call: truncate (exact), then step away from zero
+ * when the exact remainder is at least one half. */
+static int32_t enc_round_half_away(double q)
+{
+    int32_t n = (int32_t)q;
+    const double rest = q - (double)n;
+    if (rest >= 0.5) {
+        n++;
+    } else if (rest <= -0.5) {
+        n--;
+    }
+    return n;
+}
+
 static int32_t enc_q16_clamp(double v)
 {
     const double q = v * 65536.0;
@@ -37,7 +51,7 @@ static int32_t enc_q16_clamp(double v)
     if (q <= -2147483648.0) {
         return INT32_MIN;
     }
-    return (int32_t)lround(q);
+    return enc_round_half_away(q);
 }
 
 static uint32_t enc_turn_u32(double turns)

@@ -75,6 +75,21 @@ static void loop_control(sim_run_t *rs, sim_result_t *r, const plant_out_t *o, l
     }
 }
 
+/* The plant at the period start: the phase currents always (ADC, trip comparator); angle, flux
+ * and torque only when something reads them (trace.csv, the analysis window's metrics, an
+ * observer), else left at zero. */
+static void loop_outputs(const sim_run_t *rs, bool in_win, plant_out_t *o)
+{
+    const sim_observer_t *ob = rs->cfg->observer;
+    if (rs->rec.trace_on || in_win || (ob && ob->period)) {
+        plant_outputs(&rs->plant, &rs->x, o);
+    } else {
+        plant_phase_currents(&rs->plant, &rs->x, o->i_phase);
+        o->i_alpha = o->i_beta = o->psi_d = o->psi_q = o->psi_s = 0.0;
+        o->torque_nm = o->theta_e = 0.0;
+    }
+}
+
 /* The trace row's period-start part. */
 static void loop_row_start(const sim_run_t *rs, const plant_out_t *o, double t,
                            const sim_ctl_status_t *st, sim_trace_row_t *row)
@@ -158,7 +173,7 @@ int sim_loop_period(sim_run_t *rs, sim_result_t *r, long k)
     int j;
     in.t_load_nm = sim_fault_load(&rs->fault, sim_load_at(rs->cfg, &rs->plan, t));
     loop_events(rs, k, t);
-    plant_outputs(&rs->plant, &rs->x, &o);
+    loop_outputs(rs, in_win, &o);
     loop_hw_trip(rs, r, &o, t);
     loop_control(rs, r, &o, k, t, &st);
     loop_row_start(rs, &o, t, &st, &row);

@@ -14,7 +14,14 @@ typedef struct {
 
 void sim_rng_seed(sim_rng_t *r, uint64_t seed);
 
-uint64_t sim_rng_next(sim_rng_t *r);
+/* splitmix64's next output (inline: the Gaussian draws call it seven times a period). */
+static inline uint64_t sim_rng_next(sim_rng_t *r)
+{
+    uint64_t z = (r->s += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+}
 
 /* Uniform in the open interval (0, 1). */
 double sim_rng_uniform(sim_rng_t *r);

@@ -18,28 +18,6 @@ void hal_sim_reset(void)
     hal_sim_bus.forced_off = true;
 }
 
-static uint16_t hal_sim_clamp_counts(double counts)
-{
-    if (!(counts == counts) || counts <= 0.0) { /* NaN or below range */
-        return 0u;
-    }
-    if (counts >= (double)HAL_ADC_FULL_SCALE) {
-        return (uint16_t)HAL_ADC_FULL_SCALE;
-    }
-    return (uint16_t)(counts + 0.5);
-}
-
-uint16_t hal_sim_current_to_counts(double amps, double full_span_a)
-{
-    return hal_sim_clamp_counts(HAL_BOARD_CURRENT_ZERO_COUNTS +
-                                amps * ((double)(HAL_ADC_FULL_SCALE + 1u) / full_span_a));
-}
-
-uint16_t hal_sim_vdc_to_counts(double volts)
-{
-    return hal_sim_clamp_counts(volts / HAL_BOARD_VDC_V_PER_COUNT);
-}
-
 void hal_sim_post_adc(const hal_adc_sample_t *s)
 {
     hal_sim_bus.adc = *s;
@@ -47,14 +25,6 @@ void hal_sim_post_adc(const hal_adc_sample_t *s)
 }
 
 void hal_sim_post_encoder(const hal_encoder_sample_t *s) { hal_sim_bus.encoder = *s; }
-
-double hal_sim_duty_fraction(int leg)
-{
-    if (leg < 0 || leg >= HAL_PWM_LEGS) {
-        return 0.0;
-    }
-    return (double)hal_sim_bus.duty[leg] / (double)HAL_PWM_DUTY_ONE;
-}
 
 /* ---- hal_pwm.h ---- */
 

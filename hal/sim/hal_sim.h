@@ -13,6 +13,7 @@
 #include <stdint.h>
 
 #include "hal_adc.h"
+#include "hal_board.h"
 #include "hal_encoder.h"
 #include "hal_pwm.h"
 
@@ -58,8 +59,28 @@ bool hal_sim_uart_depart(uint16_t *byte);
  * sensor span of full_span_a (-span/2 .. +span/2, zero at mid scale; the reference board's is
  * HAL_BOARD_CURRENT_FULL_SPAN_A), the DC link with hal_board.h's scaling. Offset (counts) and
  * gain error are the caller's (the plant's) business and are applied before this. */
-uint16_t hal_sim_current_to_counts(double amps, double full_span_a);
-uint16_t hal_sim_vdc_to_counts(double volts);
+static inline uint16_t hal_sim_clamp_counts(double counts)
+{
+    if (!(counts == counts) || counts <= 0.0) { /* NaN or below range */
+        return 0u;
+    }
+    if (counts >= (double)HAL_ADC_FULL_SCALE) {
+        return (uint16_t)HAL_ADC_FULL_SCALE;
+    }
+    return (uint16_t)(counts + 0.5);
+}
+
+/* The conversions are inline: the plant converts seven channels every control period. */
+static inline uint16_t hal_sim_current_to_counts(double amps, double full_span_a)
+{
+    return hal_sim_clamp_counts(HAL_BOARD_CURRENT_ZERO_COUNTS +
+                                amps * ((double)(HAL_ADC_FULL_SCALE + 1u) / full_span_a));
+}
+
+static inline uint16_t hal_sim_vdc_to_counts(double volts)
+{
+    return hal_sim_clamp_counts(volts / HAL_BOARD_VDC_V_PER_COUNT);
+}
 
 /* Publish a completed conversion sequence (sets the fresh flag). */
 void hal_sim_post_adc(const hal_adc_sample_t *s);
@@ -68,6 +89,12 @@ void hal_sim_post_adc(const hal_adc_sample_t *s);
 void hal_sim_post_encoder(const hal_encoder_sample_t *s);
 
 /* Duty of one leg as a fraction of the period, from the shadow registers. */
-double hal_sim_duty_fraction(int leg);
+static inline double hal_sim_duty_fraction(int leg)
+{
+    if (leg < 0 || leg >= HAL_PWM_LEGS) {
+        return 0.0;
+    }
+    return (double)hal_sim_bus.duty[leg] / (double)HAL_PWM_DUTY_ONE;
+}
 
 #endif /* HAL_SIM_H */
