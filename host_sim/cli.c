@@ -32,9 +32,12 @@ void sim_cli_usage(FILE *f)
         "                   [--no-adc-noise] [--no-encoder-quant] [--ideal] [--no-trace] "
         "[--no-fine] "
         "[--no-protect]\n"
-        "                   [--quiet]\n"
+        "                   [--plot] [--quiet]\n"
         "                   [--fault-time S]\n"
         "  sixphase-sim reproduce --out DIR [--jobs N] [--no-plots] [--quiet]\n"
+        "  sixphase-sim sweep --out DIR [--jobs N] [--force] [--no-plots] [--quiet] run options,\n"
+        "                   numbers and choices as lists (a,b,c) or ranges (start:stop:step)\n"
+        "  sixphase-sim plot DIR: the figure of an earlier run --out DIR (DIR/run.png)\n"
         "  sixphase-sim serve [run options] [--rate N | --fast] [--baud B]: the firmware on a\n"
         "                   virtual board behind a pseudo-terminal (its path on stdout)\n"
         "numbers are plain decimals (1500, -0.5, 2e-6); each option at most once\n"
@@ -136,6 +139,7 @@ enum {
     G_FINE,
     G_PLOTS,
     G_PACING,
+    G_RUN_PLOT,
     G_BAUD,
     G_IDEAL
 };
@@ -146,6 +150,7 @@ static const opt_t options[] = {
     {"--out", OPT_DIRECTORY, OPT_RUN | OPT_REPRODUCE, F(cfg.out_dir), G_OUT, 0.0, 0.0, 0, NULL},
     {"--jobs", OPT_INTEGER, OPT_REPRODUCE, F(jobs), G_JOBS, 1.0, 64.0, 0, NULL},
     {"--rate", OPT_NUMBER, OPT_SERVE, F(serve_rate), G_PACING, 0.01, 1000.0, 0, NULL},
+    {"--plot", OPT_SET_INT, OPT_RUN, F(plot), G_RUN_PLOT, 0.0, 0.0, 1, NULL},
     {"--fast", OPT_SET_INT, OPT_SERVE, F(serve_fast), G_PACING, 0.0, 0.0, 1, NULL},
     {"--baud", OPT_INTEGER, OPT_SERVE, F(serve_baud), G_BAUD, 1200.0, 4000000.0, 0, NULL},
     CHOICE("--controller", cfg.controller, G_CONTROLLER, controllers),
@@ -475,6 +480,18 @@ int sim_cli_parse_run(int argc, char **argv, sim_cli_t *out, char *err, size_t e
 int sim_cli_parse_reproduce(int argc, char **argv, sim_cli_t *out, char *err, size_t err_len)
 {
     return cli_parse(argc, argv, out, err, err_len, OPT_REPRODUCE);
+}
+
+int sim_cli_gridable(const char *name)
+{
+    const opt_t *o = find_option(name, OPT_RUN);
+    if (!o) {
+        return -1;
+    }
+    return (o->kind == OPT_NUMBER || o->kind == OPT_INTEGER || o->kind == OPT_SEED ||
+            o->kind == OPT_CHOICE || o->kind == OPT_SCENARIO)
+               ? 1
+               : 0;
 }
 
 int sim_cli_parse_serve(int argc, char **argv, sim_cli_t *out, char *err, size_t err_len)

@@ -16,6 +16,7 @@ typedef struct {
     int quiet;
     int jobs;     /* reproduce: parallel workers */
     int no_plots; /* reproduce: leave the figures out */
+    int plot;     /* run: draw DIR/run.png from the trace (needs --out) */
     /* serve: pacing (rate times real time; fast: as fast as possible) and the line's baud */
     double serve_rate;
     int serve_fast;
@@ -25,6 +26,10 @@ typedef struct {
 /* argv[0] is the first option (after the sub-command). 0 on success. */
 int sim_cli_parse_run(int argc, char **argv, sim_cli_t *out, char *err, size_t err_len);
 int sim_cli_parse_reproduce(int argc, char **argv, sim_cli_t *out, char *err, size_t err_len);
+/* A run option's name: 1 when it takes a value a sweep may grid (numbers and choices), 0 for
+ * the others, -1 when it is not a run option. */
+int sim_cli_gridable(const char *name);
+
 /* serve takes the run options (none required) and its own. */
 int sim_cli_parse_serve(int argc, char **argv, sim_cli_t *out, char *err, size_t err_len);
 

@@ -3,30 +3,22 @@
  * run in parallel worker processes, the report beside the paper's numbers
  * (reproduce_report.c), and the plots (through the Python script found at configure time).
  */
-#define _DEFAULT_SOURCE /* MAP_ANONYMOUS */
+#define _POSIX_C_SOURCE 200809L /* clock_gettime, isatty */
 
 #include "reproduce.h"
 
-#include <errno.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/mman.h>
-#include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
 
+#include "batch.h"
+#include "plots.h"
 #include "reproduce_cases.h"
 #include "reproduce_report.h"
 #include "sim.h"
-
-#ifndef SIM_PLOT_PYTHON
-#define SIM_PLOT_PYTHON ""
-#endif
-#ifndef SIM_PLOT_SCRIPT
-#define SIM_PLOT_SCRIPT ""
-#endif
 
 static double rep_now(void)
 {
@@ -35,100 +27,23 @@ static double rep_now(void)
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
-/* Run cases[first..last) in up to `jobs` forked workers; results come back
- * through a shared anonymous mapping. */
-static int rep_run_batch(rep_case_t *shared, int first, int last, int jobs, int quiet)
-{
-    pid_t pids[64];
-    int idx[64];
-    int running = 0, next = first, failures = 0, i;
-    if (jobs > 64) {
-        jobs = 64;
-    }
-    while (next < last || running > 0) {
-        while (running < jobs && next < last) {
-            pid_t pid = fork();
-            if (pid < 0) {
-                /* no fork: run in this process */
-                rep_case_t *c = &shared[next];
-                c->ok = (sim_run(&c->cfg, &c->res, c->err, sizeof c->err) == 0);
-                next++;
-                continue;
-            }
-            if (pid == 0) {
-                rep_case_t *c = &shared[next];
-                c->ok = (sim_run(&c->cfg, &c->res, c->err, sizeof c->err) == 0);
-                _exit(c->ok ? 0 : 1);
-            }
-            pids[running] = pid;
-            idx[running] = next;
-            running++;
-            next++;
-        }
-        if (running > 0) {
-            int status = 0;
-            const pid_t done = wait(&status);
-            if (done < 0) {
-                if (errno == EINTR) {
-                    continue;
-                }
-                break;
-            }
-            for (i = 0; i < running; i++) {
-                if (pids[i] == done) {
-                    rep_case_t *c = &shared[idx[i]];
-                    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || !c->ok) {
-                        failures++;
-                        c->ok = 0;
-                        if (c->err[0] == '\0') {
-                            (void)snprintf(c->err, sizeof c->err, "worker crashed");
-                        }
-                    }
-                    if (!quiet) {
-                        fprintf(stderr, "  %-28s %s  (%.0fx real time)\n", c->name,
-                                c->ok ? "ok" : c->err, c->res.realtime_factor);
-                    }
-                    pids[i] = pids[running - 1];
-                    idx[i] = idx[running - 1];
-                    running--;
-                    break;
-                }
-            }
-        }
-    }
-    return failures;
-}
+typedef struct {
+    bool tty;
+    double t0;
+} rep_progress_t;
 
-static int rep_plot(const char *dir, int quiet)
+/* Progress on a terminal only; a failed run is named either way. */
+static void rep_case_done(void *ctx, const sim_case_t *c, int done, int total)
 {
-    pid_t pid;
-    int status = 0;
-    if (SIM_PLOT_PYTHON[0] == '\0' || SIM_PLOT_SCRIPT[0] == '\0') {
-        fprintf(stderr,
-                "sixphase-sim: no Python with matplotlib found at configure time; plots skipped\n");
-        return -1;
+    const rep_progress_t *pr = (const rep_progress_t *)ctx;
+    if (!c->ok) {
+        fprintf(stderr, "%sreproduce: %s failed: %s\n", pr->tty ? "\n" : "", c->name, c->err);
     }
-    pid = fork();
-    if (pid < 0) {
-        return -1;
+    if (pr->tty) {
+        const double el = rep_now() - pr->t0;
+        fprintf(stderr, "\rreproduce: %d of %d runs (%.0f %%), about %.0f s left   %s", done, total,
+                100.0 * done / total, el / done * (total - done), (done == total) ? "\n" : "");
     }
-    if (pid == 0) {
-        char *argv[4];
-        argv[0] = (char *)(uintptr_t)SIM_PLOT_PYTHON;
-        argv[1] = (char *)(uintptr_t)SIM_PLOT_SCRIPT;
-        argv[2] = (char *)(uintptr_t)dir;
-        argv[3] = NULL;
-        execv(SIM_PLOT_PYTHON, argv);
-        _exit(127);
-    }
-    if (waitpid(pid, &status, 0) < 0 || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-        fprintf(stderr, "sixphase-sim: plot script failed (status %d)\n", status);
-        return -1;
-    }
-    if (!quiet) {
-        fprintf(stderr, "plots written to %s/plots\n", dir);
-    }
-    return 0;
 }
 
 static void rep_write_gitignore(const char *out_dir)
@@ -157,7 +72,7 @@ static int rep_write_all(const char *out_dir, const rep_case_t *cases, int n, do
 
 int sim_reproduce(const char *out_dir, int jobs, bool plots, int quiet)
 {
-    const size_t bytes = sizeof(rep_case_t) * REP_MAX_CASES;
+    rep_progress_t progress;
     const double t0 = rep_now();
     rep_case_t *cases;
     int n = 0, n1, failures, rc;
@@ -167,26 +82,28 @@ int sim_reproduce(const char *out_dir, int jobs, bool plots, int quiet)
         fprintf(stderr, "sixphase-sim: %s\n", err);
         return 1;
     }
-    cases =
-        (rep_case_t *)mmap(NULL, bytes, PROT_READ | PROT_WRITE, MAP_SHARED | MAP_ANONYMOUS, -1, 0);
-    if (cases == MAP_FAILED) {
+    cases = sim_batch_alloc(REP_MAX_CASES);
+    if (!cases) {
         fprintf(stderr, "sixphase-sim: mmap failed\n");
         return 1;
     }
-    memset(cases, 0, bytes);
     rep_cases_first_batch(cases, &n, out_dir);
     rep_cases_improvement_sweep(cases, &n, out_dir);
     n1 = n;
     if (!quiet) {
         fprintf(stderr, "reproduce: %d runs, %d workers\n", n1, jobs);
     }
-    failures = rep_run_batch(cases, 0, n1, jobs, quiet);
+    progress.tty = !quiet && isatty(2);
+    progress.t0 = t0;
+    failures = sim_batch_run(cases, 0, n1, jobs, rep_case_done, &progress);
     rep_cases_equal_switching(cases, &n, out_dir);
-    failures += rep_run_batch(cases, n1, n, jobs, quiet);
+    failures += sim_batch_run(cases, n1, n, jobs, rep_case_done, &progress);
     wall = rep_now() - t0;
     rc = rep_write_all(out_dir, cases, n, wall, jobs);
     if (rc == 0 && plots) {
-        (void)rep_plot(out_dir, quiet);
+        if (sim_plot(SIM_PLOT_REPRODUCE, out_dir) == 0 && !quiet) {
+            fprintf(stderr, "plots written to %s/plots\n", out_dir);
+        }
     }
     if (rc == 0 && !quiet) {
         fprintf(stderr,
@@ -194,6 +111,6 @@ int sim_reproduce(const char *out_dir, int jobs, bool plots, int quiet)
                 "%s/report.md\n",
                 n, failures, rep_now() - t0, wall, out_dir);
     }
-    (void)munmap(cases, bytes);
+    sim_batch_free(cases, REP_MAX_CASES);
     return (failures || rc != 0) ? 1 : 0;
 }

@@ -10,19 +10,13 @@
 #ifndef SIM_REPRODUCE_CASES_H
 #define SIM_REPRODUCE_CASES_H
 
+#include "batch.h"
 #include "sim.h"
 
 #define REP_MAX_CASES 256
 #define REP_BASELINE_SENSOR_SPAN_A 50.0
 
-typedef struct {
-    char name[64];
-    char group[16]; /* steady, eqsw, dyn, lxy, extra, fault */
-    sim_config_t cfg;
-    sim_result_t res;
-    int ok;
-    char err[160];
-} rep_case_t;
+typedef sim_case_t rep_case_t; /* group: steady, eqsw, dyn, lxy, extra, fault, improve */
 
 /* The paper's lambdas and its numbers at them (brief §8). */
 extern const double rep_paper_lambda[3];
