@@ -31,9 +31,7 @@
 
 typedef struct {
     const sweep_grid_t *grid;
-    long *order; /* the point of each case that runs */
-    double t0;
-    int total_missing;
+    double t0; /* wall clock at the start, for the time left */
 } sweep_progress_t;
 
 static double sweep_now(void)
