@@ -150,6 +150,12 @@ def main():
     w("const int16_t ctl_mptc13_vectors[CTL_MPTC13_CANDIDATES] = {")
     w("    " + ", ".join("0%02o" % v for v in c13) + "};")
     w("")
+    # upper switches on in each state (the zero-vector arrangement counts leg changes)
+    w("const int16_t ctl_vector_ones_table[CTL_VECTOR_COUNT] = {")
+    for k in range(0, 64, 16):
+        w("    " + ", ".join(str(bin(v).count("1")) for v in range(k, k + 16)) + ",")
+    w("};")
+    w("")
     # sine over one turn, SIN_SEGMENTS segments, one guard entry
     w("const ctl_q ctl_sin_table[CTL_SIN_SEGMENTS + 1] = {")
     vals = [math.sin(2 * math.pi * k / SIN_SEGMENTS) for k in range(SIN_SEGMENTS + 1)]

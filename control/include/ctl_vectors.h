@@ -28,20 +28,19 @@ extern const ctl_vsd_t ctl_vector_vsd[CTL_VECTOR_COUNT];
 extern const int16_t ctl_mptc49_vectors[CTL_MPTC49_CANDIDATES];
 extern const int16_t ctl_mptc13_vectors[CTL_MPTC13_CANDIDATES];
 
+/* Upper switches on in each state (tools/gen_tables.py). */
+extern const int16_t ctl_vector_ones_table[CTL_VECTOR_COUNT];
+
 /* Upper-switch state (0 or 1) of leg 0..5 (A..F) in a switching state. */
 static inline int16_t ctl_vector_leg(int16_t vector, int16_t leg)
 {
     return (int16_t)((vector >> (5 - leg)) & 1);
 }
 
-/* Number of legs whose upper switch is on: the bits of the 6-bit state, counted in pairs,
- * then nibbles (no loop: it runs for every command). */
+/* Number of legs whose upper switch is on (a table: it runs several times per command). */
 static inline int16_t ctl_vector_ones(int16_t vector)
 {
-    uint16_t v = (uint16_t)((uint16_t)vector & 077u);
-    v = (uint16_t)(v - ((v >> 1) & 0x15u));
-    v = (uint16_t)((v & 0x33u) + ((v >> 2) & 0x33u));
-    return (int16_t)((v + (v >> 4)) & 0x0Fu);
+    return ctl_vector_ones_table[(uint16_t)vector & 077u];
 }
 
 #endif /* CTL_VECTORS_H */

@@ -117,15 +117,12 @@ static void command_from_choice(int16_t vector, ctl_q duty, const ctl_t *c, bool
     const bool high_zero =
         ctl_pulse_high_zero(vector, zero, c->applied_vector, c->applied_edges, fewest);
     const ctl_q d = ctl_clamp(duty, CTL_Q(0.0), CTL_Q(1.0));
+    /* the duty of a leg of the vector and of one off it, whichever arrangement */
+    const ctl_q off = zero ? (high_zero ? CTL_Q(1.0) : CTL_Q(0.0))
+                           : (high_zero ? ctl_sub(CTL_Q(1.0), d) : CTL_Q(0.0));
+    const ctl_q on = zero ? off : (high_zero ? CTL_Q(1.0) : d);
     for (leg = 0; leg < CTL_PHASES; leg++) {
-        const bool on = ctl_vector_leg(vector, leg) != 0;
-        if (zero) {
-            cmd->leg_duty[leg] = high_zero ? CTL_Q(1.0) : CTL_Q(0.0);
-        } else if (high_zero) {
-            cmd->leg_duty[leg] = on ? CTL_Q(1.0) : ctl_sub(CTL_Q(1.0), d);
-        } else {
-            cmd->leg_duty[leg] = on ? d : CTL_Q(0.0);
-        }
+        cmd->leg_duty[leg] = (ctl_vector_leg(vector, leg) != 0) ? on : off;
     }
     cmd->vector = zero ? (high_zero ? 077 : 0) : vector;
     cmd->duty = zero ? CTL_Q(0.0) : d;

@@ -137,6 +137,11 @@ const int16_t ctl_mptc49_vectors[CTL_MPTC49_CANDIDATES] = {
 const int16_t ctl_mptc13_vectors[CTL_MPTC13_CANDIDATES] = {000, 044, 064, 066, 026, 022, 032,
                                                            033, 013, 011, 051, 055, 045};
 
+const int16_t ctl_vector_ones_table[CTL_VECTOR_COUNT] = {
+    0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4, 1, 2, 2, 3, 2, 3, 3, 4, 2, 3, 3, 4, 3, 4, 4, 5,
+    1, 2, 2, 3, 2, 3, 3, 4, 2, 3, 3, 4, 3, 4, 4, 5, 2, 3, 3, 4, 3, 4, 4, 5, 3, 4, 4, 5, 4, 5, 5, 6,
+};
+
 const ctl_q ctl_sin_table[CTL_SIN_SEGMENTS + 1] = {
     CTL_QK(0, 0.0f),
     CTL_QK(102943, 0.0061358846491544753f),
