@@ -91,8 +91,12 @@ static void serve_line_period(serve_line_t *l)
     for (i = 0; i < n; i++) {
         (void)hal_sim_uart_arrive(in[i]);
     }
-    l->bytes_in += (n > 0) ? (unsigned long)n : 0u;
-    l->rx_credit = (n > 0) ? l->rx_credit - (double)n : 0.0;
+    if (n > 0) {
+        l->bytes_in += (unsigned long)n;
+        l->rx_credit -= (double)n;
+    } else if (l->rx_credit > 1.0) {
+        l->rx_credit = 1.0; /* an idle line does not store credit; below one byte it builds up */
+    }
     l->tx_credit += l->bytes_per_period;
     while (l->tx_credit >= 1.0 && hal_sim_uart_depart(&byte)) {
         const unsigned char out = (unsigned char)byte;
@@ -177,7 +181,8 @@ int sim_serve(const sim_config_t *c, const sim_serve_options_t *o)
         sim_teardown(&rs, false);
         return 1;
     }
-    rs.ops->link_init();
+    /* hal_cycles is host time: at a slow pacing a frame takes 1 / rate longer to arrive */
+    rs.ops->link_init((!o->fast && o->rate < 1.0) ? 0.02 / o->rate : 0.02);
     serve_stop_requested = 0;
     (void)signal(SIGINT, serve_on_signal);
     (void)signal(SIGTERM, serve_on_signal);

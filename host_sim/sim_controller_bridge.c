@@ -188,10 +188,10 @@ static void bridge_status(sim_ctl_status_t *st)
     st->fault_records = (int)ctl_protect_log_pending(&bridge_drive.protect);
 }
 
-/* A partial frame older than 20 ms (of hal_cycles, host time on the simulator) is dropped. */
-static void bridge_link_init(void)
+/* A partial frame older than gap_s (of hal_cycles, host time on the simulator) is dropped. */
+static void bridge_link_init(double gap_s)
 {
-    link_service_init(&bridge_link, hal_cycles_per_second() / 50u);
+    link_service_init(&bridge_link, (uint32_t)(gap_s * (double)hal_cycles_per_second()));
     bridge_board = true;
     ctl_set_stage_hook(&bridge_drive.ctl, prof_ctl_stage); /* stage timing, as fw_startup */
 }

@@ -80,7 +80,8 @@ typedef struct {
     int (*read_fault_record)(sim_fault_record_t *r);
     /* the background loop's serial link (firmware/app/link_service.c) over hal_serial:
      * link_init once after init, link_step as often as the background loop would run */
-    void (*link_init)(void);
+    void (*link_init)(double gap_s); /* gap_s: host seconds after which a partial frame is
+                                      * dropped (20 ms of the line's time, at the pacing rate) */
     void (*link_step)(void);
     unsigned long (*link_frames)(void); /* requests handled */
 } sim_ctl_ops_t;

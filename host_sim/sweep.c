@@ -90,7 +90,8 @@ static int sweep_load_point(const sweep_grid_t *g, long p, sim_case_t *c)
         return 0;
     }
     if (fgets(line, sizeof line, f) && strncmp(line, args, strlen(args)) == 0 &&
-        line[strlen(args)] == '\n' && fscanf(f, "%d %d", &c->ok, &c->res.fault) == 2) {
+        line[strlen(args)] == '\n' && fscanf(f, "%d %d", &c->ok, &c->res.fault) == 2 &&
+        c->ok) { /* a point that failed runs again */
         ok = 1;
 #define SWEEP_LOAD(field, null_if_negative) ok = ok && fscanf(f, "%lf", &c->res.field) == 1;
         SWEEP_METRICS(SWEEP_LOAD)
@@ -187,9 +188,12 @@ static void sweep_row(FILE *f, const sweep_grid_t *g, long p, const sim_case_t *
     fprintf(f, json ? "  {\"point\": %ld" : "%ld", p);
     for (k = 0; k < g->n_axes; k++) {
         const char *v = g->axis[k].value[index[k]];
-        const int number = strspn(v, "0123456789+-.eE") == strlen(v);
-        if (json) {
-            fprintf(f, number ? ", \"%s\": %s" : ", \"%s\": \"%s\"", g->axis[k].option + 2, v);
+        char *end = NULL;
+        const double x = strtod(v, &end);
+        if (json && end != v && *end == '\0') {
+            fprintf(f, ", \"%s\": %.17g", g->axis[k].option + 2, x);
+        } else if (json) {
+            fprintf(f, ", \"%s\": \"%s\"", g->axis[k].option + 2, v);
         } else {
             fprintf(f, ",%s", v);
         }

@@ -40,13 +40,19 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--root", required=True)
     ap.add_argument("--forbid", required=True)
+    ap.add_argument("--indirect", default="",
+                    help="functions an indirect call can reach (comma-separated): walked too")
     ap.add_argument("files", nargs="+")
     args = ap.parse_args()
     _, edges = stack_depth.load(args.files)
     if args.root not in edges:
         sys.exit(f"isr_arith: {args.root} not found in the call graph")
+    if args.indirect:  # the call graph cannot follow function pointers
+        edges.setdefault("__indirect_call", set()).update(args.indirect.split(","))
     parent = reachable(edges, args.root)
     helpers = sorted(fn for fn in parent if fn.startswith("__") and fn != "__indirect_call")
+    if args.indirect and "__indirect_call" not in parent:
+        sys.exit(f"isr_arith: no indirect call reached from {args.root}; check --indirect")
     bad = [fn for fn in helpers if re.search(args.forbid, fn)]
     print(f"helpers reachable from {args.root}: {', '.join(helpers) or 'none'}")
     for fn in bad:

@@ -81,7 +81,12 @@ static bool capture_triggered(capture_t *c, int16_t v, bool faulted)
     const capture_setup_t *s = &c->setup;
     bool hit = false;
     if (s->trigger == CAPTURE_TRIGGER_FAULT) {
-        return faulted; /* whether or not the pre-trigger share is full: never miss a trip */
+        /* entering FAULT, whether or not the pre-trigger share is full: never miss a trip (a
+         * drive already in FAULT when armed triggers at its next trip) */
+        hit = faulted && c->have_last && c->last_faulted == 0;
+        c->last_faulted = faulted ? 1 : 0;
+        c->have_last = true;
+        return hit;
     }
     if (c->count > c->pre || s->trigger == CAPTURE_TRIGGER_IMMEDIATE) {
         if (s->trigger == CAPTURE_TRIGGER_IMMEDIATE) {

@@ -67,6 +67,7 @@ typedef struct {
     uint16_t trigger_index; /* position of the trigger sample in the record */
     uint32_t first_period;  /* control-period count of the record's first sample */
     int16_t last_trigger_value;
+    int16_t last_faulted; /* the fault trigger fires on the step into FAULT */
     bool have_last;
     int16_t buf[CAPTURE_BUFFER_WORDS];
 } capture_t;

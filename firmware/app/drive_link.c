@@ -1,5 +1,6 @@
 #include "drive_link.h"
 
+#include "ctl_barrier.h"
 #include "ctl_pu.h"
 #include "hal_pwm.h"
 #include "profile.h"
@@ -313,6 +314,7 @@ static uint16_t on_capture_status(drive_t *d, const sxl_frame_t *req, sxl_frame_
     (void)req;
     (void)rx_errors;
     out[SXL_CS_STATE] = (uint16_t)c->state;
+    CTL_COMPILER_BARRIER(); /* the fields after the state: never older than it */
     out[SXL_CS_CHANNELS] = (uint16_t)c->setup.n_channels;
     for (k = 0; k < CAPTURE_CHANNELS; k++) {
         out[SXL_CS_SIGNAL + (uint16_t)k] =

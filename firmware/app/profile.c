@@ -28,7 +28,7 @@ static void prof_record(prof_stat_t *s, uint32_t cycles)
     if (s->count == 0u) {
         s->min = cycles;
         s->max = cycles;
-        s->mean_x256 = cycles << 8;
+        s->mean_x256 = ((cycles < PROF_MEAN_MAX_CYCLES) ? cycles : PROF_MEAN_MAX_CYCLES) << 8;
     } else {
         if (cycles < s->min) {
             s->min = cycles;

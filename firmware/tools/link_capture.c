@@ -6,6 +6,7 @@
  *   capture SIG[,SIG...] [--length N] [--decimate N] [--pre PCT] [--wait S]
  *           [--trigger immediate|fault|rising:SIG:LEVEL|falling:SIG:LEVEL]
  *           [--out FILE.csv] [--plot FILE.png]
+ *   capture stop   (ends a capture an interrupted run left armed)
  *
  * Signals and their scaling: firmware/link/capture_signals.h. LEVEL is in the trigger
  * signal's SI unit. Defaults: 500 samples, every period, immediate trigger, 10 % before it,
@@ -178,6 +179,10 @@ static int cap_arm_and_wait(int fd, const options_t *o, const capture_request_t 
 {
     double waited = 0.0;
     int rc = exchange(fd, o, SXL_CMD_CAPTURE_ARM, q->setup, SXL_CA_SIZE, st);
+    if (rc == 0 && st->payload[0] == SXL_ERR_REFUSED) {
+        return fail(EXIT_IO, "a capture is already running on the drive (`sixphase-link capture "
+                             "stop` ends it)");
+    }
     if (rc == 0 && st->payload[0] != SXL_OK) {
         return fail(EXIT_IO, "drive refused the capture: %s", result_name(st->payload[0]));
     }
@@ -187,7 +192,10 @@ static int cap_arm_and_wait(int fd, const options_t *o, const capture_request_t 
             return 0;
         }
         if (waited >= q->wait_s) {
-            return fail(EXIT_IO, "no complete record after %.0f s (trigger not met?)", waited);
+            sxl_frame_t r;
+            (void)exchange(fd, o, SXL_CMD_CAPTURE_STOP, NULL, 0, &r); /* leave the drive idle */
+            return fail(EXIT_IO, "no complete record after %.0f s (trigger not met?); stopped",
+                        waited);
         }
         usleep(50000);
         waited += 0.05;
@@ -209,7 +217,7 @@ static int cap_read(int fd, const options_t *o, int ch, int count, int16_t *out)
             return rc;
         }
         n = (int)r.payload[1 + SXL_CR_COUNT];
-        if (r.payload[0] != SXL_OK || n == 0) {
+        if (r.payload[0] != SXL_OK || n == 0 || n > (int)SXL_CR_MAX) {
             return fail(EXIT_IO, "capture read failed at sample %d", j);
         }
         for (k = 0; k < n && j < count; k++) {
@@ -279,12 +287,29 @@ static int cap_output(const capture_request_t *q, const sxl_frame_t *st,
     return rc;
 }
 
+/* capture stop: the drive's capture back to idle (after an interrupted capture). */
+static int cap_stop(const options_t *o)
+{
+    sxl_frame_t r;
+    int fd = -1;
+    int rc = open_port(o, &fd);
+    if (rc == 0) {
+        rc = exchange(fd, o, SXL_CMD_CAPTURE_STOP, NULL, 0, &r);
+        close(fd);
+    }
+    return rc;
+}
+
 int cmd_capture(const options_t *o, int argc, char **argv)
 {
     static int16_t samples[CAP_MAX_CHANNELS][CAP_MAX_SAMPLES];
     capture_request_t q;
     sxl_frame_t st;
-    int fd = -1, k, rc = cap_parse(argc, argv, &q);
+    int fd = -1, k, rc;
+    if (argc == 1 && strcmp(argv[0], "stop") == 0) {
+        return cap_stop(o);
+    }
+    rc = cap_parse(argc, argv, &q);
     if (rc != 0) {
         return rc;
     }
@@ -295,6 +320,9 @@ int cmd_capture(const options_t *o, int argc, char **argv)
         return rc;
     }
     rc = cap_arm_and_wait(fd, o, &q, &st);
+    if (rc == 0 && sxl_get_u16(&st.payload[1 + SXL_CS_COUNT]) > CAP_MAX_SAMPLES) {
+        rc = fail(EXIT_IO, "the drive reports more samples than a capture holds");
+    }
     for (k = 0; rc == 0 && k < q.n_channels; k++) {
         rc = cap_read(fd, o, k, (int)sxl_get_u16(&st.payload[1 + SXL_CS_COUNT]), samples[k]);
     }

@@ -134,6 +134,27 @@ static void test_fault_post_mortem(void **state)
     assert_int_equal(cap.count, 70);
 }
 
+/* Armed while the drive is in FAULT: no record of that fault; the next trip triggers. */
+static void test_fault_trigger_needs_a_new_trip(void **state)
+{
+    capture_setup_t s = setup_of(CAPTURE_TRIGGER_FAULT, 100u, 50u);
+    uint32_t p;
+    (void)state;
+    capture_init(&cap);
+    assert_int_equal(capture_arm(&cap, &s), CAPTURE_OK);
+    for (p = 0; p < 3000u; p++) { /* in FAULT until 1000, healthy until 2000, then a trip */
+        int16_t v[CAPTURE_CHANNELS] = {(int16_t)p, 0, 0, 0};
+        if (capture_due(&cap)) {
+            capture_sample(&cap, v, 0, p, p < 1000u || p >= 2000u);
+        }
+        if (p == 1500u) {
+            assert_int_equal(cap.state, CAPTURE_ARMED);
+        }
+    }
+    assert_int_equal(cap.state, CAPTURE_DONE);
+    assert_int_equal(capture_read(&cap, 0, cap.trigger_index), 2000);
+}
+
 static void test_bad_setups(void **state)
 {
     capture_setup_t s = setup_of(CAPTURE_TRIGGER_IMMEDIATE, 100u, 10u);
@@ -173,6 +194,7 @@ int main(void)
         cmocka_unit_test(test_falling_never_met_keeps_recording),
         cmocka_unit_test(test_decimation),
         cmocka_unit_test(test_fault_post_mortem),
+        cmocka_unit_test(test_fault_trigger_needs_a_new_trip),
         cmocka_unit_test(test_bad_setups),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

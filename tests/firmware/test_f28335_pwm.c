@@ -298,7 +298,7 @@ static int aq_period(aq_model_t *m, bool *high_at_zero, int *first, int *last)
         if (ctr == 0u && m->load_before_events) {
             aq_load(m);
         }
-        aq_count(m, ctr, up || ctr == m->prd);
+        aq_count(m, ctr, up); /* at CTR = TBPRD the direction is down (TI) */
         if (ctr == 0u && !m->load_before_events) {
             aq_load(m);
         }

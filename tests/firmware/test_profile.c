@@ -142,6 +142,10 @@ static void test_32bit_mean_and_load(void **state)
     (void)state;
     step = 0u;
     prof_init(period, 150000000u);
+    prof_begin(
+        0x7FFFFFFFu); /* a first sample beyond 2^24 cycles: the mean is clamped, not wrapped */
+    assert_int_equal(drive_profile.stage[PROF_LATENCY].mean_x256, 0x00FFFFFFu << 8);
+    prof_init(period, 150000000u);
     for (k = 0; k < 200000; k++) {
         const uint32_t r = next_rand();
         const uint32_t busy = (k < 100000) ? (r >> 16) : (r >> (8u + (r & 7u)));

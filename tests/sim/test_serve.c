@@ -35,6 +35,7 @@
 static pid_t server;
 static const char *server_scenario = "fault-encoder-jump";
 static const char *server_fault_time = "1.5";
+static const char *server_baud = "115200";
 static char trace_dir[] = "/tmp/sixphase-serve-XXXXXX";
 static int port = -1;
 static char port_path[160];
@@ -125,8 +126,8 @@ static int start_server(void **state)
     if (server == 0) {
         (void)dup2(out[1], 1);
         execl(SIXPHASE_SIM_EXE, SIXPHASE_SIM_EXE, "serve", "--scenario", server_scenario,
-              "--fault-time", server_fault_time, "--duration", "60", "--out", trace_dir, "--quiet",
-              (char *)NULL);
+              "--fault-time", server_fault_time, "--duration", "60", "--out", trace_dir, "--baud",
+              server_baud, "--quiet", (char *)NULL);
         _exit(127);
     }
     (void)close(out[1]);
@@ -243,7 +244,28 @@ static void test_fault_records_and_restart(void **state)
     assert_int_equal(request(SXL_CMD_CLEAR_FAULT, NULL, 0, &r), 0);
     assert_true(wait_for(is_ready, 1.0, &r));
     assert_int_equal(request(SXL_CMD_RUN, NULL, 0, &r), 0);
-    assert_true(wait_for(at_800, 2.0, &r));
+    if (!wait_for(at_800, 2.0, &r)) {
+        print_error("after the restart: state %u fault %u speed %d\n", st_u8(&r, SXL_ST_STATE),
+                    st_u8(&r, SXL_ST_FAULT), st_i32(&r, SXL_ST_SPEED));
+        fail();
+    }
+}
+
+/* The tool's capture: a trigger that never comes times out and leaves the drive's capture
+ * stopped, so the next capture runs; `capture stop` ends one a killed tool left armed. */
+static void test_tool_capture_timeout_leaves_it_stopped(void **state)
+{
+    char cmd[400];
+    (void)state;
+    (void)snprintf(cmd, sizeof cmd,
+                   "%s -d %s capture i_a --trigger rising:i_a:70 --wait 1 2>/dev/null >/dev/null",
+                   SIXPHASE_LINK_EXE, port_path);
+    assert_int_not_equal(system(cmd), 0);
+    (void)snprintf(cmd, sizeof cmd, "%s -d %s capture i_a,iq --length 8 > /dev/null",
+                   SIXPHASE_LINK_EXE, port_path);
+    assert_int_equal(system(cmd), 0);
+    (void)snprintf(cmd, sizeof cmd, "%s -d %s capture stop", SIXPHASE_LINK_EXE, port_path);
+    assert_int_equal(system(cmd), 0);
 }
 
 /* The board stops answering: the host tool gives up after its timeout, non-zero. */
@@ -421,6 +443,24 @@ static int start_over_current_server(void **state)
     return start_server(state);
 }
 
+/* A slow line (57600 baud: 0.58 bytes a period at 10 kHz) still carries every frame. */
+static void test_slow_line(void **state)
+{
+    sxl_frame_t r;
+    (void)state;
+    assert_int_equal(request(SXL_CMD_PING, NULL, 0, &r), 0);
+    assert_true(wait_for(is_ready, 2.0, &r));
+}
+
+static int start_slow_line_server(void **state)
+{
+    server_scenario = "fault-encoder-jump"; /* at 50 s: not within this test */
+    server_fault_time = "50";
+    server_baud = "57600";
+    (void)snprintf(trace_dir, sizeof trace_dir, "/tmp/sixphase-serve-XXXXXX");
+    return start_server(state);
+}
+
 static int stop_and_clean(void **state)
 {
     char path[200];
@@ -458,14 +498,17 @@ int main(void)
         cmocka_unit_test(test_garbage_is_counted_and_skipped),
         cmocka_unit_test(test_capture_while_running),
         cmocka_unit_test(test_fault_records_and_restart),
+        cmocka_unit_test(test_tool_capture_timeout_leaves_it_stopped),
         cmocka_unit_test(test_host_tool_times_out),
     };
     const struct CMUnitTest after[] = {cmocka_unit_test(test_capture_matches_the_trace)};
     const struct CMUnitTest post_mortem[] = {cmocka_unit_test(test_post_mortem_over_current)};
     const struct CMUnitTest pacing[] = {cmocka_unit_test(test_fast_pacing_and_bad_rate)};
+    const struct CMUnitTest slow[] = {cmocka_unit_test(test_slow_line)};
     int failed = cmocka_run_group_tests(tests, start_server, stop_server);
     failed += cmocka_run_group_tests(after, NULL, NULL);
     failed += cmocka_run_group_tests(post_mortem, start_over_current_server, stop_and_clean);
     failed += cmocka_run_group_tests(pacing, NULL, NULL);
+    failed += cmocka_run_group_tests(slow, start_slow_line_server, stop_and_clean);
     return failed;
 }

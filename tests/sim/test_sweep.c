@@ -127,6 +127,32 @@ static void test_bad_grids_refused(void **state)
     }
 }
 
+/* A point whose run fails (the fault time outside its 0.3 s) fails the sweep, and a rerun runs
+ * it again rather than taking the failure as done; list values in the JSON are numbers. */
+static void test_failed_points_rerun_and_json_numbers(void **state)
+{
+    char d2[] = "/tmp/sixphase-sweep2-XXXXXX", path[200], *json;
+    (void)state;
+    assert_non_null(mkdtemp(d2));
+    assert_int_equal(sh("%s sweep --out %s --controller ddc --scenario fault-overcurrent "
+                        "--fault-time 0.4 --duration 0.3,0.5 --no-plots --quiet 2>/dev/null",
+                        d2),
+                     1);
+    assert_int_equal(sh("%s sweep --out %s --controller ddc --scenario fault-overcurrent "
+                        "--fault-time 0.4 --duration 0.3,0.5 --no-plots --quiet 2>/dev/null",
+                        d2),
+                     1);
+    assert_int_equal(sh("%s sweep --out %s --controller ddc --scenario steady --lambda .5,1 "
+                        "--duration 0.1 --no-plots --quiet",
+                        d2),
+                     0);
+    (void)snprintf(path, sizeof path, "%s/sweep.json", d2);
+    json = read_all(path);
+    assert_non_null(strstr(json, "\"lambda\": 0.5,"));
+    (void)snprintf(path, sizeof path, "rm -rf %s", d2);
+    assert_int_equal(system(path), 0);
+}
+
 static void test_run_plot(void **state)
 {
     char path[200];
@@ -158,6 +184,7 @@ int main(void)
         cmocka_unit_test(test_table_equals_single_runs),
         cmocka_unit_test(test_resume_runs_only_the_missing_point),
         cmocka_unit_test(test_bad_grids_refused),
+        cmocka_unit_test(test_failed_points_rerun_and_json_numbers),
         cmocka_unit_test(test_run_plot),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

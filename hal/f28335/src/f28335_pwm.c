@@ -188,8 +188,17 @@ void hal_pwm_write(const uint16_t duty[HAL_PWM_LEGS])
     int16_t i;
     for (i = 0; i < HAL_PWM_LEGS; i++) {
         volatile f28335_epwm_t *p = F28335_EPWM(i);
-        p->CMPA = f28335_pwm_cmpa_for(duty[i], pwm_prd);
-        p->AQCSFRC = f28335_pwm_force_for(duty[i], pwm_prd);
+        const uint16_t force = f28335_pwm_force_for(duty[i], pwm_prd);
+        /* Into 100 % the force first, out of it the compare first: if the period's shadow load
+         * falls between the two writes, the leg keeps its previous duty for one more period
+         * instead of getting a period at 0 %. */
+        if (force != 0u) {
+            p->AQCSFRC = force;
+            p->CMPA = f28335_pwm_cmpa_for(duty[i], pwm_prd);
+        } else {
+            p->CMPA = f28335_pwm_cmpa_for(duty[i], pwm_prd);
+            p->AQCSFRC = force;
+        }
     }
 }
 
