@@ -14,7 +14,7 @@ typedef struct {
     sim_config_t cfg;
     sim_result_t res;
     int ok;
-    char err[160];
+    char err[320];
 } sim_case_t;
 
 /* Called in the parent as each case finishes: done of total finished so far. */

@@ -36,7 +36,8 @@ void sim_cli_usage(FILE *f)
         "                   [--fault-time S]\n"
         "  sixphase-sim reproduce --out DIR [--jobs N] [--no-plots] [--quiet]\n"
         "  sixphase-sim sweep --out DIR [--jobs N] [--force] [--no-plots] [--quiet] run options,\n"
-        "                   numbers and choices as lists (a,b,c) or ranges (start:stop:step)\n"
+        "                   numbers and choices as lists (a,b,c) or ranges (start:stop:step);\n"
+        "                   --scenario defaults to steady, --jobs to the online processors\n"
         "  sixphase-sim plot DIR: the figure of an earlier run --out DIR (DIR/run.png)\n"
         "  sixphase-sim serve [run options] [--rate N | --fast] [--baud B]: the firmware on a\n"
         "                   virtual board behind a pseudo-terminal (its path on stdout)\n"
@@ -400,6 +401,14 @@ static int check_combination(const sim_cli_t *o, const int *seen, unsigned where
     }
     if (where == OPT_RUN && !seen[G_SCENARIO]) {
         return cli_fail(err, len, "missing %s%s", "--scenario", "");
+    }
+    if (o->plot && !c->out_dir) {
+        return cli_fail(err, len, "--plot needs --out (the figure is drawn from trace.csv)%s%s", "",
+                        "");
+    }
+    if (o->plot && !c->write_trace) {
+        return cli_fail(err, len, "--plot draws trace.csv, which --no-trace leaves out%s%s", "",
+                        "");
     }
     if (where == OPT_REPRODUCE && !c->out_dir) {
         return cli_fail(err, len, "missing %s%s", "--out", "");

@@ -57,10 +57,6 @@ static int cmd_run(int argc, char **argv)
         fprintf(stderr, "sixphase-sim: %s\n", err);
         return 2;
     }
-    if (cli.plot && !cli.cfg.out_dir) {
-        fprintf(stderr, "sixphase-sim: --plot needs --out (the figure is drawn from trace.csv)\n");
-        return 2;
-    }
     if (!cli.quiet && isatty(2)) {
         sim_plan(&cli.cfg, &plan);
         prog.total_s = plan.duration;
@@ -111,9 +107,18 @@ static int cmd_reproduce(int argc, char **argv)
 /* plot DIR: the figure of an earlier `run --out DIR`. */
 static int cmd_plot(int argc, char **argv)
 {
+    char trace[1200];
     if (argc != 1 || argv[0][0] == '-') {
         fprintf(stderr, "sixphase-sim: usage: sixphase-sim plot DIR (a run's --out directory)\n");
         return 2;
+    }
+    (void)snprintf(trace, sizeof trace, "%s/trace.csv", argv[0]);
+    if (access(trace, R_OK) != 0) {
+        fprintf(stderr,
+                "sixphase-sim: no trace.csv in '%s' (plot takes the --out directory of a run "
+                "without --no-trace)\n",
+                argv[0]);
+        return 1;
     }
     return (sim_plot(SIM_PLOT_RUN, argv[0]) == 0) ? 0 : 1;
 }

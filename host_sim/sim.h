@@ -138,6 +138,9 @@ int sim_write_metrics_json(const char *path, const sim_config_t *c, const sim_re
 
 /* The same JSON to an open stream. */
 void sim_print_metrics_json(FILE *f, const sim_config_t *c, const sim_result_t *r);
+/* The same without the host timings (realtime_factor, wall_s, isr_mean_us): what depends only
+ * on the binary and the configuration (a sweep's table). */
+void sim_print_metrics_json_no_timings(FILE *f, const sim_config_t *c, const sim_result_t *r);
 
 /* mkdir -p; 0 on success. */
 int sim_make_dirs(const char *path);

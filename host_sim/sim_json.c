@@ -81,8 +81,10 @@ static void sim_print_phase_thd_json(FILE *f, const sim_result_t *r)
     fprintf(f, "],\n");
 }
 
-/* The run's metrics (brief §7) and the drive's state at the end. */
-static void sim_print_results_json(FILE *f, const sim_config_t *c, const sim_result_t *r)
+/* The run's metrics (brief §7) and the drive's state at the end; host_timings: the host's wall
+ * times too (they differ from run to run). */
+static void sim_print_results_json(FILE *f, const sim_config_t *c, const sim_result_t *r,
+                                   bool host_timings)
 {
     json_num(f, "window_start_s", r->window_start_s, true);
     json_num(f, "window_end_s", r->window_end_s, true);
@@ -102,9 +104,11 @@ static void sim_print_results_json(FILE *f, const sim_config_t *c, const sim_res
     json_num(f, "phase_current_peak_a", r->phase_current_peak_a, true);
     fprintf(f, "  \"adc_clipped_samples\": %ld,\n", r->adc_clipped);
     json_num(f, "transient_ms", json_or_null(r->transient_ms), true);
-    json_num(f, "realtime_factor", r->realtime_factor, true);
-    json_num(f, "wall_s", r->wall_s, true);
-    json_num(f, "isr_mean_us", r->isr_mean_us, true);
+    if (host_timings) {
+        json_num(f, "realtime_factor", r->realtime_factor, true);
+        json_num(f, "wall_s", r->wall_s, true);
+        json_num(f, "isr_mean_us", r->isr_mean_us, true);
+    }
     fprintf(f, "  \"final_drive_state\": %d,\n  \"drive_fault\": %d,\n", r->final_state, r->fault);
     json_num(f, "fault_time_s", json_or_null(r->fault_time_s), true);
     json_num(f, "hw_trip_time_s", json_or_null(r->trip_time_s), true);
@@ -138,7 +142,7 @@ static void sim_print_plant_json(FILE *f, const plant_params_t *p)
             p->encoder_quant_on ? "true" : "false", (unsigned)p->encoder_lines);
 }
 
-void sim_print_metrics_json(FILE *f, const sim_config_t *c, const sim_result_t *r)
+static void sim_print_json(FILE *f, const sim_config_t *c, const sim_result_t *r, bool host_timings)
 {
     fprintf(f, "{\n");
     fprintf(f, "  \"controller\": \"%s\",\n  \"arith\": \"%s\",\n  \"scenario\": \"%s\",\n",
@@ -149,7 +153,7 @@ void sim_print_metrics_json(FILE *f, const sim_config_t *c, const sim_result_t *
     json_num(f, "load_nm", r->load_nm, true);
     json_num(f, "duration_s", r->duration_s, true);
     fprintf(f, "  \"seed\": %llu,\n", (unsigned long long)c->seed);
-    sim_print_results_json(f, c, r);
+    sim_print_results_json(f, c, r, host_timings);
     sim_print_fault_json(f, c, r);
     fprintf(f,
             "  \"controller_params\": {\"lambda_nm_per_wb\": %.6g, \"speed_kp_nm_per_rad_s\": "
@@ -163,4 +167,14 @@ void sim_print_metrics_json(FILE *f, const sim_config_t *c, const sim_result_t *
             r->p_fewest_transitions ? "true" : "false");
     sim_print_plant_json(f, &c->plant);
     fprintf(f, "}\n");
+}
+
+void sim_print_metrics_json(FILE *f, const sim_config_t *c, const sim_result_t *r)
+{
+    sim_print_json(f, c, r, true);
+}
+
+void sim_print_metrics_json_no_timings(FILE *f, const sim_config_t *c, const sim_result_t *r)
+{
+    sim_print_json(f, c, r, false);
 }

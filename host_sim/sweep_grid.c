@@ -1,4 +1,6 @@
 /* The sweep's grid: its own options, the swept axes and every point's run arguments. */
+#define _DEFAULT_SOURCE /* sysconf(_SC_NPROCESSORS_ONLN) */
+
 #include "sweep_grid.h"
 
 #include <math.h>
@@ -6,6 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "cli.h"
 
@@ -73,13 +76,11 @@ static int grid_option(sweep_grid_t *g, const char *opt, const char *val, char *
         (void)snprintf(ax->option, sizeof ax->option, "%s", opt);
         return strchr(val, ':') ? grid_range(ax, val, err, len) : grid_list(ax, val, err, len);
     }
-    if (g->n_fixed + 2 > SWEEP_MAX_ARGS) {
+    if (g->n_fixed == SWEEP_MAX_ARGS / 2) {
         return grid_fail(err, len, "too many options%s%s", "", "");
     }
-    g->fixed[g->n_fixed++] = opt;
-    if (val) {
-        g->fixed[g->n_fixed++] = val;
-    }
+    g->fixed_option[g->n_fixed] = opt;
+    g->fixed_value[g->n_fixed++] = val;
     return 0;
 }
 
@@ -92,6 +93,13 @@ static int grid_own(sweep_grid_t *g, int argc, char **argv, int i, int *used, ch
     if (strcmp(a, "--force") == 0 || strcmp(a, "--no-plots") == 0 || strcmp(a, "--quiet") == 0) {
         *(a[2] == 'f' ? &g->force : (a[5] == 'p' ? &g->no_plots : &g->quiet)) = 1;
         return 1;
+    }
+    if (strcmp(a, "--plot") == 0) {
+        (void)grid_fail(err, len,
+                        "--plot is for run: a sweep draws DIR/plots/ (--no-plots "
+                        "leaves them out)%s%s",
+                        "", "");
+        return -1;
     }
     if (strcmp(a, "--out") != 0 && strcmp(a, "--jobs") != 0) {
         return 0;
@@ -113,11 +121,35 @@ static int grid_own(sweep_grid_t *g, int argc, char **argv, int i, int *used, ch
     return 1;
 }
 
+/* The number of online processors, 1..64. */
+static int grid_default_jobs(void)
+{
+    const long n = sysconf(_SC_NPROCESSORS_ONLN);
+    return (n < 1) ? 1 : ((n > 64) ? 64 : (int)n);
+}
+
+/* Whether a swept or shared option is opt. */
+static int grid_has(const sweep_grid_t *g, const char *opt)
+{
+    int k;
+    for (k = 0; k < g->n_axes; k++) {
+        if (strcmp(g->axis[k].option, opt) == 0) {
+            return 1;
+        }
+    }
+    for (k = 0; k < g->n_fixed; k++) {
+        if (strcmp(g->fixed_option[k], opt) == 0) {
+            return 1;
+        }
+    }
+    return 0;
+}
+
 int sweep_grid_parse(int argc, char **argv, sweep_grid_t *g, char *err, size_t len)
 {
     int i = 0, used;
     memset(g, 0, sizeof *g);
-    g->jobs = 2;
+    g->jobs = grid_default_jobs();
     while (i < argc) {
         const int own = grid_own(g, argc, argv, i, &used, err, len);
         if (own < 0) {
@@ -142,6 +174,9 @@ int sweep_grid_parse(int argc, char **argv, sweep_grid_t *g, char *err, size_t l
     }
     if (!g->out) {
         return grid_fail(err, len, "missing %s%s", "--out", "");
+    }
+    if (!grid_has(g, "--scenario") && grid_option(g, "--scenario", "steady", err, len) != 0) {
+        return -1;
     }
     if (g->n_axes == 0) {
         return grid_fail(err, len,
@@ -177,7 +212,10 @@ int sweep_grid_args(const sweep_grid_t *g, long p, char **args)
     int n = 0, k;
     sweep_grid_point(g, p, index);
     for (k = 0; k < g->n_fixed; k++) {
-        args[n++] = (char *)(uintptr_t)g->fixed[k];
+        args[n++] = (char *)(uintptr_t)g->fixed_option[k];
+        if (g->fixed_value[k]) {
+            args[n++] = (char *)(uintptr_t)g->fixed_value[k];
+        }
     }
     for (k = 0; k < g->n_axes; k++) {
         args[n++] = (char *)(uintptr_t)g->axis[k].option;

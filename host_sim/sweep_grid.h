@@ -19,11 +19,14 @@ typedef struct {
     int jobs, force, no_plots, quiet;
     int n_axes;
     sweep_axis_t axis[SWEEP_MAX_AXES];
-    int n_fixed;
-    const char *fixed[SWEEP_MAX_ARGS]; /* the run options every point shares */
+    int n_fixed; /* the run options every point shares, a flag's value NULL */
+    const char *fixed_option[SWEEP_MAX_ARGS / 2];
+    const char *fixed_value[SWEEP_MAX_ARGS / 2];
 } sweep_grid_t;
 
-/* 0, or -1 with a one-line message (bad range or list, missing --out, nothing swept). */
+/* 0, or -1 with a one-line message (bad range or list, missing --out, nothing swept). Without
+ * --scenario every point runs the steady scenario (`--scenario steady` is added); --jobs
+ * defaults to the number of online processors (at least 1, at most 64). */
 int sweep_grid_parse(int argc, char **argv, sweep_grid_t *g, char *err, size_t len);
 
 long sweep_grid_points(const sweep_grid_t *g);

@@ -1,11 +1,19 @@
 /*
- * sixphase-sim sweep and plot, through the executable: a 2 x 2 grid's table equals single
- * runs of the same points (sim_run in this process); a rerun after one point's file was
- * removed runs only that point and gives the same table; bad grids are refused in one line
- * with exit 2; `run --plot` and `plot DIR` draw a 1000 x 1400 PNG.
+ * sixphase-sim sweep and plot, through the executable:
+ * - a 2 x 2 grid without --scenario (steady by default): every column of every row, in
+ *   sweep.csv and in sweep.json, equals the metrics.json of a single `run` of that point (the
+ *   host timings aside); the summary names the workers (default: the online processors);
+ * - resume: only a removed point runs again; a rebuilt binary runs every point again;
+ * - bad grids are refused with exit 2 and one line; --force lifts the point cap;
+ * - a point whose run fails fails the sweep and runs again on a rerun;
+ * - points the drive stopped in a fault (MPTC-49 trips its over-current protection) are
+ *   marked with the fault, counted in the summary and left out of the plots and the Pareto
+ *   front; the plots are drawn (PNG sizes);
+ * - `run --plot` and `plot DIR` draw a 1000 x 1400 PNG; their refusals are one line.
  */
 #define _POSIX_C_SOURCE 200809L
 
+#include <ctype.h>
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -19,163 +27,485 @@
 
 #include <cmocka.h>
 
-#include "sim.h"
+#define EXE SIXPHASE_SIM_EXE
+#define GRID "--controller ddc,mptc13 --lambda 20,100 --duration 0.3 --no-plots"
+#define MAX_COLUMNS 400
+#define VALUE_LEN 320
 
 static char dir[] = "/tmp/sixphase-sweep-XXXXXX";
 
-static int sh(const char *fmt, const char *a)
+/* A shell command from a format; its exit status. */
+static int shf(const char *fmt, ...)
 {
-    char cmd[1200];
+    char cmd[2000];
+    va_list ap;
     int rc;
-    (void)snprintf(cmd, sizeof cmd, fmt, SIXPHASE_SIM_EXE, a);
+    va_start(ap, fmt);
+    (void)vsnprintf(cmd, sizeof cmd, fmt, ap);
+    va_end(ap);
     rc = system(cmd);
     return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
 }
 
-static char *read_all(const char *path)
+static char *read_file(const char *path, char *buf, size_t size)
 {
-    static char buf[65536];
     FILE *f = fopen(path, "r");
     size_t n;
-    assert_non_null(f);
-    n = fread(buf, 1, sizeof buf - 1, f);
+    if (!f) {
+        print_error("cannot read %s\n", path);
+        fail();
+    }
+    n = fread(buf, 1, size - 1, f);
     buf[n] = '\0';
     fclose(f);
     return buf;
 }
 
+static char *read_in_dir(const char *d, const char *name)
+{
+    static char buf[1 << 20];
+    char path[300];
+    (void)snprintf(path, sizeof path, "%s/%s", d, name);
+    return read_file(path, buf, sizeof buf);
+}
+
+/* The message of a refusal: exactly one line, "sixphase-sim: ...". */
+static void assert_one_line(const char *text)
+{
+    const char *nl = strchr(text, '\n');
+    if (strncmp(text, "sixphase-sim: ", 14) != 0 || !nl || nl[1] != '\0') {
+        print_error("not one 'sixphase-sim:' line: '%s'\n", text);
+        fail();
+    }
+}
+
+/* ---- flat key-value views of metrics.json, a sweep.json row and a sweep.csv row ---- */
+
+typedef struct {
+    int n;
+    char key[MAX_COLUMNS][96];
+    char value[MAX_COLUMNS][VALUE_LEN]; /* as the CSV writes it: null "", true "1", false "0" */
+} flat_t;
+
+static const char *skip_space(const char *s)
+{
+    while (isspace((unsigned char)*s)) {
+        s++;
+    }
+    return s;
+}
+
+static const char *json_string(const char *s, char *out, size_t len)
+{
+    size_t n = 0;
+    for (s++; *s != '"'; s++) {
+        assert_true(*s != '\0');
+        if (*s == '\\') {
+            s++;
+        }
+        if (n + 1 < len) {
+            out[n++] = *s;
+        }
+    }
+    out[n] = '\0';
+    return s + 1;
+}
+
+static const char *json_value(const char *s, const char *key, flat_t *o);
+
+/* An object's members (KEY_MEMBER) or an array's elements (KEY_A, KEY_B, ...). */
+static const char *json_members(const char *s, const char *prefix, flat_t *o)
+{
+    const char close = (*s == '{') ? '}' : ']';
+    int k = 0;
+    s = skip_space(s + 1);
+    while (*s != close) {
+        char name[96], key[200];
+        if (close == '}') {
+            s = json_string(skip_space(s), name, sizeof name);
+            s = skip_space(s);
+            assert_int_equal(*s, ':');
+            (void)snprintf(key, sizeof key, "%s%s%s", prefix, *prefix ? "_" : "", name);
+            s++;
+        } else {
+            (void)snprintf(key, sizeof key, "%s_%c", prefix, 'A' + k);
+        }
+        s = skip_space(json_value(s, key, o));
+        k++;
+        if (*s == ',') {
+            s = skip_space(s + 1);
+        }
+    }
+    return s + 1;
+}
+
+static const char *json_value(const char *s, const char *key, flat_t *o)
+{
+    char *v;
+    size_t n;
+    s = skip_space(s);
+    if (*s == '{' || *s == '[') {
+        return json_members(s, key, o);
+    }
+    assert_true(o->n < MAX_COLUMNS);
+    (void)snprintf(o->key[o->n], sizeof o->key[0], "%s", key);
+    v = o->value[o->n++];
+    if (*s == '"') {
+        return json_string(s, v, VALUE_LEN);
+    }
+    n = strcspn(s, ",}] \n");
+    (void)snprintf(v, VALUE_LEN, "%.*s", (int)n, s);
+    if (strcmp(v, "null") == 0) {
+        v[0] = '\0';
+    } else if (strcmp(v, "true") == 0 || strcmp(v, "false") == 0) {
+        (void)snprintf(v, VALUE_LEN, "%d", v[0] == 't');
+    }
+    return s + n;
+}
+
+/* One CSV line into fields (quoted fields with doubled quotes). */
+static void csv_fields(const char *line, flat_t *o, int keys)
+{
+    int k = 0;
+    for (;; k++) {
+        char *v = keys ? o->key[k] : o->value[k];
+        const size_t len = keys ? sizeof o->key[0] : VALUE_LEN;
+        size_t n = 0;
+        assert_true(k < MAX_COLUMNS);
+        if (*line == '"') {
+            for (line++; !(line[0] == '"' && line[1] != '"'); line++) {
+                line += (line[0] == '"'); /* a doubled quote */
+                v[n < len - 1 ? n++ : n] = *line;
+            }
+            line++;
+        }
+        while (*line != ',' && *line != '\n' && *line != '\0') {
+            v[n < len - 1 ? n++ : n] = *line++;
+        }
+        v[n] = '\0';
+        if (*line != ',') {
+            break;
+        }
+        line++;
+    }
+    o->n = k + 1;
+}
+
+/* Row r (0-based) of DIR/sweep.csv as key-value pairs. */
+static void csv_row(const char *d, int r, flat_t *row)
+{
+    const char *line = read_in_dir(d, "sweep.csv");
+    int k;
+    csv_fields(line, row, 1);
+    for (k = 0; k <= r; k++) {
+        line = strchr(line, '\n');
+        assert_non_null(line);
+        line++;
+    }
+    assert_true(*line != '\0');
+    k = row->n;
+    csv_fields(line, row, 0);
+    assert_int_equal(row->n, k); /* as many fields as the header */
+}
+
+static const char *flat_get(const flat_t *f, const char *key)
+{
+    int k;
+    for (k = 0; k < f->n; k++) {
+        if (strcmp(f->key[k], key) == 0) {
+            return f->value[k];
+        }
+    }
+    return NULL;
+}
+
+static void assert_field(const flat_t *f, const char *key, const char *want)
+{
+    const char *v = flat_get(f, key);
+    if (!v || strcmp(v, want) != 0) {
+        print_error("%s: '%s', want '%s'\n", key, v ? v : "(no such column)", want);
+        fail();
+    }
+}
+
+/* Every key of a single run's metrics.json but the host timings is in the row, equal. */
+static int assert_row_has_run(const flat_t *row, const flat_t *run)
+{
+    static const char *const host_timings[] = {"realtime_factor", "wall_s", "isr_mean_us"};
+    int k, compared = 0;
+    for (k = 0; k < run->n; k++) {
+        if (strcmp(run->key[k], host_timings[0]) == 0 ||
+            strcmp(run->key[k], host_timings[1]) == 0 ||
+            strcmp(run->key[k], host_timings[2]) == 0) {
+            continue;
+        }
+        assert_field(row, run->key[k], run->value[k]);
+        compared++;
+    }
+    return compared;
+}
+
+static void flat_json_file(const char *d, const char *name, flat_t *o)
+{
+    o->n = 0;
+    (void)json_value(read_in_dir(d, name), "", o);
+}
+
+/* Object r (0-based) of DIR/sweep.json. */
+static void json_row(const char *d, int r, flat_t *o)
+{
+    const char *s = skip_space(read_in_dir(d, "sweep.json"));
+    int k;
+    assert_int_equal(*s, '[');
+    s = skip_space(s + 1);
+    for (k = 0; k < r; k++) {
+        flat_t skip;
+        skip.n = 0;
+        s = skip_space(json_members(s, "", &skip));
+        assert_int_equal(*s, ',');
+        s = skip_space(s + 1);
+    }
+    o->n = 0;
+    (void)json_members(s, "", o);
+}
+
+static long online_processors(void)
+{
+    const long n = sysconf(_SC_NPROCESSORS_ONLN);
+    return (n < 1) ? 1 : ((n > 64) ? 64 : n);
+}
+
+/* ---- the tests ---- */
+
 static void test_table_equals_single_runs(void **state)
 {
     static const char *const controllers[2] = {"ddc", "mptc13"};
-    static const double lambdas[2] = {20.0, 100.0};
-    char path[200], *table, line[512], *p;
+    static const char *const lambdas[2] = {"20", "100"};
+    static flat_t row, jrow, run;
+    char want[200];
     int k;
     (void)state;
     assert_non_null(mkdtemp(dir));
-    assert_int_equal(sh("%s sweep --out %s --controller ddc,mptc13 --scenario steady --lambda "
-                        "20,100 --duration 0.3 --no-plots --quiet",
-                        dir),
-                     0);
-    (void)snprintf(path, sizeof path, "%s/sweep.csv", dir);
-    table = read_all(path);
-    p = strchr(table, '\n') + 1; /* after the header */
+    assert_int_equal(shf("%s sweep --out %s " GRID " 2> %s/summary.txt", EXE, dir, dir), 0);
+    (void)snprintf(want, sizeof want,
+                   "(0 from an earlier run, %ld worker processes): 4 ok, 0 stopped by a drive "
+                   "fault, 0 failed",
+                   online_processors());
+    assert_non_null(strstr(read_in_dir(dir, "summary.txt"), want));
     for (k = 0; k < 4; k++) {
-        sim_config_t c;
-        sim_result_t r;
-        char err[200], want[64];
-        size_t n = strcspn(p, "\n");
-        memcpy(line, p, n);
-        line[n] = '\0';
-        p += n + 1;
-        sim_config_default(&c);
-        c.controller = (k < 2) ? 0 : 2;
-        c.scenario = SIM_SCEN_STEADY;
-        c.lambda = lambdas[k % 2];
-        c.duration_s = 0.3;
-        c.out_dir = NULL;
-        assert_int_equal(sim_run(&c, &r, err, sizeof err), 0);
-        (void)snprintf(want, sizeof want, "%d,%s,%.10g,%.6g,", k, controllers[k / 2], c.lambda,
-                       r.thd_percent);
-        if (strncmp(line, want, strlen(want)) != 0) {
-            print_error("row %d: '%s', want it to start '%s'\n", k, line, want);
-            fail();
-        }
+        int n;
+        csv_row(dir, k, &row);
+        json_row(dir, k, &jrow);
+        assert_field(&row, "--controller", controllers[k / 2]);
+        assert_field(&row, "--lambda", lambdas[k % 2]);
+        assert_field(&row, "--duration", "0.3");
+        assert_field(&row, "--scenario", "steady");
+        assert_field(&row, "outcome", "ok");
+        assert_field(&jrow, "outcome", "ok");
+        assert_int_equal(shf("%s run --controller %s --scenario steady --lambda %s --duration 0.3 "
+                             "> %s/single.json",
+                             EXE, controllers[k / 2], lambdas[k % 2], dir),
+                         0);
+        flat_json_file(dir, "single.json", &run);
+        n = assert_row_has_run(&row, &run);
+        assert_int_equal(assert_row_has_run(&jrow, &run), n);
+        print_message("row %d: %d values equal a single run's\n", k, n);
+        assert_true(n >= 80); /* 85 keys today */
     }
 }
 
 static void test_resume_runs_only_the_missing_point(void **state)
 {
-    char path[200], before[65536];
-    struct stat kept;
+    static char before[1 << 20];
+    char path[200];
+    struct stat kept, again;
     (void)state;
-    (void)snprintf(path, sizeof path, "%s/sweep.csv", dir);
-    (void)snprintf(before, sizeof before, "%s", read_all(path));
+    (void)snprintf(before, sizeof before, "%s", read_in_dir(dir, "sweep.csv"));
     (void)snprintf(path, sizeof path, "%s/points/p0000.txt", dir);
     assert_int_equal(stat(path, &kept), 0);
     (void)snprintf(path, sizeof path, "%s/points/p0002.txt", dir);
     assert_int_equal(remove(path), 0);
     sleep(1); /* a rewritten point file would show a later time */
-    assert_int_equal(sh("%s sweep --out %s --controller ddc,mptc13 --scenario steady --lambda "
-                        "20,100 --duration 0.3 --no-plots --quiet",
-                        dir),
-                     0);
-    assert_int_equal(stat(path, &kept), 0); /* run again */
-    {
-        struct stat again;
-        char p0[200];
-        (void)snprintf(p0, sizeof p0, "%s/points/p0000.txt", dir);
-        assert_int_equal(stat(p0, &again), 0);
-        assert_true(again.st_mtime < kept.st_mtime); /* p0000 was not run again */
-    }
-    (void)snprintf(path, sizeof path, "%s/sweep.csv", dir);
-    assert_string_equal(read_all(path), before);
+    assert_int_equal(shf("%s sweep --out %s " GRID " 2> %s/summary.txt", EXE, dir, dir), 0);
+    assert_non_null(strstr(read_in_dir(dir, "summary.txt"), "(3 from an earlier run"));
+    assert_int_equal(access(path, R_OK), 0); /* run again */
+    (void)snprintf(path, sizeof path, "%s/points/p0000.txt", dir);
+    assert_int_equal(stat(path, &again), 0);
+    assert_true(again.st_mtime == kept.st_mtime); /* p0000 was not run again */
+    assert_string_equal(read_in_dir(dir, "sweep.csv"), before);
+}
+
+/* The same sweep by a rebuilt executable (here: a copy whose file differs by a byte) runs
+ * every point again; its rerun takes them all from the first. */
+static void test_rebuilt_binary_reruns_every_point(void **state)
+{
+    char copy[200];
+    (void)state;
+    (void)snprintf(copy, sizeof copy, "%s/sixphase-sim-rebuilt", dir);
+    assert_int_equal(shf("cp %s %s && printf x >> %s", EXE, copy, copy), 0);
+    assert_int_equal(shf("%s sweep --out %s " GRID " 2> %s/summary.txt", copy, dir, dir), 0);
+    assert_non_null(strstr(read_in_dir(dir, "summary.txt"), "(0 from an earlier run"));
+    assert_int_equal(shf("%s sweep --out %s " GRID " 2> %s/summary.txt", copy, dir, dir), 0);
+    assert_non_null(strstr(read_in_dir(dir, "summary.txt"), "(4 from an earlier run"));
+    assert_int_equal(remove(copy), 0);
 }
 
 static void test_bad_grids_refused(void **state)
 {
-    static const char *const bad[] = {"--lambda 10:5:1", "--lambda 10:20:0",
-                                      "--lambda ,",      "--bogus 1,2",
-                                      "--lambda 20,abc", "--lambda 1:250:1 --fs 5000,10000"};
+    static const char *const bad[] = {
+        "--lambda 10:5:1",       "--lambda 10:20:0",       "--lambda ,",
+        "--bogus 1,2",           "--lambda 20,abc",        "--lambda 1:250:1 --fs 5000,10000",
+        "--lambda 20,30 --plot", "--lambda 20,30 --jobs 0"};
     size_t k;
     (void)state;
     for (k = 0; k < sizeof bad / sizeof bad[0]; k++) {
-        char cmd[300];
-        (void)snprintf(cmd, sizeof cmd,
-                       "%%s sweep --out %%s --controller ddc --scenario steady %s 2>/dev/null",
-                       bad[k]);
-        assert_int_equal(sh(cmd, dir), 2);
+        assert_int_equal(
+            shf("%s sweep --out %s --controller ddc %s 2> %s/err.txt", EXE, dir, bad[k], dir), 2);
+        assert_one_line(read_in_dir(dir, "err.txt"));
     }
 }
 
-/* A point whose run fails (the fault time outside its 0.3 s) fails the sweep, and a rerun runs
- * it again rather than taking the failure as done; list values in the JSON are numbers. */
-static void test_failed_points_rerun_and_json_numbers(void **state)
+/* 402 points need --force; with it they run (0.01 s each). */
+static void test_force_lifts_the_cap(void **state)
 {
-    char d2[] = "/tmp/sixphase-sweep2-XXXXXX", path[200], *json;
+    char d4[] = "/tmp/sixphase-sweep4-XXXXXX";
+    const char *t;
+    int lines = 0;
     (void)state;
-    assert_non_null(mkdtemp(d2));
-    assert_int_equal(sh("%s sweep --out %s --controller ddc --scenario fault-overcurrent "
-                        "--fault-time 0.4 --duration 0.3,0.5 --no-plots --quiet 2>/dev/null",
-                        d2),
-                     1);
-    assert_int_equal(sh("%s sweep --out %s --controller ddc --scenario fault-overcurrent "
-                        "--fault-time 0.4 --duration 0.3,0.5 --no-plots --quiet 2>/dev/null",
-                        d2),
-                     1);
-    assert_int_equal(sh("%s sweep --out %s --controller ddc --scenario steady --lambda .5,1 "
-                        "--duration 0.1 --no-plots --quiet",
-                        d2),
+    assert_non_null(mkdtemp(d4));
+    assert_int_equal(shf("%s sweep --out %s --controller ddc --duration 0.01 --lambda 1:201:1 --fs "
+                         "9000,10000 --no-plots --quiet 2> %s/err.txt",
+                         EXE, d4, d4),
+                     2);
+    assert_one_line(read_in_dir(d4, "err.txt"));
+    assert_int_equal(shf("%s sweep --out %s --controller ddc --duration 0.01 --lambda 1:201:1 --fs "
+                         "9000,10000 --no-plots --quiet --force",
+                         EXE, d4),
                      0);
-    (void)snprintf(path, sizeof path, "%s/sweep.json", d2);
-    json = read_all(path);
-    assert_non_null(strstr(json, "\"lambda\": 0.5,"));
-    (void)snprintf(path, sizeof path, "rm -rf %s", d2);
-    assert_int_equal(system(path), 0);
+    for (t = read_in_dir(d4, "sweep.csv"); (t = strchr(t, '\n')) != NULL; t++) {
+        lines++;
+    }
+    assert_int_equal(lines, 403);
+    assert_int_equal(shf("rm -rf %s", d4), 0);
 }
 
-static void test_run_plot(void **state)
+/* A point whose run fails (the drive stops in its calibration at 800 V) fails the sweep, and
+ * a rerun runs it again rather than taking the failure as done; list values in the JSON are
+ * numbers. */
+static void test_failed_points_rerun_and_json_numbers(void **state)
 {
-    char path[200];
-    unsigned char h[24];
-    FILE *f;
+    char d2[] = "/tmp/sixphase-sweep2-XXXXXX";
+    static flat_t row;
     (void)state;
-    assert_int_equal(sh("%s run --controller ddc --scenario steady --duration 0.2 --out %s "
-                        "--plot --quiet",
-                        dir),
+    assert_non_null(mkdtemp(d2));
+    assert_int_equal(shf("%s sweep --out %s --controller ddc --vdc 800 --duration 0.3,0.5 "
+                         "--no-plots 2> %s/summary.txt",
+                         EXE, d2, d2),
+                     1);
+    assert_int_equal(shf("%s sweep --out %s --controller ddc --vdc 800 --duration 0.3,0.5 "
+                         "--no-plots 2> %s/summary.txt",
+                         EXE, d2, d2),
+                     1);
+    assert_non_null(strstr(read_in_dir(d2, "summary.txt"), "(0 from an earlier run"));
+    assert_non_null(strstr(read_in_dir(d2, "summary.txt"), "0 ok, 0 stopped by a drive fault, 2 "
+                                                           "failed"));
+    csv_row(d2, 1, &row);
+    assert_field(&row, "outcome", "failed");
+    assert_non_null(strstr(flat_get(&row, "error"), "during its ADC calibration"));
+    assert_int_equal(shf("%s sweep --out %s --controller ddc --lambda .5,1 --duration 0.1 "
+                         "--no-plots --quiet",
+                         EXE, d2),
                      0);
-    (void)snprintf(path, sizeof path, "%s/run.png", dir);
+    assert_non_null(strstr(read_in_dir(d2, "sweep.json"), "\"--lambda\": 0.5,"));
+    assert_non_null(strstr(read_in_dir(d2, "sweep.json"), "\"lambda\": 0.5,"));
+    assert_int_equal(shf("rm -rf %s", d2), 0);
+}
+
+static unsigned png_size(const char *d, const char *name, unsigned *height)
+{
+    char path[300];
+    unsigned char h[24];
+    struct stat st;
+    FILE *f;
+    (void)snprintf(path, sizeof path, "%s/%s", d, name);
     f = fopen(path, "rb");
     assert_non_null(f);
     assert_int_equal(fread(h, 1, 24, f), 24);
     fclose(f);
-    assert_int_equal((h[16] << 24) | (h[17] << 16) | (h[18] << 8) | h[19], 1000); /* width */
-    assert_int_equal((h[20] << 24) | (h[21] << 16) | (h[22] << 8) | h[23], 1400); /* height */
+    assert_int_equal(stat(path, &st), 0);
+    assert_true(st.st_size > 10000); /* something drawn */
+    *height = (unsigned)((h[20] << 24) | (h[21] << 16) | (h[22] << 8) | h[23]);
+    return (unsigned)((h[16] << 24) | (h[17] << 16) | (h[18] << 8) | h[19]);
+}
+
+/* The issue's example in small: MPTC-49 trips at every point. */
+static void test_faulted_points_marked_and_left_out_of_the_plots(void **state)
+{
+    char d3[] = "/tmp/sixphase-sweep3-XXXXXX";
+    static flat_t row;
+    const char *line;
+    unsigned w, h;
+    int k, front = 0;
+    (void)state;
+    assert_non_null(mkdtemp(d3));
+    assert_int_equal(shf("%s sweep --out %s --lambda 20,100 --controller ddc,mptc49 --duration "
+                         "0.3 2> %s/summary.txt",
+                         EXE, d3, d3),
+                     0);
+    assert_non_null(strstr(read_in_dir(d3, "summary.txt"),
+                           "2 ok, 2 stopped by a drive fault (OVERCURRENT 2), 0 failed"));
+    for (k = 0; k < 4; k++) {
+        csv_row(d3, k, &row);
+        assert_field(&row, "outcome", (k % 2 == 0) ? "ok" : "fault");
+        assert_field(&row, "fault_name", (k % 2 == 0) ? "NONE" : "OVERCURRENT");
+    }
+    w = png_size(d3, "plots/thd_percent.png", &h);
+    assert_true(w == 630 && h == 360);
+    w = png_size(d3, "plots/tradeoff.png", &h);
+    assert_true(w == 900 && h == 360);
+    line = strchr(read_in_dir(d3, "plots/pareto.csv"), '\n');
+    for (; line && line[1] != '\0'; line = strchr(line + 1, '\n')) {
+        char metric[40];
+        int point;
+        double fsw, value;
+        assert_int_equal(sscanf(line + 1, "%39[^,],%d,%lf,%lf", metric, &point, &fsw, &value), 4);
+        assert_true(point == 0 || point == 2); /* the DDC points */
+        assert_true(fsw > 1000.0 && value > 0.0);
+        front++;
+    }
+    assert_true(front >= 2); /* one per trade-off at least */
+    assert_int_equal(shf("rm -rf %s", d3), 0);
+}
+
+static void test_run_plot(void **state)
+{
+    char path[200], none[200];
+    unsigned w, h;
+    (void)state;
+    assert_int_equal(shf("%s run --controller ddc --scenario steady --duration 0.2 --out %s "
+                         "--plot --quiet",
+                         EXE, dir),
+                     0);
+    w = png_size(dir, "run.png", &h);
+    assert_true(w == 1000 && h == 1400);
+    (void)snprintf(path, sizeof path, "%s/run.png", dir);
     assert_int_equal(remove(path), 0);
-    assert_int_equal(sh("%s plot %s", dir), 0);
+    assert_int_equal(shf("%s plot %s", EXE, dir), 0);
     assert_int_equal(access(path, R_OK), 0);
-    assert_int_equal(sh("%s run --controller ddc --scenario steady --plot 2>/dev/null", ""), 2);
-    (void)snprintf(path, sizeof path, "rm -rf %s", dir);
-    assert_int_equal(system(path), 0);
+    assert_int_equal(
+        shf("%s run --controller ddc --scenario steady --plot 2> %s/err.txt", EXE, dir), 2);
+    assert_one_line(read_in_dir(dir, "err.txt"));
+    /* refused before anything runs: the directory is not even made */
+    (void)snprintf(none, sizeof none, "%s/never", dir);
+    assert_int_equal(shf("%s run --controller ddc --scenario steady --no-trace --out %s --plot "
+                         "2> %s/err.txt",
+                         EXE, none, dir),
+                     2);
+    assert_one_line(read_in_dir(dir, "err.txt"));
+    assert_int_not_equal(access(none, F_OK), 0);
+    assert_int_not_equal(shf("%s plot %s 2> %s/err.txt", EXE, none, dir), 0);
+    assert_one_line(read_in_dir(dir, "err.txt"));
+    assert_int_equal(shf("rm -rf %s", dir), 0);
 }
 
 int main(void)
@@ -183,8 +513,11 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_table_equals_single_runs),
         cmocka_unit_test(test_resume_runs_only_the_missing_point),
+        cmocka_unit_test(test_rebuilt_binary_reruns_every_point),
         cmocka_unit_test(test_bad_grids_refused),
+        cmocka_unit_test(test_force_lifts_the_cap),
         cmocka_unit_test(test_failed_points_rerun_and_json_numbers),
+        cmocka_unit_test(test_faulted_points_marked_and_left_out_of_the_plots),
         cmocka_unit_test(test_run_plot),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
