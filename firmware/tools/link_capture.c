@@ -63,6 +63,20 @@ static int cap_signal(const char *name, size_t len)
     return -1;
 }
 
+/* "unknown signal 'x' (one of i_a, i_b, ...)": the error names every valid signal. */
+static int cap_unknown_signal(const char *name, size_t len)
+{
+    char valid[512];
+    size_t used = 0;
+    int k;
+    valid[0] = '\0';
+    for (k = 0; k < CAPTURE_SIGNAL_COUNT && used < sizeof valid; k++) {
+        used += (size_t)snprintf(valid + used, sizeof valid - used, "%s%s", k ? ", " : "",
+                                 cap_names[k]);
+    }
+    return fail(EXIT_USAGE, "unknown signal '%.*s' (one of %s)", (int)len, name, valid);
+}
+
 static int cap_parse_signals(const char *list, capture_request_t *q)
 {
     const char *p = list;
@@ -71,8 +85,7 @@ static int cap_parse_signals(const char *list, capture_request_t *q)
         const size_t len = end ? (size_t)(end - p) : strlen(p);
         const int s = cap_signal(p, len);
         if (s < 0) {
-            return fail(EXIT_USAGE, "unknown signal '%.*s' (capture_signals.h lists them)",
-                        (int)len, p);
+            return cap_unknown_signal(p, len);
         }
         if (q->n_channels == CAP_MAX_CHANNELS) {
             return fail(EXIT_USAGE, "at most %d signals", CAP_MAX_CHANNELS);
@@ -102,8 +115,11 @@ static int cap_parse_trigger(const char *t, uint16_t *setup)
                     t);
     }
     s = cap_signal(sig + 1, (size_t)(lvl - sig - 1));
+    if (s < 0) {
+        return cap_unknown_signal(sig + 1, (size_t)(lvl - sig - 1));
+    }
     level = strtod(lvl + 1, &end);
-    if (s < 0 || *end != '\0' || end == lvl + 1 || !isfinite(level) ||
+    if (*end != '\0' || end == lvl + 1 || !isfinite(level) ||
         fabs(level / cap_scale[s]) > 32767.0) {
         return fail(EXIT_USAGE, "bad trigger signal or level in '%s'", t);
     }
@@ -170,6 +186,9 @@ static int cap_parse(int argc, char **argv, capture_request_t *q)
     }
     if ((long)sxl_get_u16(&q->setup[SXL_CA_LENGTH]) * q->n_channels > CAP_MAX_SAMPLES) {
         return fail(EXIT_USAGE, "buffer too small: length x signals above %d", CAP_MAX_SAMPLES);
+    }
+    if (q->plot && !q->out) {
+        return fail(EXIT_USAGE, "--plot needs --out (the figure is drawn from the CSV)");
     }
     return 0;
 }
@@ -269,20 +288,26 @@ static int cap_plot(const char *csv, const char *png)
     return 0;
 }
 
-static int cap_output(const capture_request_t *q, const sxl_frame_t *st,
+/* The CSV into f (stdout or --out, opened before the capture was armed) and the plot. */
+static int cap_output(FILE *f, const capture_request_t *q, const sxl_frame_t *st,
                       int16_t samples[][CAP_MAX_SAMPLES])
 {
-    FILE *f = q->out ? fopen(q->out, "w") : stdout;
-    int rc;
-    if (!f) {
-        return fail(EXIT_IO, "cannot write %s", q->out);
-    }
-    rc = cap_write_csv(f, q, st, samples);
+    int rc = cap_write_csv(f, q, st, samples);
     if (q->out && fclose(f) != 0 && rc == 0) {
         rc = fail(EXIT_IO, "cannot write %s", q->out);
     }
     if (rc == 0 && q->plot) {
-        rc = q->out ? cap_plot(q->out, q->plot) : fail(EXIT_USAGE, "--plot needs --out");
+        rc = cap_plot(q->out, q->plot);
+    }
+    return rc;
+}
+
+/* No capture: the --out file opened for it is removed again; returns rc. */
+static int cap_discard(const capture_request_t *q, FILE *out, int rc)
+{
+    if (q->out) {
+        (void)fclose(out);
+        (void)remove(q->out);
     }
     return rc;
 }
@@ -305,6 +330,7 @@ int cmd_capture(const options_t *o, int argc, char **argv)
     static int16_t samples[CAP_MAX_CHANNELS][CAP_MAX_SAMPLES];
     capture_request_t q;
     sxl_frame_t st;
+    FILE *out;
     int fd = -1, k, rc;
     if (argc == 1 && strcmp(argv[0], "stop") == 0) {
         return cap_stop(o);
@@ -316,8 +342,12 @@ int cmd_capture(const options_t *o, int argc, char **argv)
     if (o->print_only) {
         return fail(EXIT_USAGE, "capture is an exchange of several requests: no -n");
     }
+    out = q.out ? fopen(q.out, "w") : stdout; /* a bad --out is found before the capture */
+    if (!out) {
+        return fail(EXIT_IO, "cannot write %s", q.out);
+    }
     if ((rc = open_port(o, &fd)) != 0) {
-        return rc;
+        return cap_discard(&q, out, rc);
     }
     rc = cap_arm_and_wait(fd, o, &q, &st);
     if (rc == 0 && sxl_get_u16(&st.payload[1 + SXL_CS_COUNT]) > CAP_MAX_SAMPLES) {
@@ -327,5 +357,5 @@ int cmd_capture(const options_t *o, int argc, char **argv)
         rc = cap_read(fd, o, k, (int)sxl_get_u16(&st.payload[1 + SXL_CS_COUNT]), samples[k]);
     }
     close(fd);
-    return (rc != 0) ? rc : cap_output(&q, &st, samples);
+    return (rc != 0) ? cap_discard(&q, out, rc) : cap_output(out, &q, &st, samples);
 }

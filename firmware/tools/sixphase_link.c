@@ -2,7 +2,7 @@
  * sixphase-link: talk to the drive over its serial port (SCI-A protocol,
  * docs/serial-protocol.md).
  *
- *   sixphase-link [-d DEVICE] [-b BAUD] [-t MS] [-n] COMMAND [ARGS]
+ *   sixphase-link [-d DEVICE | --port DEVICE] [-b BAUD] [-t MS] [-n] COMMAND [ARGS]
  *
  * Commands: ping | status | profile | faults | run | stop | clear | speed RPM |
  *           torque NM | controller ddc|mptc49|mptc13 LAMBDA | decode HEXBYTE...
@@ -62,7 +62,7 @@ int fail(int code, const char *fmt, ...)
 static int usage(const char *why)
 {
     return fail(EXIT_USAGE,
-                "%s (usage: sixphase-link [-d DEVICE] [-b BAUD] [-t MS] [-n] "
+                "%s (usage: sixphase-link [-d|--port DEVICE] [-b BAUD] [-t MS] [-n] "
                 "ping|status|profile|faults|run|stop|clear|speed RPM|torque NM|controller "
                 "ddc|mptc49|mptc13 "
                 "LAMBDA|capture SIGNALS [...]|decode HEX...)",
@@ -569,7 +569,8 @@ static int parse_options(int argc, char **argv, options_t *o, int *next)
         }
         if (strcmp(opt, "-h") == 0 || strcmp(opt, "--help") == 0) {
             printf(
-                "usage: sixphase-link [-d DEVICE] [-b BAUD] [-t MS] [-n] COMMAND [ARGS]\n"
+                "usage: sixphase-link [-d DEVICE | --port DEVICE] [-b BAUD] [-t MS] [-n] COMMAND "
+                "[ARGS]\n"
                 "commands: ping status profile faults run stop clear speed RPM torque NM\n"
                 "          controller ddc|mptc49|mptc13 LAMBDA decode HEXBYTE...\n"
                 "          capture SIG[,SIG...] [--length N] [--decimate N] [--pre PCT]\n"
@@ -580,7 +581,7 @@ static int parse_options(int argc, char **argv, options_t *o, int *next)
         if (i + 1 >= argc) {
             return usage("option needs a value");
         }
-        if (strcmp(opt, "-d") == 0) {
+        if (strcmp(opt, "-d") == 0 || strcmp(opt, "--port") == 0) {
             o->device = argv[i + 1];
         } else if (strcmp(opt, "-b") == 0) {
             if (!parse_long(argv[i + 1], 1, 4000000, &o->baud)) {
