@@ -10,6 +10,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "scenario.h"
+
 void sim_cli_usage(FILE *f)
 {
     fprintf(
@@ -40,7 +42,9 @@ void sim_cli_usage(FILE *f)
         "                   --scenario defaults to steady, --jobs to the online processors\n"
         "  sixphase-sim plot DIR: the figure of an earlier run --out DIR (DIR/run.png)\n"
         "  sixphase-sim serve [run options] [--rate N | --fast] [--baud B]: the firmware on a\n"
-        "                   virtual board behind a pseudo-terminal (its path on stdout)\n"
+        "                   virtual board behind a pseudo-terminal (its path on stdout);\n"
+        "                   --scenario steady or fault-<name>, --speed the initial reference;\n"
+        "                   until --duration, a signal or `sixphase-link shutdown`\n"
         "numbers are plain decimals (1500, -0.5, 2e-6); each option at most once\n"
         "--duration: 0.01 to 36000 s (10 h); memory stays flat, trace.csv grows by about 1.7 MB\n"
         "per simulated second at 10 kHz (--no-trace leaves it out)\n"
@@ -171,7 +175,7 @@ static const opt_t options[] = {
     {"--seed", OPT_SEED, OPT_RUN, F(cfg.seed), G_SEED, 0.0, 0.0, 0, NULL},
     {"--duty-levels", OPT_INTEGER, OPT_RUN, F(cfg.duty_levels), G_LEVELS, 2.0, 11.0, 0, NULL},
     NUM("--torque-limit", cfg.torque_limit_nm, G_TORQUE_LIMIT, 0.1, 50.0),
-    NUM("--fault-time", cfg.fault_time_s, G_FAULT_TIME, 0.001, 100.0),
+    NUM("--fault-time", cfg.fault_time_s, G_FAULT_TIME, 0.001, SIM_MAX_DURATION_S),
     NUM("--trip-current", cfg.trip_current_a, G_TRIP, 0.1, 1000.0),
     NUM("--fine-rate", cfg.fine_rate_hz, G_FINE_RATE, 10000.0, 10e6),
     NUM("--lxy", cfg.plant.lxy_h, G_LXY, 1e-4, 1.0),
@@ -390,12 +394,56 @@ static void cli_defaults(sim_cli_t *o)
     o->serve_baud = 115200;
 }
 
+/* serve has no scenario timeline (the host commands the drive) and draws nothing itself. */
+static int check_serve(const sim_cli_t *o, unsigned where, char *err, size_t len)
+{
+    if ((where & OPT_SERVE) == 0u) {
+        return 0;
+    }
+    if (o->cfg.scenario != SIM_SCEN_STEADY) {
+        return cli_fail(err, len,
+                        "serve takes --scenario steady or fault-<name>, not '%s' (the host "
+                        "commands speed and load steps)%s",
+                        sim_scenario_name(o->cfg.scenario), "");
+    }
+    if (o->plot) {
+        return cli_fail(err, len,
+                        "serve has no --plot: `sixphase-sim plot DIR` draws the session's --out "
+                        "DIR afterwards%s%s",
+                        "", "");
+    }
+    return 0;
+}
+
+/* --fault-time inside the run: up to its duration (serve: 10 h unless --duration). */
+static int check_fault_time(const sim_config_t *c, unsigned where, char *err, size_t len)
+{
+    char text[160];
+    sim_plan_t plan;
+    double duration = (c->duration_s > 0.0) ? c->duration_s : SIM_MAX_DURATION_S;
+    if ((where & OPT_SERVE) == 0u) {
+        sim_plan(c, &plan);
+        duration = plan.duration;
+    }
+    if (c->fault_time_s < duration) {
+        return 0;
+    }
+    (void)snprintf(text, sizeof text,
+                   "%g s is not inside the run's %g s (0.001 s up to the "
+                   "duration)",
+                   c->fault_time_s, duration);
+    return cli_fail(err, len, "bad value for %s: %s", "--fault-time", text);
+}
+
 /* What no single option can see: combinations that cannot work. */
 static int check_combination(const sim_cli_t *o, const int *seen, unsigned where, char *err,
                              size_t len)
 {
     const sim_config_t *c = &o->cfg;
     char text[160];
+    if (check_serve(o, where, err, len) != 0) {
+        return -1;
+    }
     if (where == OPT_RUN && !seen[G_CONTROLLER]) {
         return cli_fail(err, len, "missing %s%s", "--controller", "");
     }
@@ -419,6 +467,9 @@ static int check_combination(const sim_cli_t *o, const int *seen, unsigned where
     if (c->fault != SIM_FAULT_NONE && sim_fault_at_power_up(c->fault) && seen[G_FAULT_TIME]) {
         (void)snprintf(err, len, "fault-%s is present from power-up: no --fault-time",
                        sim_fault_info(c->fault)->name);
+        return -1;
+    }
+    if (seen[G_FAULT_TIME] && check_fault_time(c, where, err, len) != 0) {
         return -1;
     }
     /* Both switches of a leg are off for the dead time at every edge: it must leave room for

@@ -11,6 +11,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/ioctl.h>
 #include <termios.h>
 #include <time.h>
 #include <unistd.h>
@@ -20,6 +21,8 @@
 
 #define SERVE_BITS_PER_BYTE 10.0 /* 8N1: start, 8 data, stop */
 #define SERVE_PACE_PERIODS 10    /* pacing checked every 10 periods (1 ms at 10 kHz) */
+#define SERVE_ARRIVAL_S 0.05     /* shutdown: the reply reaches the host's side within this */
+#define SERVE_LINGER_S 1.0       /* longest wait for the host to read the shutdown reply */
 
 static volatile sig_atomic_t serve_stop_requested;
 
@@ -124,21 +127,48 @@ static void serve_pace(double wall0, double t, double rate)
     }
 }
 
-/* The run's configuration as the virtual board needs it: standstill, nothing commanded, the
- * load constant (0 unless given), served until the duration or a signal; with --out, the
- * per-period trace.csv of the whole session (no fine.csv). */
+/* The run's configuration as the virtual board needs it: standstill, nothing commanded (a
+ * --speed is the initial speed reference, set in sim_serve), the load passive (0 unless given),
+ * served until the duration, a signal or the host's shutdown; with --out, the per-period
+ * trace.csv of the whole session (no fine.csv). */
 static void serve_config(const sim_config_t *c, sim_config_t *s)
 {
     *s = *c;
     s->scenario = SIM_SCEN_STEADY;
     s->speed_rpm = 0.0;
     s->load_nm = (c->load_nm > -1e9) ? c->load_nm : 0.0;
+    s->passive_load = true;
     s->duration_s = (c->duration_s > 0.0) ? c->duration_s : SIM_MAX_DURATION_S;
     s->write_fine = false;
 }
 
+/* After the host's shutdown request: until the host has read the reply off the line, so that
+ * closing the pseudo-terminal (a hang-up, which discards unread input) does not take it away.
+ * The reply shows in the line's input queue within SERVE_ARRIVAL_S (else it was read at
+ * once); at most SERVE_LINGER_S in all. */
+static void serve_linger(const serve_line_t *l)
+{
+    const double t0 = sim_wall_now();
+    bool seen = false;
+    for (;;) {
+        const double t = sim_wall_now() - t0;
+        const struct timespec d = {0, 1000000L};
+        int pending = 0;
+        if (ioctl(l->slave, FIONREAD, &pending) != 0) {
+            return;
+        }
+        seen = seen || pending > 0;
+        if ((seen && pending == 0) || (!seen && t > SERVE_ARRIVAL_S) || t > SERVE_LINGER_S) {
+            return;
+        }
+        (void)nanosleep(&d, NULL);
+    }
+}
+
+/* The periods until the duration, a signal or the host's shutdown (the stop's reason in
+ * *why); 0, or 1 when the plant diverged. */
 static int serve_loop(sim_run_t *rs, serve_line_t *line, const sim_serve_options_t *o,
-                      long *periods)
+                      long *periods, const char **why)
 {
     sim_result_t r;
     const double wall0 = sim_wall_now();
@@ -146,7 +176,17 @@ static int serve_loop(sim_run_t *rs, serve_line_t *line, const sim_serve_options
     memset(&r, 0, sizeof r);
     r.fault_time_s = -1.0;
     r.trip_time_s = -1.0;
-    for (k = 0; k < rs->n_periods && !serve_stop_requested; k++) {
+    *why = "the duration";
+    for (k = 0; k < rs->n_periods; k++) {
+        if (serve_stop_requested) {
+            *why = "a signal";
+            break;
+        }
+        if (rs->ops->link_shutdown() && hal_sim_bus.uart_tx_count == 0u) {
+            *why = "the host (shutdown)"; /* the reply has left the serial port */
+            serve_linger(line);
+            break;
+        }
         if (sim_loop_period(rs, &r, k) != 0) {
             fprintf(stderr, "sixphase-sim: plant state diverged at %.4f s\n", (double)k * rs->ts);
             return 1;
@@ -168,8 +208,13 @@ int sim_serve(const sim_config_t *c, const sim_serve_options_t *o)
     serve_line_t line;
     char err[256] = "";
     long periods = 0;
+    const char *why = "";
     int rc;
     serve_config(c, &cfg);
+    if (cfg.out_dir && sim_check_out_dir(cfg.out_dir, err, sizeof err) != 0) {
+        fprintf(stderr, "sixphase-sim: %s\n", err);
+        return 1;
+    }
     if (sim_setup(&rs, &cfg, err, sizeof err) != 0) {
         fprintf(stderr, "sixphase-sim: %s\n", err);
         sim_teardown(&rs, false);
@@ -183,20 +228,27 @@ int sim_serve(const sim_config_t *c, const sim_serve_options_t *o)
     }
     /* hal_cycles is host time: at a slow pacing a frame takes 1 / rate longer to arrive */
     rs.ops->link_init((!o->fast && o->rate < 1.0) ? 0.02 / o->rate : 0.02);
+    if (c->speed_rpm > -1e9) {
+        rs.ops->set_speed_rpm(c->speed_rpm); /* the reference a RUN will follow */
+    }
     serve_stop_requested = 0;
     (void)signal(SIGINT, serve_on_signal);
     (void)signal(SIGTERM, serve_on_signal);
     printf("%s\n", line.path);
     (void)fflush(stdout);
-    rc = serve_loop(&rs, &line, o, &periods);
-    if (!o->quiet) {
+    rc = serve_loop(&rs, &line, o, &periods, &why);
+    if (!o->quiet && rc == 0) {
         fprintf(stderr,
-                "sixphase-sim serve: %.3f s simulated, %lu requests, %lu bytes in, %lu out, "
-                "%lu lost in the receive FIFO\n",
-                (double)periods * rs.ts, rs.ops->link_frames(), line.bytes_in, line.bytes_out,
+                "sixphase-sim serve: stopped by %s after %.3f s simulated, %lu requests, %lu "
+                "bytes in, %lu out, %lu lost in the receive FIFO\n",
+                why, (double)periods * rs.ts, rs.ops->link_frames(), line.bytes_in, line.bytes_out,
                 (unsigned long)hal_sim_bus.uart_rx_overruns);
     }
     serve_line_close(&line);
+    if (sim_recorder_close(&rs.rec, err, sizeof err) != 0) { /* the trace's last rows too */
+        fprintf(stderr, "sixphase-sim: %s\n", err);
+        rc = 1;
+    }
     sim_teardown(&rs, true);
     return rc;
 }

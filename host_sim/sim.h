@@ -47,6 +47,8 @@ typedef struct {
                              * thresholds out of reach (comparing controllers that overload the
                              * drive, e.g. MPTC-49 peaks near 30 A) */
     double fine_rate_hz;    /* plant sampling for the metrics in the analysis window */
+    bool passive_load;      /* the load only opposes motion (serve): a rotor at rest stays at
+                               rest; false: an ideal torque source (the scenarios) */
     plant_params_t plant;
     const char *out_dir; /* NULL: write nothing */
     bool write_trace;

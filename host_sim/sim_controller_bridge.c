@@ -25,7 +25,8 @@
 
 static drive_t bridge_drive;
 static link_service_t bridge_link;
-static bool bridge_board; /* serving as the virtual board: the ISR is timed and profiled */
+static bool bridge_board;    /* serving as the virtual board: the ISR is timed and profiled */
+static bool bridge_shutdown; /* the host sent SXL_CMD_SIM_SHUTDOWN */
 
 /* Thresholds no measurement can reach: the simulator's way of watching a controller that
  * would trip the drive. An ordinary parameter set (the firmware accepts the same values over
@@ -188,17 +189,39 @@ static void bridge_status(sim_ctl_status_t *st)
     st->fault_records = (int)ctl_protect_log_pending(&bridge_drive.protect);
 }
 
+/* The virtual board's own command (a board answers it "unknown"): SXL_CMD_SIM_SHUTDOWN is
+ * answered OK, then the simulator stops once the reply is out. */
+static bool bridge_platform(void *ctx, const sxl_frame_t *req, sxl_frame_t *reply)
+{
+    (void)ctx;
+    if (req->cmd != SXL_CMD_SIM_SHUTDOWN) {
+        return false;
+    }
+    reply->cmd = (uint16_t)(SXL_CMD_SIM_SHUTDOWN | SXL_REPLY);
+    reply->len = 1u;
+    reply->payload[0] = (uint16_t)((req->len == 0u) ? SXL_OK : SXL_ERR_LENGTH);
+    bridge_shutdown = bridge_shutdown || req->len == 0u;
+    return true;
+}
+
 /* A partial frame older than gap_s (of hal_cycles, host time on the simulator) is dropped. */
 static void bridge_link_init(double gap_s)
 {
     link_service_init(&bridge_link, (uint32_t)(gap_s * (double)hal_cycles_per_second()));
+    link_service_set_platform(&bridge_link, bridge_platform, NULL);
+    bridge_shutdown = false;
     bridge_board = true;
     ctl_set_stage_hook(&bridge_drive.ctl, prof_ctl_stage); /* stage timing, as fw_startup */
 }
 static void bridge_link_step(void) { link_service_step(&bridge_link, &bridge_drive); }
 static unsigned long bridge_link_frames(void) { return (unsigned long)bridge_link.frames_handled; }
+static int bridge_link_shutdown(void)
+{
+    return (bridge_shutdown && link_service_sent(&bridge_link)) ? 1 : 0;
+}
 
 const sim_ctl_ops_t SIM_BRIDGE_OPS = {
     SIM_BRIDGE_ARITH,         bridge_init,          bridge_isr,       bridge_request_run,
     bridge_set_speed_rpm,     bridge_set_torque_nm, bridge_status,    bridge_report_overrun,
-    bridge_read_fault_record, bridge_link_init,     bridge_link_step, bridge_link_frames};
+    bridge_read_fault_record, bridge_link_init,     bridge_link_step, bridge_link_frames,
+    bridge_link_shutdown};

@@ -84,6 +84,9 @@ typedef struct {
                                       * dropped (20 ms of the line's time, at the pacing rate) */
     void (*link_step)(void);
     unsigned long (*link_frames)(void); /* requests handled */
+    /* 1 once the host asked the virtual board to stop (SXL_CMD_SIM_SHUTDOWN, answered OK) and
+     * the reply has gone to the serial port */
+    int (*link_shutdown)(void);
 } sim_ctl_ops_t;
 
 /* Defined by the two builds of the bridge. The float build's symbols are all

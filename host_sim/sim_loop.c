@@ -11,6 +11,7 @@
 
 #define LOOP_RAD_S_TO_RPM (60.0 / (2.0 * 3.14159265358979323846))
 #define LOOP_ISR_TIMING_EVERY 8
+#define LOOP_LOAD_STANDSTILL_RAD_S 1.0 /* a passive load's full torque from this speed up */
 
 /* Scenario events due at the start of period k: the speed-reference step, a fault. */
 static void loop_events(sim_run_t *rs, long k, double t)
@@ -162,6 +163,15 @@ static void loop_next_command(sim_run_t *rs, const sim_ctl_status_t *st)
     }
 }
 
+/* A passive load (a brake, friction, a fan): |load| against the direction of motion,
+ * proportional below the speed at which it would stop the rotor within one period, so it
+ * stops a coasting rotor and never drives it backwards. */
+static double loop_passive_load(const sim_run_t *rs, double load_nm)
+{
+    const double w0 = fmax(LOOP_LOAD_STANDSTILL_RAD_S, fabs(load_nm) * rs->ts / rs->plant.j_kgm2);
+    return fabs(load_nm) * fmax(-1.0, fmin(1.0, rs->x.omega_m / w0));
+}
+
 int sim_loop_period(sim_run_t *rs, sim_result_t *r, long k)
 {
     const double t = (double)k * rs->ts;
@@ -171,7 +181,11 @@ int sim_loop_period(sim_run_t *rs, sim_result_t *r, long k)
     sim_trace_row_t row;
     plant_out_t o;
     int j;
-    in.t_load_nm = sim_fault_load(&rs->fault, sim_load_at(rs->cfg, &rs->plan, t));
+    in.t_load_nm = sim_load_at(rs->cfg, &rs->plan, t);
+    if (rs->cfg->passive_load) {
+        in.t_load_nm = loop_passive_load(rs, in.t_load_nm);
+    }
+    in.t_load_nm = sim_fault_load(&rs->fault, in.t_load_nm);
     loop_events(rs, k, t);
     loop_outputs(rs, in_win, &o);
     loop_hw_trip(rs, r, &o, t);

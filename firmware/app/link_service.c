@@ -13,7 +13,17 @@ void link_service_init(link_service_t *s, uint32_t gap_cycles)
     s->frames_handled = 0u;
     s->gap_cycles = gap_cycles;
     s->last_rx_cycles = hal_cycles_now();
+    s->platform = 0;
+    s->platform_ctx = 0;
 }
+
+void link_service_set_platform(link_service_t *s, link_platform_fn fn, void *ctx)
+{
+    s->platform = fn;
+    s->platform_ctx = ctx;
+}
+
+bool link_service_sent(const link_service_t *s) { return s->tx_pos >= s->tx_len; }
 
 static void link_send_pending(link_service_t *s)
 {
@@ -32,7 +42,9 @@ static void link_receive(link_service_t *s, drive_t *d)
     while (s->tx_pos >= s->tx_len && hal_serial_read(&byte)) {
         s->last_rx_cycles = now;
         if (sxl_decoder_push(&s->rx, byte, &s->req) == SXL_RX_FRAME) {
-            drive_link_handle(d, &s->req, &s->reply, s->rx.errors);
+            if (!(s->platform && s->platform(s->platform_ctx, &s->req, &s->reply))) {
+                drive_link_handle(d, &s->req, &s->reply, s->rx.errors);
+            }
             s->tx_len = sxl_encode(s->reply.cmd, s->reply.payload, s->reply.len, s->tx,
                                    (uint16_t)SXL_MAX_FRAME);
             s->tx_pos = 0u;

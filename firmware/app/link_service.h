@@ -14,6 +14,11 @@
 #include "drive.h"
 #include "sxlink.h"
 
+/* A platform's own commands, answered before the drive's: true when it filled reply. The board
+ * has none (the drive answers every command, an unknown one with SXL_ERR_UNKNOWN); the
+ * virtual board answers SXL_CMD_SIM_SHUTDOWN (host_sim). */
+typedef bool (*link_platform_fn)(void *ctx, const sxl_frame_t *req, sxl_frame_t *reply);
+
 typedef struct {
     sxl_decoder_t rx;
     sxl_frame_t req;
@@ -24,10 +29,19 @@ typedef struct {
     uint32_t last_rx_cycles;
     uint32_t gap_cycles; /* a partial frame older than this is dropped */
     uint32_t frames_handled;
+    link_platform_fn platform; /* NULL: none */
+    void *platform_ctx;
 } link_service_t;
 
-/* gap_cycles: hal_cycles_now() counts after which a partial frame is stale (20 ms). */
+/* gap_cycles: hal_cycles_now() counts after which a partial frame is stale (20 ms). No
+ * platform commands. */
 void link_service_init(link_service_t *s, uint32_t gap_cycles);
+
+/* Platform commands from now on (fn NULL: none). */
+void link_service_set_platform(link_service_t *s, link_platform_fn fn, void *ctx);
+
+/* True when no reply is waiting for room in the serial port. */
+bool link_service_sent(const link_service_t *s);
 
 /* One pass: send what is pending, receive and handle at most what the port holds, send. */
 void link_service_step(link_service_t *s, drive_t *d);

@@ -42,6 +42,9 @@
 #define SXL_CMD_CAPTURE_STATUS 0x21u /* none -> SXL_CS_* */
 #define SXL_CMD_CAPTURE_READ 0x22u   /* uint8 channel, uint16 first sample -> SXL_CR_* */
 #define SXL_CMD_CAPTURE_STOP 0x23u   /* none -> result only; the record is discarded */
+/* Virtual board only (sixphase-sim serve): none -> result only, then the simulator stops. A
+ * board does not know it: SXL_ERR_UNKNOWN. */
+#define SXL_CMD_SIM_SHUTDOWN 0x7Eu
 #define SXL_REPLY 0x80u
 
 /* Result byte of every reply. */

@@ -5,7 +5,8 @@
  *   sixphase-link [-d DEVICE | --port DEVICE] [-b BAUD] [-t MS] [-n] COMMAND [ARGS]
  *
  * Commands: ping | status | profile | faults | run | stop | clear | speed RPM |
- *           torque NM | controller ddc|mptc49|mptc13 LAMBDA | decode HEXBYTE...
+ *           torque NM | controller ddc|mptc49|mptc13 LAMBDA | decode HEXBYTE... |
+ *           shutdown (the virtual board only: it answers, then stops)
  * "faults" reads the drive's fault log until it is empty, one line per record.
  * -n prints the request frame in hex instead of sending it. "decode" checks
  * and prints a frame given as hex bytes (no device needed).
@@ -63,7 +64,7 @@ static int usage(const char *why)
 {
     return fail(EXIT_USAGE,
                 "%s (usage: sixphase-link [-d|--port DEVICE] [-b BAUD] [-t MS] [-n] "
-                "ping|status|profile|faults|run|stop|clear|speed RPM|torque NM|controller "
+                "ping|status|profile|faults|run|stop|clear|shutdown|speed RPM|torque NM|controller "
                 "ddc|mptc49|mptc13 "
                 "LAMBDA|capture SIGNALS [...]|decode HEX...)",
                 why);
@@ -238,6 +239,10 @@ static int print_reply(const sxl_frame_t *r)
 {
     const uint16_t result = r->payload[0];
     const uint16_t *st = &r->payload[1];
+    if (result == SXL_ERR_UNKNOWN && (r->cmd & 0x7Fu) == SXL_CMD_SIM_SHUTDOWN) {
+        return fail(EXIT_IO, "drive answered: unknown command (shutdown stops only the virtual "
+                             "board, sixphase-sim serve)");
+    }
     if (result != SXL_OK) {
         return fail(EXIT_IO, "drive answered: %s",
                     name_of(result_names, sizeof result_names / sizeof result_names[0], result));
@@ -506,6 +511,8 @@ static int build_request(int argc, char **argv, uint16_t *cmd, uint16_t *payload
         *cmd = SXL_CMD_STOP;
     } else if (strcmp(c, "clear") == 0) {
         *cmd = SXL_CMD_CLEAR_FAULT;
+    } else if (strcmp(c, "shutdown") == 0) {
+        *cmd = SXL_CMD_SIM_SHUTDOWN;
     } else if (strcmp(c, "speed") == 0) {
         double rpm;
         if (argc != 2 || !parse_double(argv[1], -20000.0, 20000.0, &rpm)) {
@@ -572,6 +579,7 @@ static int parse_options(int argc, char **argv, options_t *o, int *next)
                 "usage: sixphase-link [-d DEVICE | --port DEVICE] [-b BAUD] [-t MS] [-n] COMMAND "
                 "[ARGS]\n"
                 "commands: ping status profile faults run stop clear speed RPM torque NM\n"
+                "          shutdown (virtual board only: sixphase-sim serve answers, then stops)\n"
                 "          controller ddc|mptc49|mptc13 LAMBDA decode HEXBYTE...\n"
                 "          capture SIG[,SIG...] [--length N] [--decimate N] [--pre PCT]\n"
                 "                  [--trigger immediate|fault|rising:SIG:LEVEL|falling:SIG:LEVEL]\n"

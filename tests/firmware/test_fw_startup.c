@@ -346,6 +346,18 @@ static void test_malformed_frames_counted(void **state)
     assert_int_equal(rep.payload[1], SXL_VERSION);
 }
 
+/* The virtual board's shutdown is not a board command: the board answers "unknown" and goes on
+ * serving. */
+static void test_board_answers_the_simulator_shutdown_unknown(void **state)
+{
+    sxl_frame_t rep;
+    (void)state;
+    assert_true(fw_startup());
+    assert_int_equal(command(SXL_CMD_SIM_SHUTDOWN), SXL_ERR_UNKNOWN);
+    assert_int_equal(transact(SXL_CMD_PING, NULL, 0u, &rep), SXL_RX_FRAME);
+    assert_int_equal(rep.payload[0], SXL_OK);
+}
+
 static void test_unexpected_interrupt_and_startup_failure(void **state)
 {
     (void)state;
@@ -372,6 +384,7 @@ int main(void)
         cmocka_unit_test_setup(test_bring_up_steps_of_the_porting_guide, setup),
         cmocka_unit_test_setup(test_overrun_is_a_fault, setup),
         cmocka_unit_test_setup(test_malformed_frames_counted, setup),
+        cmocka_unit_test_setup(test_board_answers_the_simulator_shutdown_unknown, setup),
         cmocka_unit_test_setup(test_unexpected_interrupt_and_startup_failure, setup),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -1,12 +1,16 @@
 /*
- * The virtual board end to end: `sixphase-sim serve` in real time with an encoder slip
- * injected at 1.5 s, spoken to over its pseudo-terminal with the serial protocol, and once
- * through the host tool sixphase-link. In order: ping; status (READY after the offset
- * calibration); speed reference and RUN, speed reached; lambda and controller changed while
- * running; garbage bytes, a bad CRC, an oversize length and a half frame on the line (counted,
- * ignored, the next frame answered); the fault (status shows it with the outputs off, the
- * records read in order, the root cause first); clear and restart; the host tool times out
- * when the board stops answering (the server stopped with SIGSTOP).
+ * The virtual board end to end: `sixphase-sim serve --speed 800` in real time with an encoder
+ * slip injected at 1.5 s, spoken to over its pseudo-terminal with the serial protocol and
+ * through the host tool sixphase-link (--port). In order: ping; status (READY after the offset
+ * calibration, the speed reference from --speed); RUN, speed reached; the tool's profile
+ * while running; lambda and controller changed while running; garbage bytes, a bad CRC, an
+ * oversize length and a half frame on the line (counted, ignored, the next frame answered); a
+ * capture of references, vector and duty (compared with the trace later); the fault (status
+ * shows it with the outputs off, the tool's `faults` reads every record in order, the root
+ * cause first); clear and restart; the host tool times out when the board stops answering
+ * (the server stopped with SIGSTOP). Then: a post-mortem capture of an over-current and its
+ * records read in order; `sixphase-link shutdown` stops the server cleanly; --fast pacing,
+ * the passive load, --out made, the whole trace written; a slow line.
  */
 #define _DEFAULT_SOURCE /* cfmakeraw */
 
@@ -127,7 +131,7 @@ static int start_server(void **state)
         (void)dup2(out[1], 1);
         execl(SIXPHASE_SIM_EXE, SIXPHASE_SIM_EXE, "serve", "--scenario", server_scenario,
               "--fault-time", server_fault_time, "--duration", "60", "--out", trace_dir, "--baud",
-              server_baud, "--quiet", (char *)NULL);
+              server_baud, "--speed", "800", "--quiet", (char *)NULL);
         _exit(127);
     }
     (void)close(out[1]);
@@ -152,9 +156,11 @@ static int stop_server(void **state)
     if (port >= 0) {
         (void)close(port);
     }
-    (void)kill(server, SIGCONT);
-    (void)kill(server, SIGTERM);
-    (void)waitpid(server, &st, 0);
+    if (server > 0) { /* not reaped by a test already */
+        (void)kill(server, SIGCONT);
+        (void)kill(server, SIGTERM);
+        (void)waitpid(server, &st, 0);
+    }
     return 0;
 }
 
@@ -168,16 +174,54 @@ static void test_ping_and_ready(void **state)
     assert_true((st_u8(&r, SXL_ST_FLAGS) & SXL_FLAG_PWM_OFF) != 0u);
 }
 
+/* The reference comes from `serve --speed 800`: RUN alone reaches it. */
 static void test_run_reaches_speed(void **state)
 {
-    uint16_t p[4];
     sxl_frame_t r;
     (void)state;
-    sxl_put_u32(p, 8000u); /* 800 r/min */
-    assert_int_equal(request(SXL_CMD_SET_SPEED, p, 4, &r), 0);
+    status(&r);
+    assert_int_equal(st_i32(&r, SXL_ST_SPEED_REF), 8000); /* 0.1 r/min */
     assert_int_equal(request(SXL_CMD_RUN, NULL, 0, &r), 0);
     assert_true(wait_for(at_800, 1.0, &r));
     assert_int_equal(st_u8(&r, SXL_ST_STATE), DRIVE_STATE_RUN);
+}
+
+/* A tool command's stdout into out (at most len - 1 bytes); its exit status. */
+static int tool(const char *args, char *out, size_t len)
+{
+    char cmd[400];
+    FILE *p;
+    size_t n;
+    int rc;
+    (void)snprintf(cmd, sizeof cmd, "%s --port %s %s", SIXPHASE_LINK_EXE, port_path, args);
+    p = popen(cmd, "r");
+    assert_non_null(p);
+    n = fread(out, 1, len - 1, p);
+    out[n] = '\0';
+    rc = pclose(p);
+    return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
+}
+
+/* `sixphase-link profile` on the running virtual board: the header, the column names and the
+ * eight stages, the whole ISR taking time. */
+static void test_tool_profile_while_running(void **state)
+{
+    char out[4096], *line;
+    unsigned long last, min, max, mean;
+    int lines = 0;
+    (void)state;
+    assert_int_equal(tool("profile", out, sizeof out), 0);
+    for (line = out; (line = strchr(line, '\n')) != NULL; line++) {
+        lines++;
+    }
+    assert_int_equal(lines, 10);
+    assert_int_equal(strncmp(out, "period ", 7), 0);
+    line = strstr(out, "ISR total");
+    assert_non_null(line);
+    assert_int_equal(sscanf(line + 9, "%lu %lu %lu %lu", &last, &min, &max, &mean), 4);
+    print_message("ISR total: last %lu, min %lu, max %lu, mean %lu host ns\n", last, min, max,
+                  mean);
+    assert_true(mean > 0u && min <= mean && mean <= max);
 }
 
 static void test_controller_and_lambda_change_while_running(void **state)
@@ -228,19 +272,41 @@ static void test_garbage_is_counted_and_skipped(void **state)
     assert_true(after >= before + 4u);
 }
 
+/* The fault log through `sixphase-link faults`: one line per record the status counts, in
+ * order of detection, the root cause first; the log is empty afterwards. */
+static void read_records_with_the_tool(unsigned records, const char *root)
+{
+    char out[8192], *line = out;
+    unsigned long period, previous = 0;
+    unsigned n = 0;
+    sxl_frame_t r;
+    assert_int_equal(tool("faults", out, sizeof out), 0);
+    print_message("%s", out);
+    for (; *line != '\0'; line = strchr(line, '\n') + 1) {
+        assert_int_equal(sscanf(line, "period=%lu", &period), 1);
+        assert_true(period >= previous);
+        if (n == 0) {
+            assert_int_equal(strncmp(strstr(line, "faults="), root, strlen(root)), 0);
+        }
+        previous = period;
+        n++;
+    }
+    assert_int_equal(n, records);
+    status(&r);
+    assert_int_equal(sxl_get_u16(&r.payload[1 + SXL_ST_RECORDS]), 0u);
+}
+
 static void test_fault_records_and_restart(void **state)
 {
     sxl_frame_t r;
+    unsigned records;
     (void)state;
     assert_true(wait_for(is_fault, 3.0, &r)); /* the slip at 1.5 s */
     assert_int_equal(st_u8(&r, SXL_ST_FAULT), DRIVE_FAULT_ENCODER);
     assert_true((st_u8(&r, SXL_ST_FLAGS) & SXL_FLAG_PWM_OFF) != 0u);
-    assert_true(sxl_get_u16(&r.payload[1 + SXL_ST_RECORDS]) >= 1u);
-    assert_int_equal(request(SXL_CMD_GET_FAULT_RECORD, NULL, 0, &r), 0);
-    assert_int_equal(r.payload[1 + SXL_FR_PRESENT], 1u);
-    assert_int_equal(sxl_get_u16(&r.payload[1 + SXL_FR_FAULTS]), CTL_FAULT_ENCODER); /* root */
-    while (request(SXL_CMD_GET_FAULT_RECORD, NULL, 0, &r) == 0 && r.payload[1 + SXL_FR_PRESENT]) {
-    }
+    records = sxl_get_u16(&r.payload[1 + SXL_ST_RECORDS]);
+    assert_true(records >= 1u);
+    read_records_with_the_tool(records, "faults=ENCODER "); /* the slip alone */
     assert_int_equal(request(SXL_CMD_CLEAR_FAULT, NULL, 0, &r), 0);
     assert_true(wait_for(is_ready, 1.0, &r));
     assert_int_equal(request(SXL_CMD_RUN, NULL, 0, &r), 0);
@@ -331,14 +397,16 @@ static void capture(const uint16_t *signals, int n, uint16_t length, uint16_t tr
     }
 }
 
-/* Torque and flux references, 300 periods while running (compared with the trace later). */
+/* Torque and flux references, vector and duty, 300 periods while running (compared with the
+ * trace later). */
 static void test_capture_while_running(void **state)
 {
-    static const uint16_t sig[2] = {CAPTURE_TORQUE_REF, CAPTURE_FLUX_REF};
+    static const uint16_t sig[4] = {CAPTURE_TORQUE_REF, CAPTURE_FLUX_REF, CAPTURE_VECTOR,
+                                    CAPTURE_DUTY};
     uint16_t bad[SXL_CA_SIZE] = {0};
     sxl_frame_t st;
     (void)state;
-    capture(sig, 2, 300u, 0u, 0u, &st);
+    capture(sig, 4, 300u, 0u, 0u, &st);
     assert_int_equal(cap_count, 300);
     bad[SXL_CA_CHANNELS] = 2u;
     bad[SXL_CA_SIGNAL] = 200u; /* unknown signal */
@@ -359,44 +427,60 @@ static void test_capture_while_running(void **state)
 }
 
 /* After the server stopped (its trace.csv complete): the captured references equal the
- * simulator's trace sample for sample, within one step of the 16-bit scaling. Trace row k is
- * control period k, whose ISR is the drive's period k + 1. */
+ * simulator's trace sample for sample within one step of the 16-bit scaling, and the vector
+ * and duty the drive commanded equal what the trace shows applied (the vector exactly, the
+ * duty within a step and the trace's 4 decimals). The drive's period n is trace row n - 1
+ * (the references computed in it) and row n (the command it wrote, applied in the next). */
 static void test_capture_matches_the_trace(void **state)
 {
     char path[200], line[1024];
     FILE *f;
     long row = -1;
-    int matched = 0;
+    int matched_refs = 0, matched_cmds = 0;
     const double step_t = 17.188733853924696 / 8192.0, step_f = 0.57295779513082321 / 16384.0;
+    const double step_d = 1.0 / 32768.0;
     (void)state;
+    assert_true(cap_count > 0);
     (void)snprintf(path, sizeof path, "%s/trace.csv", trace_dir);
     f = fopen(path, "r");
     assert_non_null(f);
     while (fgets(line, sizeof line, f)) {
         double v[20];
-        int j;
-        const long period = row + 1; /* the drive's count of this row's ISR */
+        int vector;
+        const long ref_j = row + 1 - (long)cap_first_period; /* sample of this row's refs */
+        const long cmd_j = row - (long)cap_first_period;     /* sample of this row's command */
         row++;
-        if (row == 0 || period < (long)cap_first_period ||
-            period >= (long)cap_first_period + cap_count) {
+        if (row == 0 || ((ref_j < 0 || ref_j >= cap_count) && (cmd_j < 0 || cmd_j >= cap_count))) {
             continue;
         }
-        j = (int)(period - (long)cap_first_period);
         assert_int_equal(sscanf(line,
                                 "%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,"
-                                "%lf,%lf,%lf,%lf",
+                                "%lf,%lf,%lf,%lf,%*[01],%lf,%d",
                                 &v[0], &v[1], &v[2], &v[3], &v[4], &v[5], &v[6], &v[7], &v[8],
                                 &v[9], &v[10], &v[11], &v[12], &v[13], &v[14], &v[15], &v[16],
-                                &v[17]),
-                         18);
-        assert_true(fabs(cap_samples[0][j] * step_t - v[16]) <= step_t + 1e-5);
-        assert_true(fabs(cap_samples[1][j] * step_f - v[17]) <= step_f + 1e-5);
-        matched++;
+                                &v[17], &v[18], &vector),
+                         20);
+        if (ref_j >= 0 && ref_j < cap_count) {
+            assert_true(fabs(cap_samples[0][ref_j] * step_t - v[16]) <= step_t + 1e-5);
+            assert_true(fabs(cap_samples[1][ref_j] * step_f - v[17]) <= step_f + 1e-5);
+            matched_refs++;
+        }
+        if (cmd_j >= 0 && cmd_j < cap_count) {
+            if (cap_samples[2][cmd_j] != vector ||
+                fabs(cap_samples[3][cmd_j] * step_d - v[18]) > step_d + 0.5e-4 + 1e-9) {
+                print_error("sample %ld: vector %d duty %d, trace row %ld: vector %d duty %.4f\n",
+                            cmd_j, cap_samples[2][cmd_j], cap_samples[3][cmd_j], row, vector,
+                            v[18]);
+                fail();
+            }
+            matched_cmds++;
+        }
     }
     fclose(f);
     (void)remove(path);
     (void)rmdir(trace_dir);
-    assert_int_equal(matched, cap_count);
+    assert_int_equal(matched_refs, cap_count);
+    assert_int_equal(matched_cmds, cap_count);
 }
 
 /* Post-mortem: a gate of leg A stuck on at 1.0 s; the capture armed on the fault trigger
@@ -435,6 +519,42 @@ static void test_post_mortem_over_current(void **state)
     assert_int_equal(st_u8(&r, SXL_ST_FAULT), DRIVE_FAULT_OVERCURRENT);
 }
 
+/* The over-current again after a clear and a restart (the gate is still stuck), then the
+ * records over the protocol: as many as the status counts (records survive a clear until
+ * read), each telling how many are left, in order of detection, an over-current first; then
+ * "none". */
+static void test_post_mortem_records_in_order(void **state)
+{
+    sxl_frame_t r;
+    unsigned records, k;
+    uint32_t previous = 0u;
+    (void)state;
+    assert_int_equal(request(SXL_CMD_CLEAR_FAULT, NULL, 0, &r), 0);
+    assert_true(wait_for(is_ready, 1.0, &r));
+    assert_int_equal(request(SXL_CMD_RUN, NULL, 0, &r), 0);
+    assert_true(wait_for(is_fault, 1.0, &r));
+    status(&r);
+    records = sxl_get_u16(&r.payload[1 + SXL_ST_RECORDS]);
+    print_message("%u fault records\n", records);
+    assert_true(records >= 2u);
+    for (k = 0; k < records; k++) {
+        uint32_t period;
+        assert_int_equal(request(SXL_CMD_GET_FAULT_RECORD, NULL, 0, &r), 0);
+        assert_int_equal(r.payload[1 + SXL_FR_PRESENT], 1u);
+        assert_int_equal(sxl_get_u16(&r.payload[1 + SXL_FR_PENDING]), records - 1u - k);
+        period = sxl_get_u32(&r.payload[1 + SXL_FR_PERIOD]);
+        print_message("record %u: period %lu faults 0x%x\n", k, (unsigned long)period,
+                      sxl_get_u16(&r.payload[1 + SXL_FR_FAULTS]));
+        assert_true(period > previous);
+        previous = period;
+        if (k == 0u) {
+            assert_true((sxl_get_u16(&r.payload[1 + SXL_FR_FAULTS]) & CTL_FAULT_OVERCURRENT) != 0u);
+        }
+    }
+    assert_int_equal(request(SXL_CMD_GET_FAULT_RECORD, NULL, 0, &r), 0);
+    assert_int_equal(r.payload[1 + SXL_FR_PRESENT], 0u);
+}
+
 static int start_over_current_server(void **state)
 {
     server_scenario = "fault-overcurrent";
@@ -461,6 +581,14 @@ static int start_slow_line_server(void **state)
     return start_server(state);
 }
 
+static int start_shutdown_server(void **state)
+{
+    server_scenario = "fault-encoder-jump"; /* at 50 s: not within this test */
+    server_fault_time = "50";
+    (void)snprintf(trace_dir, sizeof trace_dir, "/tmp/sixphase-serve-XXXXXX");
+    return start_server(state);
+}
+
 static int stop_and_clean(void **state)
 {
     char path[200];
@@ -471,19 +599,62 @@ static int stop_and_clean(void **state)
     return 0;
 }
 
-/* --fast serves as fast as the host can and stops at the duration (0.5 s simulated) with a
- * clean exit; a bad pacing value is refused in one line with exit 2. */
+/* `sixphase-link shutdown`: the virtual board answers, then stops with exit status 0. */
+static void test_host_shuts_the_board_down(void **state)
+{
+    char out[200];
+    const double t0 = now_s();
+    int st = 0;
+    pid_t done = 0;
+    (void)state;
+    assert_int_equal(tool("shutdown", out, sizeof out), 0);
+    assert_string_equal(out, "ok\n");
+    while (done == 0 && now_s() - t0 < 3.0) {
+        done = waitpid(server, &st, WNOHANG);
+        sleep_s(0.01);
+    }
+    assert_int_equal(done, server);
+    server = -1; /* reaped */
+    assert_true(WIFEXITED(st) && WEXITSTATUS(st) == 0);
+    print_message("the server stopped %.0f ms after the request\n", 1e3 * (now_s() - t0));
+}
+
+/* --fast serves as fast as the host can and stops at the duration with a clean exit and the
+ * whole trace in an --out directory it made; a load on the idle drive is passive (2 N*m
+ * leaves the rotor at rest, not spun backwards into an over-speed); a bad pacing value is
+ * refused in one line with exit 2. */
 static void test_fast_pacing_and_bad_rate(void **state)
 {
-    char cmd[400];
+    char cmd[400], line[512], last[512] = "", dir[] = "/tmp/sixphase-fast-XXXXXX";
     const double t0 = now_s();
+    double peak = 0.0;
+    long rows = 0;
+    FILE *f;
     int rc;
     (void)state;
-    (void)snprintf(cmd, sizeof cmd, "%s serve --fast --duration 0.5 --quiet > /dev/null",
-                   SIXPHASE_SIM_EXE);
+    assert_non_null(mkdtemp(dir));
+    (void)snprintf(cmd, sizeof cmd,
+                   "%s serve --fast --duration 2 --load 2 --out %s/new/dir --quiet > /dev/null",
+                   SIXPHASE_SIM_EXE, dir);
     rc = system(cmd);
     assert_true(WIFEXITED(rc) && WEXITSTATUS(rc) == 0);
     assert_true(now_s() - t0 < 5.0);
+    (void)snprintf(cmd, sizeof cmd, "%s/new/dir/trace.csv", dir);
+    f = fopen(cmd, "r");
+    assert_non_null(f);
+    while (fgets(line, sizeof line, f)) {
+        double t, speed;
+        if (rows++ > 0 && sscanf(line, "%lf,%lf", &t, &speed) == 2) {
+            peak = fmax(peak, fabs(speed));
+            (void)snprintf(last, sizeof last, "%s", line);
+        }
+    }
+    fclose(f);
+    print_message("idle rotor under 2 N*m: largest speed %.3f r/min; last row %s", peak, last);
+    assert_int_equal(rows, 20001); /* header and every period of the 2 s */
+    assert_true(peak < 1.0);
+    (void)snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
+    assert_int_equal(system(cmd), 0);
     (void)snprintf(cmd, sizeof cmd, "%s serve --rate 0 2> /dev/null", SIXPHASE_SIM_EXE);
     rc = system(cmd);
     assert_true(WIFEXITED(rc) && WEXITSTATUS(rc) == 2);
@@ -494,6 +665,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_ping_and_ready),
         cmocka_unit_test(test_run_reaches_speed),
+        cmocka_unit_test(test_tool_profile_while_running),
         cmocka_unit_test(test_controller_and_lambda_change_while_running),
         cmocka_unit_test(test_garbage_is_counted_and_skipped),
         cmocka_unit_test(test_capture_while_running),
@@ -502,12 +674,15 @@ int main(void)
         cmocka_unit_test(test_host_tool_times_out),
     };
     const struct CMUnitTest after[] = {cmocka_unit_test(test_capture_matches_the_trace)};
-    const struct CMUnitTest post_mortem[] = {cmocka_unit_test(test_post_mortem_over_current)};
+    const struct CMUnitTest post_mortem[] = {cmocka_unit_test(test_post_mortem_over_current),
+                                             cmocka_unit_test(test_post_mortem_records_in_order)};
+    const struct CMUnitTest shutdown[] = {cmocka_unit_test(test_host_shuts_the_board_down)};
     const struct CMUnitTest pacing[] = {cmocka_unit_test(test_fast_pacing_and_bad_rate)};
     const struct CMUnitTest slow[] = {cmocka_unit_test(test_slow_line)};
     int failed = cmocka_run_group_tests(tests, start_server, stop_server);
     failed += cmocka_run_group_tests(after, NULL, NULL);
     failed += cmocka_run_group_tests(post_mortem, start_over_current_server, stop_and_clean);
+    failed += cmocka_run_group_tests(shutdown, start_shutdown_server, stop_and_clean);
     failed += cmocka_run_group_tests(pacing, NULL, NULL);
     failed += cmocka_run_group_tests(slow, start_slow_line_server, stop_and_clean);
     return failed;

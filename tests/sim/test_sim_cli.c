@@ -150,6 +150,56 @@ static void test_bad_arguments_rejected(void **state)
     }
 }
 
+/* serve: the options that make no sense without a scenario timeline are refused, --speed is
+ * the initial reference, and --fault-time may go up to the run's duration (not beyond). */
+static void test_serve_and_fault_time_arguments(void **state)
+{
+    static const struct {
+        const char *args[8];
+        int n;
+        int serve;
+        const char *must_contain; /* NULL: accepted */
+    } cases[] = {
+        {{"--scenario", "accel"}, 2, 1, "steady or fault-<name>"},
+        {{"--scenario", "load-step"}, 2, 1, "steady or fault-<name>"},
+        {{"--scenario", "reversal"}, 2, 1, "steady or fault-<name>"},
+        {{"--plot"}, 1, 1, "sixphase-sim plot DIR"},
+        {{"--out", "/tmp/x", "--plot"}, 3, 1, "sixphase-sim plot DIR"},
+        {{"--speed", "800", "--scenario", "steady"}, 4, 1, NULL},
+        {{"--scenario", "fault-encoder-jump", "--fault-time", "3000"}, 4, 1, NULL},
+        {{"--scenario", "fault-encoder-jump", "--fault-time", "200", "--duration", "100"},
+         6,
+         1,
+         "inside the run's 100 s"},
+        {{"--controller", "ddc", "--scenario", "fault-overcurrent", "--fault-time", "0.5"},
+         6,
+         0,
+         "inside the run's 0.4 s"},
+        {{"--controller", "ddc", "--scenario", "fault-overcurrent", "--fault-time", "150",
+          "--duration", "200"},
+         8,
+         0,
+         NULL},
+    };
+    size_t i;
+    (void)state;
+    for (i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        sim_cli_t o;
+        char err[256] = "";
+        char **a = (char **)(uintptr_t)cases[i].args;
+        const int rc = cases[i].serve ? sim_cli_parse_serve(cases[i].n, a, &o, err, sizeof err)
+                                      : sim_cli_parse_run(cases[i].n, a, &o, err, sizeof err);
+        print_message("case %u: %s\n", (unsigned)i, rc ? err : "accepted");
+        if (!cases[i].must_contain) {
+            assert_int_equal(rc, 0);
+            continue;
+        }
+        assert_int_not_equal(rc, 0);
+        assert_non_null(strstr(err, cases[i].must_contain));
+        assert_null(strchr(err, '\n'));
+    }
+}
+
 /* Run the executable; return exit status, capture stderr. */
 static int run_exe(const char *const *args, char *err_out, size_t len)
 {
@@ -248,6 +298,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_good_arguments),
         cmocka_unit_test(test_bad_arguments_rejected),
+        cmocka_unit_test(test_serve_and_fault_time_arguments),
         cmocka_unit_test(test_executable_writes_nothing_on_bad_argument),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
