@@ -14,6 +14,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 
+#include "ctl_ddc.h"
 #include "ctl_flux_ref.h"
 #include "ctl_params.h"
 #include "ctl_predict.h"
@@ -28,7 +29,7 @@ typedef struct {
     ctl_q torque_limit;
     ctl_q speed_kp;
     ctl_q speed_ki_ts;
-    ctl_q duty_level[CTL_DUTY_LEVELS_MAX]; /* 1, (n-2)/(n-1), ..., 0; unused entries 0 */
+    ctl_ddc_config_t ddc; /* the DDC search's settings and duty levels */
     /* drive scaling: electrical per unit speed per mechanical rev/s */
     ctl_q omega_pu_per_rev_s;
     ctl_protect_limits_t protect;

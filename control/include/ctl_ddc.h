@@ -27,15 +27,20 @@ typedef struct {
 
 #define CTL_DDC_LEVELS_MAX 11
 
+/* The search's settings, built once per parameter set (ctl_config_t), outside the ISR. */
 typedef struct {
-    int16_t direction;   /* 0 flux-error reading, 1 x-y-table reading (ctl_ddc_direction_t) */
-    const ctl_q *levels; /* duty levels, 1 first, 0 last */
-    int16_t n_levels;    /* 2..CTL_DDC_LEVELS_MAX */
-    bool torque_guard;   /* improvement: flux weighting moves the duty at most one level */
-    void (*stage_hook)(int16_t stage); /* profiling: told when the table stage ends (0: none) */
+    int16_t direction; /* 0 flux-error reading, 1 x-y-table reading (ctl_ddc_direction_t) */
+    int16_t n_levels;  /* 2..CTL_DDC_LEVELS_MAX */
+    bool torque_guard; /* improvement: flux weighting moves the duty at most one level */
+    ctl_q levels[CTL_DDC_LEVELS_MAX]; /* 1, (n-2)/(n-1), ..., 0; unused entries 0 */
 } ctl_ddc_config_t;
 
+/* Fills cfg; n_levels in 2..CTL_DDC_LEVELS_MAX (the caller has checked it). */
+void ctl_ddc_config_init(ctl_ddc_config_t *cfg, int16_t direction, int16_t n_levels,
+                         bool torque_guard);
+
+/* stage_hook (profiling, 0: none) is told when the table stage ends. */
 void ctl_ddc_select(const ctl_horizon_t *h, const ctl_ddc_flux_t *flux, const ctl_ddc_config_t *cfg,
-                    ctl_choice_t *out);
+                    void (*stage_hook)(int16_t stage), ctl_choice_t *out);
 
 #endif /* CTL_DDC_H */

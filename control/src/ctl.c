@@ -201,24 +201,18 @@ static void select_ddc(const ctl_t *c, const ctl_config_t *cfg, const ctl_horizo
                        ctl_q iq1, ctl_q ix1, ctl_q iy1, ctl_choice_t *choice)
 {
     ctl_ddc_flux_t f;
-    ctl_ddc_config_t ddc;
     const ctl_q psi_d1 = ctl_flux_d(&cfg->model, id1);
     const ctl_q psi_q1 = ctl_flux_q(&cfg->model, iq1);
     ctl_park_inverse(psi_d1, psi_q1, h->sin_k1, h->cos_k1, &f.psi_alpha, &f.psi_beta);
     f.psi_mag_sq = ctl_mul_add(psi_d1, psi_d1, psi_q1, psi_q1);
     f.psi_x = ctl_mul(cfg->model.lxy, ix1);
     f.psi_y = ctl_mul(cfg->model.lxy, iy1);
-    ddc.direction = (int16_t)cfg->params.ddc_direction;
-    ddc.levels = cfg->duty_level;
-    ddc.n_levels = cfg->params.duty_levels;
-    ddc.torque_guard = cfg->params.ddc_torque_guard;
 #if CTL_PROFILE
-    ddc.stage_hook = c->stage_hook;
+    ctl_ddc_select(h, &f, &cfg->ddc, c->stage_hook, choice);
 #else
     (void)c;
-    ddc.stage_hook = 0;
+    ctl_ddc_select(h, &f, &cfg->ddc, 0, choice);
 #endif
-    ctl_ddc_select(h, &f, &ddc, choice);
 }
 
 static void record_diag(ctl_t *c, const ctl_config_t *cfg, const ctl_sample_t *smp,
@@ -245,7 +239,7 @@ void ctl_step(ctl_t *c, const ctl_meas_t *m, ctl_cmd_t *cmd)
 {
     const ctl_config_t *cfg;
     ctl_sample_t smp;
-    ctl_horizon_t h = {0};
+    ctl_horizon_t h;
     ctl_choice_t choice;
     ctl_q id1;
     ctl_q iq1;

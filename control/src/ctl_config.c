@@ -2,18 +2,6 @@
 
 #include "ctl_pu.h"
 
-/* Duty levels 1, (n-2)/(n-1), ..., 0: the paper's {1, 0.8, 0.6, 0.4, 0.2, 0} for n = 6. */
-static void build_duty_levels(ctl_config_t *cfg, int16_t n)
-{
-    int16_t k;
-    for (k = 0; k < CTL_DUTY_LEVELS_MAX; k++) {
-        cfg->duty_level[k] = CTL_Q(0.0);
-    }
-    for (k = 0; k < n; k++) {
-        cfg->duty_level[k] = ctl_from_float((float)(n - 1 - k) / (float)(n - 1));
-    }
-}
-
 ctl_param_error_t ctl_config_build(ctl_config_t *cfg, const ctl_params_t *p)
 {
     const ctl_param_error_t e = ctl_params_check(p);
@@ -32,7 +20,7 @@ ctl_param_error_t ctl_config_build(ctl_config_t *cfg, const ctl_params_t *p)
     /* integrator gain per step: ki in N*m per mechanical rad, so ki * Ts per (rad/s) */
     cfg->speed_ki_ts =
         ctl_from_float(ctl_speed_gain_pu(p->speed_ki_nm_per_rad, p->pole_pairs) * p->sample_time_s);
-    build_duty_levels(cfg, p->duty_levels);
+    ctl_ddc_config_init(&cfg->ddc, (int16_t)p->ddc_direction, p->duty_levels, p->ddc_torque_guard);
     cfg->omega_pu_per_rev_s =
         ctl_from_float((CTL_TWO_PI_F / CTL_BASE_OMEGA_RAD_S_F) * (float)p->pole_pairs);
     ctl_protect_limits_build(&cfg->protect, &p->protect, p->sample_time_s, p->pole_pairs,

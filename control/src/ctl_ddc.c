@@ -85,8 +85,23 @@ static void duty_search(const ctl_horizon_t *h, const ctl_ddc_config_t *cfg, int
     }
 }
 
+void ctl_ddc_config_init(ctl_ddc_config_t *cfg, int16_t direction, int16_t n_levels,
+                         bool torque_guard)
+{
+    int16_t k;
+    cfg->direction = direction;
+    cfg->n_levels = n_levels;
+    cfg->torque_guard = torque_guard;
+    /* the paper's {1, 0.8, 0.6, 0.4, 0.2, 0} for n = 6 */
+    for (k = 0; k < CTL_DDC_LEVELS_MAX; k++) {
+        cfg->levels[k] = (k < n_levels)
+                             ? ctl_from_float((float)(n_levels - 1 - k) / (float)(n_levels - 1))
+                             : CTL_Q(0.0);
+    }
+}
+
 void ctl_ddc_select(const ctl_horizon_t *h, const ctl_ddc_flux_t *flux, const ctl_ddc_config_t *cfg,
-                    ctl_choice_t *out)
+                    void (*stage_hook)(int16_t stage), ctl_choice_t *out)
 {
     /* Flux sector s spans [30s - 15, 30s + 15) deg, i.e. the 15-degree sectors 2s - 1, 2s. */
     const int16_t sector =
@@ -108,8 +123,8 @@ void ctl_ddc_select(const ctl_horizon_t *h, const ctl_ddc_flux_t *flux, const ct
         const int16_t lower_flux = (flux->psi_mag_sq >= ctl_mul(h->flux_ref, h->flux_ref)) ? 1 : 0;
         vector = ctl_ddc_table2_flux[sector][torque_half][lower_flux][xy_sector];
     }
-    if (cfg->stage_hook != 0) {
-        cfg->stage_hook(2); /* CTL_STAGE_TABLE */
+    if (stage_hook != 0) {
+        stage_hook(2); /* CTL_STAGE_TABLE */
     }
     duty_search(h, cfg, vector, &zero, out);
     out->candidates = cfg->n_levels;

@@ -91,10 +91,9 @@ static void test_mptc_zero_vector_follows_state_in_force(void **state)
     assert_int_equal(c.vector, 0);
 }
 
-static const ctl_q levels6[6] = {CTL_Q(1.0), CTL_Q(0.8), CTL_Q(0.6),
-                                 CTL_Q(0.4), CTL_Q(0.2), CTL_Q(0.0)};
-static const ctl_ddc_config_t paper_flux_error = {0, levels6, 6, false, 0};
-static const ctl_ddc_config_t paper_xy_table = {1, levels6, 6, false, 0};
+static ctl_ddc_config_t paper_flux_error; /* built by main (the paper's six levels) */
+static ctl_ddc_config_t paper_xy_table;
+static ctl_ddc_config_t guarded;
 
 /* Flux at k+1 in sector I (angle 0), x-y flux in x-y sector 0, |psi| below the reference:
  * table 1 row 0 candidates; the duty whose torque meets Tref is chosen. */
@@ -110,7 +109,7 @@ static void test_ddc_picks_duty_that_meets_torque(void **state)
         ctl_q flux;
         const int16_t v = ctl_ddc_table2_flux[0][0][0][0];
         predicted(&h, v, duties[i], &h.torque_ref, &flux);
-        ctl_ddc_select(&h, &f, &paper_flux_error, &c);
+        ctl_ddc_select(&h, &f, &paper_flux_error, 0, &c);
         assert_int_equal(c.flux_sector, 0);
         assert_int_equal(c.xy_sector, 0);
         assert_false(c.braking);
@@ -132,10 +131,10 @@ static void test_ddc_flux_error_reading_lowers_flux_and_xy(void **state)
     ctl_ddc_flux_t f = {CTL_Q(0.50), CTL_Q(0.0), CTL_Q(0.25), CTL_Q(-0.01736), CTL_Q(0.09848)};
     (void)state;
     h.torque_ref = CTL_Q(2.0); /* far above: full duty */
-    ctl_ddc_select(&h, &f, &paper_flux_error, &c);
+    ctl_ddc_select(&h, &f, &paper_flux_error, 0, &c);
     assert_int_equal(c.vector, 062);
     f.psi_mag_sq = CTL_Q(0.09); /* below the reference: flux-raising pair u24 / u66 */
-    ctl_ddc_select(&h, &f, &paper_flux_error, &c);
+    ctl_ddc_select(&h, &f, &paper_flux_error, 0, &c);
     assert_int_equal(c.vector, 024);
 }
 
@@ -153,7 +152,7 @@ static void test_ddc_xy_reading_follows_paper_table2(void **state)
         ctl_horizon_t h = horizon();
         ctl_choice_t c;
         h.torque_ref = CTL_Q(2.0);
-        ctl_ddc_select(&h, &f, &paper_xy_table, &c);
+        ctl_ddc_select(&h, &f, &paper_xy_table, 0, &c);
         assert_int_equal(c.vector, expected[quadrant]);
     }
 }
@@ -172,7 +171,7 @@ static void test_ddc_braking_half(void **state)
     (void)state;
     predicted(&h, 0, CTL_Q(0.0), &t0, &flux);
     h.torque_ref = ctl_sub(t0, CTL_Q(1.0));
-    ctl_ddc_select(&h, &f, &paper_flux_error, &c);
+    ctl_ddc_select(&h, &f, &paper_flux_error, 0, &c);
     assert_true(c.braking);
     for (k = 0; k < 4; k++) {
         in_lower_half = in_lower_half || (ctl_ddc_table1[0][1][k] == c.vector);
@@ -191,7 +190,7 @@ static void test_ddc_zero_duty(void **state)
     ctl_ddc_flux_t f = {CTL_Q(0.45), CTL_Q(0.0), CTL_Q(0.2025), CTL_Q(0.01), CTL_Q(0.001)};
     (void)state;
     predicted(&h, 0, CTL_Q(0.0), &h.torque_ref, &flux);
-    ctl_ddc_select(&h, &f, &paper_flux_error, &c);
+    ctl_ddc_select(&h, &f, &paper_flux_error, 0, &c);
     assert_near((double)ctl_to_float(c.duty), 0.0, 1e-9);
     assert_false(c.braking);
 }
@@ -202,7 +201,6 @@ static void test_ddc_zero_duty(void **state)
  * (full duty here), so the torque error stays within one duty step. */
 static void test_torque_guard(void **state)
 {
-    static const ctl_ddc_config_t guarded = {0, levels6, 6, true, 0};
     ctl_horizon_t h = horizon();
     ctl_choice_t paper;
     ctl_choice_t guard;
@@ -217,21 +215,24 @@ static void test_torque_guard(void **state)
     h.torque_ref = t1;
     h.lambda = CTL_Q(20.0);
     ctl_horizon_prepare(&h);
-    ctl_ddc_select(&h, &f, &paper_flux_error, &paper);
-    ctl_ddc_select(&h, &f, &guarded, &guard);
+    ctl_ddc_select(&h, &f, &paper_flux_error, 0, &paper);
+    ctl_ddc_select(&h, &f, &guarded, 0, &guard);
     assert_true(paper.duty < CTL_Q(0.8)); /* the trap: torque given up for flux */
     assert_true(guard.duty >= CTL_Q(0.8));
     assert_true(ctl_abs(ctl_sub(guard.torque, h.torque_ref)) <=
                 ctl_add(ctl_div(ctl_abs(ctl_sub(t1, t0)), CTL_Q(5.0)), CTL_Q(1e-6)));
     /* with no flux weight the guard changes nothing */
     h.lambda = CTL_Q(0.0);
-    ctl_ddc_select(&h, &f, &paper_flux_error, &paper);
-    ctl_ddc_select(&h, &f, &guarded, &guard);
+    ctl_ddc_select(&h, &f, &paper_flux_error, 0, &paper);
+    ctl_ddc_select(&h, &f, &guarded, 0, &guard);
     assert_int_equal(paper.duty, guard.duty);
 }
 
 int main(void)
 {
+    ctl_ddc_config_init(&paper_flux_error, 0, 6, false);
+    ctl_ddc_config_init(&paper_xy_table, 1, 6, false);
+    ctl_ddc_config_init(&guarded, 0, 6, true);
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_mptc_picks_the_vector_that_meets_the_torque_reference),
         cmocka_unit_test(test_mptc_flux_weight_selects_flux_match),
