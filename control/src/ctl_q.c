@@ -70,9 +70,10 @@ ctl_q ctl_wrap_turn(ctl_q angle_turn)
     return w;
 }
 
-ctl_q ctl_sin_pu(ctl_q angle_turn)
+/* Sine of an angle already wrapped into [0, 1). */
+static ctl_q sin_of_wrapped(ctl_q w)
 {
-    const float pos = ctl_wrap_turn(angle_turn) * (float)CTL_SIN_SEGMENTS;
+    const float pos = w * (float)CTL_SIN_SEGMENTS;
     int32_t k = (int32_t)pos;
     float frac;
     CTL_COUNT_OP(CTL_OP_SIN);
@@ -81,6 +82,14 @@ ctl_q ctl_sin_pu(ctl_q angle_turn)
     }
     frac = pos - (float)k;
     return ctl_sin_table[k] + frac * (ctl_sin_table[k + 1] - ctl_sin_table[k]);
+}
+
+/* The wrapped angle plus a quarter turn, wrapped again (as ctl_wrap_turn would: w + 0.25 is
+ * below 1.25, and subtracting 1 from it is exact). */
+static ctl_q quarter_turn_on(ctl_q w)
+{
+    const float w2 = w + 0.25f;
+    return (w2 >= 1.0f) ? w2 - 1.0f : w2;
 }
 
 int16_t ctl_turn_sector(ctl_q angle_turn, int16_t n)
@@ -179,10 +188,11 @@ ctl_q ctl_wrap_turn(ctl_q angle_turn)
     return (ctl_q)((uint32_t)angle_turn & (uint32_t)(CTL_Q_ONE - 1));
 }
 
-ctl_q ctl_sin_pu(ctl_q angle_turn)
+/* Sine of an angle already wrapped into [0, 1). */
+static ctl_q sin_of_wrapped(ctl_q angle_wrapped)
 {
     /* 10 index bits, 14 interpolation bits of the 24-bit turn fraction. */
-    const uint32_t w = (uint32_t)ctl_wrap_turn(angle_turn);
+    const uint32_t w = (uint32_t)angle_wrapped;
     const uint32_t k = w >> 14;
     CTL_COUNT_OP(CTL_OP_SIN);
     const int32_t frac = (int32_t)(w & 0x3FFFu);
@@ -190,6 +200,9 @@ ctl_q ctl_sin_pu(ctl_q angle_turn)
     const int32_t dy = ctl_sin_table[k + 1u] - y0;
     return y0 + (int32_t)(((int64_t)dy * frac + 0x2000) >> 14);
 }
+
+/* The wrapped angle plus a quarter turn, wrapped again. */
+static ctl_q quarter_turn_on(ctl_q w) { return ctl_wrap_turn(w + CTL_Q(0.25)); }
 
 int16_t ctl_turn_sector(ctl_q angle_turn, int16_t n)
 {
@@ -199,12 +212,19 @@ int16_t ctl_turn_sector(ctl_q angle_turn, int16_t n)
 
 #endif /* CTL_MATH_FLOAT */
 
-ctl_q ctl_cos_pu(ctl_q angle_turn) { return ctl_sin_pu(ctl_wrap_turn(angle_turn) + CTL_Q(0.25)); }
+ctl_q ctl_sin_pu(ctl_q angle_turn) { return sin_of_wrapped(ctl_wrap_turn(angle_turn)); }
 
+ctl_q ctl_cos_pu(ctl_q angle_turn)
+{
+    return sin_of_wrapped(quarter_turn_on(ctl_wrap_turn(angle_turn)));
+}
+
+/* One wrap for both: the same results as ctl_sin_pu and ctl_cos_pu. */
 void ctl_sincos_pu(ctl_q angle_turn, ctl_q *s, ctl_q *c)
 {
-    *s = ctl_sin_pu(angle_turn);
-    *c = ctl_cos_pu(angle_turn);
+    const ctl_q w = ctl_wrap_turn(angle_turn);
+    *s = sin_of_wrapped(w);
+    *c = sin_of_wrapped(quarter_turn_on(w));
 }
 
 int16_t ctl_sector24(ctl_q y, ctl_q x)
