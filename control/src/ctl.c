@@ -154,6 +154,16 @@ typedef struct {
     ctl_q id, iq;
 } ctl_sample_t;
 
+/* The option ctl_params_t.mid_period_angle: each period's voltage enters the prediction at
+ * the rotor angle of the period's middle, for the command in force (k -> k+1) and for the
+ * candidates (k+1 -> k+2). Off the default path. */
+static void mid_period_angles(const ctl_meas_t *m, const ctl_sample_t *smp, ctl_q delta,
+                              ctl_q *s_in_force, ctl_q *c_in_force, ctl_horizon_t *h)
+{
+    advance_angle(m->theta_e, smp->s0, smp->c0, ctl_mul(delta, CTL_Q(0.5)), s_in_force, c_in_force);
+    advance_angle(m->theta_e, smp->s0, smp->c0, ctl_mul(delta, CTL_Q(1.5)), &h->sin1, &h->cos1);
+}
+
 /* Delay compensation k -> k+1 under the command already in force (period average), then the
  * horizon k+1 -> k+2 up to the free response. Fills the x-y currents at k+1. */
 static void predict(const ctl_t *c, const ctl_config_t *cfg, const ctl_meas_t *m,
@@ -162,35 +172,30 @@ static void predict(const ctl_t *c, const ctl_config_t *cfg, const ctl_meas_t *m
 {
     const ctl_vsd_t *applied = &ctl_vector_vsd[c->applied_vector];
     const ctl_q delta = ctl_mul(m->omega_e, cfg->model.ts); /* rotation over one period */
-    const bool mid = cfg->params.mid_period_angle;
     ctl_vsd_t u0 = {CTL_Q(0.0), CTL_Q(0.0), CTL_Q(0.0), CTL_Q(0.0)};
     ctl_q ud0 = CTL_Q(0.0);
     ctl_q uq0 = CTL_Q(0.0);
+    ctl_q s_in_force = smp->s0; /* the angle at which the command in force enters: k */
+    ctl_q c_in_force = smp->c0;
+    advance_angle(m->theta_e, smp->s0, smp->c0, delta, &h->sin_k1, &h->cos_k1);
+    h->sin1 = h->sin_k1; /* the candidates' voltage enters at k+1 */
+    h->cos1 = h->cos_k1;
+    if (cfg->params.mid_period_angle) {
+        mid_period_angles(m, smp, delta, &s_in_force, &c_in_force, h);
+    }
     if (c->applied_duty != CTL_Q(0.0)) { /* a zero vector in force applies no voltage */
         const ctl_q applied_scale = ctl_mul(c->applied_duty, m->vdc);
-        ctl_q s = smp->s0;
-        ctl_q co = smp->c0;
-        if (mid) {
-            advance_angle(m->theta_e, smp->s0, smp->c0, ctl_mul(delta, CTL_Q(0.5)), &s, &co);
-        }
         u0.alpha = ctl_mul(applied->alpha, applied_scale);
         u0.beta = ctl_mul(applied->beta, applied_scale);
         u0.x = ctl_mul(applied->x, applied_scale);
         u0.y = ctl_mul(applied->y, applied_scale);
-        ud0 = ctl_mul_add(u0.alpha, co, u0.beta, s);
-        uq0 = ctl_mul_sub(u0.beta, co, u0.alpha, s);
+        ud0 = ctl_mul_add(u0.alpha, c_in_force, u0.beta, s_in_force);
+        uq0 = ctl_mul_sub(u0.beta, c_in_force, u0.alpha, s_in_force);
     }
     ctl_predict_dq(&cfg->model, smp->id, smp->iq, m->omega_e, ud0, uq0, id1, iq1);
     *ix1 = ctl_predict_xy(&cfg->model, smp->vsd.x, u0.x);
     *iy1 = ctl_predict_xy(&cfg->model, smp->vsd.y, u0.y);
     h->model = &cfg->model;
-    advance_angle(m->theta_e, smp->s0, smp->c0, delta, &h->sin_k1, &h->cos_k1);
-    if (mid) {
-        advance_angle(m->theta_e, smp->s0, smp->c0, ctl_mul(delta, CTL_Q(1.5)), &h->sin1, &h->cos1);
-    } else {
-        h->sin1 = h->sin_k1;
-        h->cos1 = h->cos_k1;
-    }
     ctl_predict_dq_free(&cfg->model, *id1, *iq1, m->omega_e, &h->id2_free, &h->iq2_free);
     h->vdc = m->vdc;
     h->lambda = cfg->lambda;
