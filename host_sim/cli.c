@@ -25,6 +25,7 @@ void sim_cli_usage(FILE *f)
         "[--ddc-torque-guard | --paper-ddc]\n"
         "                   [--delay-angle {period-start,mid-period}] "
         "[--pulse-pattern {by-ones,fewest-transitions}]\n"
+        "                   [--flux-tie-band LEVELS]\n"
         "                   [--flux-ref {constant,mtpa}] [--torque-limit NM] [--trip-current A] "
         "[--lxy H] [--vdc V] [--dead-time S]\n"
         "                   [--sensor-span A]\n"
@@ -120,6 +121,7 @@ enum {
     G_GUARD,
     G_DELAY_ANGLE,
     G_PULSE_PATTERN,
+    G_TIE_BAND,
     G_LAMBDA,
     G_FS,
     G_SPEED,
@@ -167,6 +169,7 @@ static const opt_t options[] = {
     {"--paper-ddc", OPT_PAPER, OPT_RUN, 0u, G_GUARD, 0.0, 0.0, 0, NULL},
     CHOICE("--delay-angle", cfg.mid_period_angle, G_DELAY_ANGLE, delay_angles),
     CHOICE("--pulse-pattern", cfg.fewest_transitions, G_PULSE_PATTERN, pulse_patterns),
+    NUM("--flux-tie-band", cfg.flux_tie_band, G_TIE_BAND, 0.0, 1.0),
     NUM("--lambda", cfg.lambda, G_LAMBDA, 0.0, 10000.0),
     NUM("--fs", cfg.fs_hz, G_FS, 1000.0, 100000.0),
     NUM("--speed", cfg.speed_rpm, G_SPEED, -6000.0, 6000.0),
@@ -336,6 +339,7 @@ static int apply_option(const opt_t *opt, const char *v, sim_cli_t *o, char *err
         o->cfg.ddc_torque_guard = 0;
         o->cfg.mid_period_angle = 0;
         o->cfg.fewest_transitions = 0;
+        o->cfg.flux_tie_band = 0.0;
         return 1;
     case OPT_NUMBER:
         if (parse_number(v, opt->lo, opt->hi, (double *)(void *)(base + opt->field)) != 0) {
@@ -507,11 +511,13 @@ static int cli_parse(int argc, char **argv, sim_cli_t *o, char *err, size_t len,
                             a, "");
         }
         seen[opt->group] = 1;
-        if (opt->kind == OPT_PAPER) { /* it also sets what these two set */
-            if (seen[G_DELAY_ANGLE] || seen[G_PULSE_PATTERN]) {
-                return cli_fail(err, len, "%s repeats --delay-angle or --pulse-pattern%s", a, "");
+        if (opt->kind == OPT_PAPER) { /* it also sets what these three set */
+            if (seen[G_DELAY_ANGLE] || seen[G_PULSE_PATTERN] || seen[G_TIE_BAND]) {
+                return cli_fail(err, len,
+                                "%s repeats --delay-angle, --pulse-pattern or --flux-tie-band%s", a,
+                                "");
             }
-            seen[G_DELAY_ANGLE] = seen[G_PULSE_PATTERN] = 1;
+            seen[G_DELAY_ANGLE] = seen[G_PULSE_PATTERN] = seen[G_TIE_BAND] = 1;
         }
         if (opt->kind == OPT_IDEAL) {
             int g;

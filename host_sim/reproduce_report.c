@@ -417,7 +417,7 @@ static void rep_sweep_goals(FILE *f, const rep_case_t *cases, int n)
     for (li = 0; li < REP_SWEEP_LAMBDAS; li++) {
         rep_sweep_cell_t p, d;
         if (!rep_sweep_cell(cases, n, 0, 20.0 * (li + 1), &p) ||
-            !rep_sweep_cell(cases, n, 2, 20.0 * (li + 1), &d)) {
+            !rep_sweep_cell(cases, n, REP_SWEEP_PRODUCT, 20.0 * (li + 1), &d)) {
             continue;
         }
         total++;
@@ -451,7 +451,11 @@ static void rep_section_improvements(FILE *f, const rep_case_t *cases, int n)
     for (v = 0; v < REP_SWEEP_VARIANTS; v++) {
         fprintf(f, " %s |", rep_sweep_label[v]);
     }
-    fprintf(f, "\n|---|---|---|---|---|\n");
+    fprintf(f, "\n|---|");
+    for (v = 0; v < REP_SWEEP_VARIANTS; v++) {
+        fprintf(f, "---|");
+    }
+    fprintf(f, "\n");
     for (li = 0; li < REP_SWEEP_LAMBDAS; li++) {
         fprintf(f, "| %d |", 20 * (li + 1));
         for (v = 0; v < REP_SWEEP_VARIANTS; v++) {

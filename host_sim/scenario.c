@@ -54,6 +54,7 @@ void sim_config_default(sim_config_t *c)
     c->ddc_torque_guard = -1;
     c->mid_period_angle = -1;
     c->fewest_transitions = -1;
+    c->flux_tie_band = -1.0;
     c->protect = true;
     c->fault = SIM_FAULT_NONE;
     c->fault_time_s = 0.0;

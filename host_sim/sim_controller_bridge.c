@@ -75,6 +75,9 @@ static int bridge_init(const sim_ctl_config_t *cfg)
     if (cfg->fewest_transitions >= 0) {
         p.fewest_transitions = (cfg->fewest_transitions != 0);
     }
+    if (cfg->flux_tie_band >= 0.0) {
+        p.ddc_flux_tie_band = (float)cfg->flux_tie_band;
+    }
     if (cfg->ddc_torque_guard >= 0) {
         p.ddc_torque_guard = (cfg->ddc_torque_guard != 0);
     }
@@ -185,6 +188,7 @@ static void bridge_status(sim_ctl_status_t *st)
     st->p_ddc_torque_guard = prm->ddc_torque_guard ? 1 : 0;
     st->p_mid_period_angle = prm->mid_period_angle ? 1 : 0;
     st->p_fewest_transitions = prm->fewest_transitions ? 1 : 0;
+    st->p_flux_tie_band = (double)prm->ddc_flux_tie_band;
     st->faults_latched = (unsigned)drive_faults_latched(&bridge_drive);
     st->fault_records = (int)ctl_protect_log_pending(&bridge_drive.protect);
 }

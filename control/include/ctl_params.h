@@ -57,6 +57,10 @@ typedef struct {
                               * middle) that switch the fewest legs, the period boundary included
                               * (false: u77 in the middle for vectors with four or more upper
                               * switches on, u00 at the edges otherwise) */
+    float ddc_flux_tie_band; /* (default 0.25) the flux term decides only between duty levels
+                              * whose predicted torque errors lie within this fraction of one
+                              * level's torque step of the best one, 0..1; 0: off (the flux term
+                              * weighs every level the guard leaves, the paper's search) */
     ctl_flux_ref_mode_t flux_ref_mode;
     float flux_ref_wb; /* used when flux_ref_mode is constant */
     /* speed loop */
@@ -85,7 +89,8 @@ typedef struct {
     X(CTL_PARAM_FLUX_REF, "flux reference mode unknown or constant flux outside 1 mWb..10 Wb")     \
     X(CTL_PARAM_SPEED_GAINS, "speed gains negative or too large for the number format")            \
     X(CTL_PARAM_TORQUE_LIMIT, "torque limit outside 1 mN*m..500 N*m")                              \
-    X(CTL_PARAM_PROTECTION, "a protection threshold is out of range")
+    X(CTL_PARAM_PROTECTION, "a protection threshold is out of range")                              \
+    X(CTL_PARAM_FLUX_TIE_BAND, "DDC flux tie band outside 0..1 duty level")
 
 #define CTL_PARAM_ERROR_ENUM(code, text) code,
 typedef enum { CTL_PARAM_ERRORS(CTL_PARAM_ERROR_ENUM) CTL_PARAM_ERROR_COUNT } ctl_param_error_t;

@@ -10,20 +10,26 @@ typedef struct {
     ctl_q psi_q;
 } ctl_ddc_state_t;
 
-/* Levels [*first, *last] that compete: all of them, or with the torque guard (improvement,
- * docs/improvements.md) the level that best meets the torque reference and its neighbours, so a
- * large lambda cannot trade torque for flux beyond the resolution of the duty set. (A band in
- * torque units would put the neighbour on the far side exactly on its edge, torque being
- * nearly linear in duty.) Only they need a flux root. */
-static void competing_levels(const ctl_ddc_config_t *cfg, const ctl_q *torque_err, int16_t *first,
-                             int16_t *last)
+/* The levels that compete: those in [*first, *last] whose torque error is at most *bound. All
+ * of them in the paper's search. Two improvements (docs/improvements.md), each relative to the
+ * level that best meets the torque reference, so a large lambda cannot trade torque for flux
+ * beyond the resolution of the duty set:
+ *   torque guard: that level and its neighbours (an index band: a band in torque units at one
+ *     level would put the neighbour on the far side exactly on its edge, torque being nearly
+ *     linear in duty);
+ *   flux tie band: levels whose torque error is within a fraction of one level's torque step
+ *     of the best, so the flux term only breaks near-ties (the step from the levels' span).
+ * Only the competing levels need a flux root. */
+static void competing_levels(const ctl_ddc_config_t *cfg, const ctl_q *torque,
+                             const ctl_q *torque_err, int16_t *first, int16_t *last, ctl_q *bound)
 {
     int16_t best = 0;
     ctl_q best_err = CTL_Q_MAX;
     int16_t k;
     *first = 0;
     *last = (int16_t)(cfg->n_levels - 1);
-    if (!cfg->torque_guard) {
+    *bound = CTL_Q_MAX;
+    if (!cfg->torque_guard && cfg->tie_per_span == CTL_Q(0.0)) {
         return;
     }
     for (k = 0; k < cfg->n_levels; k++) {
@@ -32,8 +38,14 @@ static void competing_levels(const ctl_ddc_config_t *cfg, const ctl_q *torque_er
             best = k;
         }
     }
-    *first = (best > 0) ? (int16_t)(best - 1) : 0;
-    *last = (best < *last) ? (int16_t)(best + 1) : *last;
+    if (cfg->torque_guard) {
+        *first = (best > 0) ? (int16_t)(best - 1) : 0;
+        *last = (best < *last) ? (int16_t)(best + 1) : *last;
+    }
+    if (cfg->tie_per_span != CTL_Q(0.0)) { /* levels 1 first, 0 last */
+        const ctl_q span = ctl_abs(ctl_sub(torque[0], torque[cfg->n_levels - 1]));
+        *bound = ctl_add(best_err, ctl_mul(span, cfg->tie_per_span));
+    }
 }
 
 /* Best duty for one vector: the forced response scales with the duty; duty 0 is the zero
@@ -49,6 +61,7 @@ static void duty_search(const ctl_horizon_t *h, const ctl_ddc_config_t *cfg, int
     ctl_q diq;
     int16_t first;
     int16_t last;
+    ctl_q bound;
     int16_t k;
     ctl_horizon_forced(h, &ctl_vector_vsd[vector], &did, &diq);
     for (k = 0; k < cfg->n_levels; k++) {
@@ -63,16 +76,20 @@ static void duty_search(const ctl_horizon_t *h, const ctl_ddc_config_t *cfg, int
         }
         torque_err[k] = ctl_abs(ctl_sub(torque[k], h->torque_ref));
     }
-    competing_levels(cfg, torque_err, &first, &last);
+    competing_levels(cfg, torque, torque_err, &first, &last, &bound);
     out->vector = vector;
     out->cost = CTL_Q_MAX;
     out->duty = CTL_Q(0.0);
     out->torque = zero->torque;
     out->flux = -1; /* none chosen yet */
     for (k = first; k <= last; k++) {
-        const ctl_q flux = ctl_flux_magnitude(psi_d[k], psi_q[k]);
-        const ctl_q cost =
-            ctl_add(torque_err[k], ctl_mul(h->lambda, ctl_abs(ctl_sub(flux, h->flux_ref))));
+        ctl_q flux;
+        ctl_q cost;
+        if (torque_err[k] > bound) {
+            continue;
+        }
+        flux = ctl_flux_magnitude(psi_d[k], psi_q[k]);
+        cost = ctl_add(torque_err[k], ctl_mul(h->lambda, ctl_abs(ctl_sub(flux, h->flux_ref))));
         if (cost < out->cost) {
             out->cost = cost;
             out->duty = cfg->levels[k];
@@ -86,12 +103,13 @@ static void duty_search(const ctl_horizon_t *h, const ctl_ddc_config_t *cfg, int
 }
 
 void ctl_ddc_config_init(ctl_ddc_config_t *cfg, int16_t direction, int16_t n_levels,
-                         bool torque_guard)
+                         bool torque_guard, float tie_band)
 {
     int16_t k;
     cfg->direction = direction;
     cfg->n_levels = n_levels;
     cfg->torque_guard = torque_guard;
+    cfg->tie_per_span = ctl_from_float(tie_band / (float)(n_levels - 1));
     /* the paper's {1, 0.8, 0.6, 0.4, 0.2, 0} for n = 6 */
     for (k = 0; k < CTL_DDC_LEVELS_MAX; k++) {
         cfg->levels[k] = (k < n_levels)

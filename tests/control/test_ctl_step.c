@@ -62,6 +62,10 @@ static void test_invalid_parameters_are_rejected(void **state)
     assert_false(ctl_params_valid(&bad));
     bad = p, bad.pole_pairs = 0;
     assert_false(ctl_params_valid(&bad));
+    bad = p, bad.ddc_flux_tie_band = 1.5f;
+    assert_int_equal(ctl_params_check(&bad), CTL_PARAM_FLUX_TIE_BAND);
+    bad = p, bad.ddc_flux_tie_band = -0.25f;
+    assert_int_equal(ctl_params_check(&bad), CTL_PARAM_FLUX_TIE_BAND);
 }
 
 /* Not a normal number is refused with the field's reason, whatever its range: a denormal
@@ -81,6 +85,8 @@ static void test_non_normal_parameters_are_refused_with_a_reason(void **state)
     assert_int_equal(ctl_params_check(&bad), CTL_PARAM_LAMBDA);
     bad = p, bad.lambda_nm_per_wb = nan;
     assert_int_equal(ctl_params_check(&bad), CTL_PARAM_LAMBDA);
+    bad = p, bad.ddc_flux_tie_band = nan;
+    assert_int_equal(ctl_params_check(&bad), CTL_PARAM_FLUX_TIE_BAND);
     bad = p, bad.resistance_ohm = inf;
     assert_int_equal(ctl_params_check(&bad), CTL_PARAM_RESISTANCE);
     bad = p, bad.lq_h = nan;

@@ -228,11 +228,43 @@ static void test_torque_guard(void **state)
     assert_int_equal(paper.duty, guard.duty);
 }
 
+/* The flux tie band (docs/improvements.md): with a flux reference met by duty 0.6 and a torque
+ * reference near duty 0.8, the guard alone lets a large lambda take 0.6 (one level away); with
+ * the band of a quarter level the flux term only decides when the two levels' torque errors
+ * differ by less than that, i.e. near the midpoint between them. */
+static void test_flux_tie_band(void **state)
+{
+    static const ctl_q fraction[2] = {CTL_Q(0.1), CTL_Q(0.45)}; /* of the step, from 0.8 down */
+    ctl_ddc_config_t tie;
+    ctl_ddc_flux_t f = {CTL_Q(0.40), CTL_Q(0.0), CTL_Q(0.16), CTL_Q(0.01), CTL_Q(0.001)};
+    const int16_t v = ctl_ddc_table2_flux[0][0][0][0];
+    int16_t i;
+    (void)state;
+    ctl_ddc_config_init(&tie, 0, 6, true, 0.25f);
+    for (i = 0; i < 2; i++) {
+        ctl_horizon_t h = horizon();
+        ctl_choice_t guard;
+        ctl_choice_t banded;
+        ctl_q t6;
+        ctl_q t8;
+        ctl_q psi8;
+        predicted(&h, v, CTL_Q(0.6), &t6, &h.flux_ref);
+        predicted(&h, v, CTL_Q(0.8), &t8, &psi8);
+        h.torque_ref = ctl_sub(t8, ctl_mul(fraction[i], ctl_sub(t8, t6)));
+        h.lambda = CTL_Q(50.0);
+        ctl_ddc_select(&h, &f, &guarded, 0, &guard);
+        ctl_ddc_select(&h, &f, &tie, 0, &banded);
+        assert_int_equal(guard.duty, tie.levels[2]); /* 0.6: the flux term moves it a level */
+        /* 0.1 step from 0.8: the errors differ by 0.8 step, beyond the band; 0.45: by 0.1 */
+        assert_int_equal(banded.duty, (i == 0) ? tie.levels[1] : tie.levels[2]);
+    }
+}
+
 int main(void)
 {
-    ctl_ddc_config_init(&paper_flux_error, 0, 6, false);
-    ctl_ddc_config_init(&paper_xy_table, 1, 6, false);
-    ctl_ddc_config_init(&guarded, 0, 6, true);
+    ctl_ddc_config_init(&paper_flux_error, 0, 6, false, 0.0f);
+    ctl_ddc_config_init(&paper_xy_table, 1, 6, false, 0.0f);
+    ctl_ddc_config_init(&guarded, 0, 6, true, 0.0f);
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_mptc_picks_the_vector_that_meets_the_torque_reference),
         cmocka_unit_test(test_mptc_flux_weight_selects_flux_match),
@@ -241,6 +273,7 @@ int main(void)
         cmocka_unit_test(test_ddc_flux_error_reading_lowers_flux_and_xy),
         cmocka_unit_test(test_ddc_xy_reading_follows_paper_table2),
         cmocka_unit_test(test_ddc_braking_half),
+        cmocka_unit_test(test_flux_tie_band),
         cmocka_unit_test(test_ddc_zero_duty),
         cmocka_unit_test(test_torque_guard),
     };

@@ -35,10 +35,12 @@ F_NORMAL = F_PROTECT | F_ENC_OK | F_RUNNING | F_CALIBRATED
 
 def params(controller=DDC, direction=FLUX_ERROR, guard=True, flux_mode=MTPA, levels=6,
            lam=100.0, tlim=7.0, kp=1.5, ki=60.0, flux_wb=0.26, ts=1e-4, oc=15.0, os_rpm=2000.0,
-           ov=720.0, mid=False, fewest=True):
+           ov=720.0, mid=False, fewest=True, tie=True):
     """The improvement flags in one byte: bit 0 torque guard, 1 mid-period angle, 2 fewest
-    transitions (guard=False alone is the paper's DDC only with fewest=False too)."""
-    flags = (1 if guard else 0) | (2 if mid else 0) | (4 if fewest else 0)
+    transitions, 3 flux tie band off (guard=False alone is the paper's DDC only with
+    fewest=False and tie=False too)."""
+    flags = ((1 if guard else 0) | (2 if mid else 0) | (4 if fewest else 0) |
+             (0 if tie else 8))
     return (struct.pack("<BBBBh", controller, direction, flags, flux_mode, levels) +
             struct.pack("<9f", lam, tlim, kp, ki, flux_wb, ts, oc, os_rpm, ov))
 
@@ -161,7 +163,7 @@ def build(sim, work, scale):
     # B: DDC, x-y table reading, paper DDC (no guard), speed loop; mid-run the reading and the
     #    gains change.
     rows = record(sim, work, "ddc", "load-step", ["--ddc-direction", "xy-table", "--paper-ddc"])
-    s.init(controller=DDC, direction=XY_TABLE, guard=False, fewest=False)
+    s.init(controller=DDC, direction=XY_TABLE, guard=False, fewest=False, tie=False)
     s.mode(SPEED)
     s.reset()
     nb = min(len(rows), n(4500))

@@ -25,8 +25,8 @@
  *   'S' step     see read_step                        -> 'S' step output (emit_step)
  *   'E'          end                                  -> 'E' steps u32, then the done mark
  * params: controller u8, ddc_direction u8, improvement flags u8 (bit 0 torque guard, 1
- *   mid-period angle, 2 fewest transitions), flux_ref_mode u8, duty_levels i16,
- *   lambda f32, torque_limit f32, speed_kp f32, speed_ki f32, flux_ref_wb f32, sample_time f32,
+ *   mid-period angle, 2 fewest transitions, 3 flux tie band off), flux_ref_mode u8, duty_levels
+ * i16, lambda f32, torque_limit f32, speed_kp f32, speed_ki f32, flux_ref_wb f32, sample_time f32,
  *   overcurrent_a f32, overspeed_rpm f32, dc_overvoltage_v f32 (the rest: ctl_params_default).
  */
 #include <stdbool.h>
@@ -148,10 +148,13 @@ static void read_params(ctl_params_t *p)
     p->controller = (ctl_controller_t)port_read();
     p->ddc_direction = (ctl_ddc_direction_t)port_read();
     {
-        const uint16_t flags = port_read(); /* bit 0 guard, 1 mid-period angle, 2 fewest */
+        const uint16_t flags = port_read(); /* bit 0 guard, 1 mid, 2 fewest, 3 tie band off */
         p->ddc_torque_guard = (flags & 1u) != 0u;
         p->mid_period_angle = (flags & 2u) != 0u;
         p->fewest_transitions = (flags & 4u) != 0u;
+        if ((flags & 8u) != 0u) {
+            p->ddc_flux_tie_band = 0.0f;
+        }
     }
     p->flux_ref_mode = (ctl_flux_ref_mode_t)port_read();
     p->duty_levels = rd_i16();
@@ -195,6 +198,7 @@ static void emit_config(const ctl_config_t *c)
     for (i = 0; i < CTL_DUTY_LEVELS_MAX; i++) {
         wr_q(c->ddc.levels[i]);
     }
+    wr_q(c->ddc.tie_per_span);
     wr_q(c->omega_pu_per_rev_s);
     wr_u8((uint8_t)c->flux_ref.mode);
     wr_q(c->flux_ref.constant);
