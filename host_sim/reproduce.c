@@ -75,7 +75,7 @@ int sim_reproduce(const char *out_dir, int jobs, bool plots, int quiet)
     rep_progress_t progress;
     const double t0 = rep_now();
     rep_case_t *cases;
-    int n = 0, n1, failures, rc;
+    int n = 0, n1, failures, rc, round;
     double wall;
     char err[1400];
     if (sim_check_out_dir(out_dir, err, sizeof err) != 0) {
@@ -96,8 +96,13 @@ int sim_reproduce(const char *out_dir, int jobs, bool plots, int quiet)
     progress.tty = !quiet && isatty(2);
     progress.t0 = t0;
     failures = sim_batch_run(cases, 0, n1, jobs, rep_case_done, &progress);
-    rep_cases_equal_switching(cases, &n, out_dir);
-    failures += sim_batch_run(cases, n1, n, jobs, rep_case_done, &progress);
+    for (round = 1; round <= REP_EQSW_ROUNDS; round++) { /* equal switching frequency */
+        const int from = n;
+        if (rep_cases_equal_switching(cases, &n, out_dir, round) == 0) {
+            break;
+        }
+        failures += sim_batch_run(cases, from, n, jobs, rep_case_done, &progress);
+    }
     wall = rep_now() - t0;
     rc = rep_write_all(out_dir, cases, n, wall, jobs);
     if (rc == 0 && plots) {

@@ -186,30 +186,109 @@ void rep_cases_first_batch(rep_case_t *cases, int *n, const char *dir)
     }
 }
 
-void rep_cases_equal_switching(rep_case_t *cases, int *n, const char *dir)
+/* The runs of one baseline at one lambda in the order they ran: the 10 kHz run first, then
+ * each round's; returns how many (at most max). */
+static int rep_eqsw_runs(const rep_case_t *cases, int n, const char *baseline, int li,
+                         const rep_case_t **runs, int max)
 {
-    const int n1 = *n;
-    int li;
-    for (li = 0; li < 3; li++) {
-        char name[64];
-        const rep_case_t *d, *m;
-        rep_case_t *c;
-        double fs;
-        (void)snprintf(name, sizeof name, "steady_ddc_l%.0f", rep_paper_lambda[li]);
-        d = rep_find(cases, n1, name);
-        (void)snprintf(name, sizeof name, "steady_mptc49_l%.0f", rep_paper_lambda[li]);
-        m = rep_find(cases, n1, name);
-        if (!d || !m || !(m->res.switching_freq_hz > 0.0)) {
-            continue;
-        }
-        /* switching frequency ~ proportional to the sampling frequency */
-        fs = 10000.0 * d->res.switching_freq_hz / m->res.switching_freq_hz;
-        fs = fmin(fmax(100.0 * floor(fs / 100.0 + 0.5), 2000.0), 50000.0);
-        (void)snprintf(name, sizeof name, "eqsw_mptc49_l%.0f", rep_paper_lambda[li]);
-        c = rep_add(cases, n, dir, "eqsw", name, 1, SIM_SCEN_STEADY, rep_paper_lambda[li]);
-        rep_apply_variant(&c->cfg, REP_PLAIN);
-        c->cfg.fs_hz = fs;
+    char name[64];
+    int count = 0, r;
+    (void)snprintf(name, sizeof name, "steady_%s_l%.0f", baseline, rep_paper_lambda[li]);
+    runs[count] = rep_find(cases, n, name);
+    count += (runs[count] != NULL);
+    for (r = 1; r <= REP_EQSW_ROUNDS && count < max; r++) {
+        (void)snprintf(name, sizeof name, "eqsw_%s_l%.0f_r%d", baseline, rep_paper_lambda[li], r);
+        runs[count] = rep_find(cases, n, name);
+        count += (runs[count] != NULL);
     }
+    return count;
+}
+
+static double rep_eqsw_target(const rep_case_t *cases, int n, int li)
+{
+    char name[64];
+    const rep_case_t *d;
+    (void)snprintf(name, sizeof name, "guard_ddc_l%.0f", rep_paper_lambda[li]);
+    d = rep_find(cases, n, name);
+    return d ? d->res.switching_freq_hz : -1.0;
+}
+
+const rep_case_t *rep_eqsw_best(const rep_case_t *cases, int n, const char *baseline, int li,
+                                double *target, int *rounds)
+{
+    const rep_case_t *runs[REP_EQSW_ROUNDS + 1], *best = NULL;
+    const int count = rep_eqsw_runs(cases, n, baseline, li, runs, REP_EQSW_ROUNDS + 1);
+    int i;
+    *target = rep_eqsw_target(cases, n, li);
+    *rounds = 0;
+    for (i = 1; i<count && * target> 0.0; i++) { /* the 10 kHz run is not a candidate */
+        if (!best || fabs(runs[i]->res.switching_freq_hz - *target) <
+                         fabs(best->res.switching_freq_hz - *target)) {
+            best = runs[i];
+        }
+        *rounds = i;
+    }
+    return best;
+}
+
+/* The next sampling frequency to try, or <= 0 when there is none: the secant through the two
+ * latest runs (f_sw rises with fs), else proportional scaling from the latest; at most a factor
+ * of two per round, within 2..50 kHz. */
+static double rep_eqsw_next_fs(const rep_case_t *const *runs, int count, double target)
+{
+    const sim_result_t *a = &runs[count - 1]->res;
+    double fs = a->fs_hz * target / a->switching_freq_hz;
+    int i;
+    if (count >= 2) {
+        const sim_result_t *b = &runs[count - 2]->res;
+        const double slope = (a->switching_freq_hz - b->switching_freq_hz) / (a->fs_hz - b->fs_hz);
+        if (slope > 0.0 && isfinite(slope)) {
+            fs = a->fs_hz + (target - a->switching_freq_hz) / slope;
+        }
+    }
+    fs = fmin(fmax(fs, 0.5 * a->fs_hz), 2.0 * a->fs_hz);
+    fs = 10.0 * floor(fmin(fmax(fs, 2000.0), 50000.0) / 10.0 + 0.5);
+    for (i = 0; i < count; i++) {
+        if (runs[i]->res.fs_hz == fs) {
+            return -1.0; /* tried already: the iteration has settled as far as it can */
+        }
+    }
+    return fs;
+}
+
+int rep_cases_equal_switching(rep_case_t *cases, int *n, const char *dir, int round)
+{
+    static const char *const baselines[2] = {"mptc49", "mptc13"};
+    const int n1 = *n;
+    int li, b, added = 0;
+    for (li = 0; li < 3; li++) {
+        const double target = rep_eqsw_target(cases, n1, li);
+        for (b = 0; b < 2 && target > 0.0; b++) {
+            const rep_case_t *runs[REP_EQSW_ROUNDS + 1];
+            const int count = rep_eqsw_runs(cases, n1, baselines[b], li, runs, REP_EQSW_ROUNDS + 1);
+            double best_target, fs;
+            int rounds;
+            const rep_case_t *best =
+                rep_eqsw_best(cases, n1, baselines[b], li, &best_target, &rounds);
+            char name[64];
+            rep_case_t *c;
+            if (count == 0 || count != round || !(runs[count - 1]->res.switching_freq_hz > 0.0) ||
+                (best && fabs(best->res.switching_freq_hz / target - 1.0) <= REP_EQSW_TOLERANCE)) {
+                continue; /* no run to start from, a round missing, or settled */
+            }
+            fs = rep_eqsw_next_fs(runs, count, target);
+            if (fs <= 0.0) {
+                continue;
+            }
+            (void)snprintf(name, sizeof name, "eqsw_%s_l%.0f_r%d", baselines[b],
+                           rep_paper_lambda[li], round);
+            c = rep_add(cases, n, dir, "eqsw", name, b + 1, SIM_SCEN_STEADY, rep_paper_lambda[li]);
+            rep_apply_variant(&c->cfg, REP_PLAIN);
+            c->cfg.fs_hz = fs;
+            added++;
+        }
+    }
+    return added;
 }
 
 const char *const rep_sweep_variant[REP_SWEEP_VARIANTS] = {"paper", "guard", "fewest", "product",

@@ -13,7 +13,7 @@
 #include "batch.h"
 #include "sim.h"
 
-#define REP_MAX_CASES 256
+#define REP_MAX_CASES 320
 #define REP_BASELINE_SENSOR_SPAN_A 50.0
 
 typedef sim_case_t rep_case_t; /* group: steady, eqsw, dyn, lxy, extra, fault, improve */
@@ -26,9 +26,22 @@ extern const double rep_paper_rip_mptc[3], rep_paper_rip_ddc[3];
 /* Every case of the first batch into cases[0..*n); run outputs under dir/runs/NAME. */
 void rep_cases_first_batch(rep_case_t *cases, int *n, const char *dir);
 
-/* After the first batch: MPTC-49 at the sampling frequency that gives DDC's switching
- * frequency at each lambda (eqsw_mptc49_l*), appended. */
-void rep_cases_equal_switching(rep_case_t *cases, int *n, const char *dir);
+/* Equal average switching frequency (report section 2): MPTC-49 and MPTC-13 at the sampling
+ * frequency that gives the product DDC's switching frequency at 10 kHz (case guard_ddc_l*), at
+ * each lambda, found by iteration: round r appends, for every baseline and lambda whose best
+ * run so far is more than REP_EQSW_TOLERANCE off, a run eqsw_<mptc49|mptc13>_l<lambda>_r<r>
+ * at the next estimate (the first from the 10 kHz run, then the secant through the two latest
+ * runs; the estimate is deterministic, rounded to 10 Hz). Returns the number of runs appended
+ * (0: every pair settled, or no new frequency to try). At most REP_EQSW_ROUNDS rounds. */
+#define REP_EQSW_TOLERANCE 0.02
+#define REP_EQSW_ROUNDS 6
+int rep_cases_equal_switching(rep_case_t *cases, int *n, const char *dir, int round);
+
+/* The run of a baseline ("mptc49" or "mptc13") at paper lambda index li whose switching
+ * frequency is closest to the product DDC's at 10 kHz (*target), and the rounds it took;
+ * NULL if none ran. */
+const rep_case_t *rep_eqsw_best(const rep_case_t *cases, int n, const char *baseline, int li,
+                                double *target, int *rounds);
 
 /* The improvements over the paper's DDC, side by side (docs/improvements.md): each variant at
  * lambda 20, 40, .., 200, seeds 1..REP_SWEEP_SEEDS (cases imp_<variant>_l<lambda>_s<seed>,

@@ -1,0 +1,51 @@
+# `sixphase-sim reproduce`, then the equal-switching-frequency comparison of its summary.json
+# (report section 2): at each paper lambda, MPTC-49 and MPTC-13 each have a run whose average
+# switching frequency is within 2 % of the product DDC's at 10 kHz (guard_ddc_l<lambda>), after
+# at most 6 runs (eqsw_<baseline>_l<lambda>_r<round>).
+# Arguments: -DSIM=<sixphase-sim> -DWORK=<scratch dir>
+file(REMOVE_RECURSE "${WORK}")
+execute_process(COMMAND "${SIM}" reproduce --out "${WORK}" --jobs 2 --no-plots --quiet
+                RESULT_VARIABLE rc)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "reproduce failed (${rc})")
+endif()
+file(READ "${WORK}/summary.json" summary)
+string(JSON count LENGTH "${summary}")
+math(EXPR last "${count} - 1")
+foreach(i RANGE ${last})
+  string(JSON name GET "${summary}" ${i} name)
+  if(name MATCHES "^(guard_ddc_l[0-9]+|eqsw_mptc(49|13)_l[0-9]+_r[0-9]+)$")
+    string(JSON fsw GET "${summary}" ${i} switching_freq_hz)
+    string(REGEX REPLACE "\\..*$" "" fsw "${fsw}") # whole Hz: math() has no fractions
+    set(fsw_${name} ${fsw})
+    list(APPEND names ${name})
+  endif()
+endforeach()
+foreach(lambda 20 100 200)
+  if(NOT DEFINED fsw_guard_ddc_l${lambda})
+    message(FATAL_ERROR "no product DDC run at lambda ${lambda}")
+  endif()
+  set(target ${fsw_guard_ddc_l${lambda}})
+  foreach(baseline mptc49 mptc13)
+    set(runs 0)
+    set(best 1e9)
+    foreach(name IN LISTS names)
+      if(name MATCHES "^eqsw_${baseline}_l${lambda}_r")
+        math(EXPR runs "${runs} + 1")
+        # |fsw / target - 1| in per mille, integer arithmetic
+        math(EXPR off "(${fsw_${name}} * 1000 / ${target}) - 1000")
+        if(off LESS 0)
+          math(EXPR off "-${off}")
+        endif()
+        if(off LESS best)
+          set(best ${off})
+        endif()
+      endif()
+    endforeach()
+    if(runs EQUAL 0 OR runs GREATER 6 OR best GREATER 20)
+      message(FATAL_ERROR "${baseline} at lambda ${lambda}: ${runs} runs, closest switching "
+                          "frequency ${best} per mille off the DDC's ${target} Hz (limit 20)")
+    endif()
+    message(STATUS "${baseline} lambda ${lambda}: within ${best} per mille after ${runs} runs")
+  endforeach()
+endforeach()
