@@ -140,55 +140,9 @@ static void inv_add_edge(inv_schedule_t *sc, double t, unsigned set, unsigned cl
 /* Edges in time order without a general sort: the transitions at the period start first, then
  * the rising edges (the longest pulse first) and the falling edges (the shortest first), since
  * a duty d rises at (1 - d) Ts / 2 and falls at (1 + d) Ts / 2. */
-int inverter_align_hack;
-static void inv_schedule_edges_aligned(const inverter_t *inv, const double duty[PLANT_PHASES],
-                               inv_schedule_t *sc)
-{
-    /* leading: rise at 0, fall at d (ascending d); trailing: rise at 1-d (descending d) */
-    int by_duty[PLANT_PHASES], n_mid = 0, k;
-    double d_of[PLANT_PHASES];
-    const int lead = inverter_align_hack == 1;
-    unsigned start_set = 0u, start_clear = 0u;
-    for (k = 0; k < PLANT_PHASES; k++) {
-        const unsigned bit = INV_LEG_BIT(k);
-        const double d = (duty[k] < 0.0) ? 0.0 : ((duty[k] > 1.0) ? 1.0 : duty[k]);
-        const int high_at_start = (d >= 1.0) || (lead && d > 0.0);
-        if (high_at_start) {
-            start_set |= bit & ~inv->nominal_bits;
-        } else {
-            start_clear |= bit & inv->nominal_bits;
-        }
-        d_of[k] = d;
-        if (d > 0.0 && d < 1.0) { /* insertion: leading ascending d, trailing descending d */
-            int i = n_mid++;
-            while (i > 0 && (lead ? d_of[by_duty[i - 1]] > d : d_of[by_duty[i - 1]] < d)) {
-                by_duty[i] = by_duty[i - 1];
-                i--;
-            }
-            by_duty[i] = k;
-        }
-    }
-    sc->n_edges = 0;
-    if ((start_set | start_clear) != 0u) {
-        inv_add_edge(sc, 0.0, start_set, start_clear);
-    }
-    for (k = 0; k < n_mid; k++) {
-        if (lead) {
-            inv_add_edge(sc, d_of[by_duty[k]] * inv->ts, 0u, INV_LEG_BIT(by_duty[k]));
-        } else {
-            inv_add_edge(sc, (1.0 - d_of[by_duty[k]]) * inv->ts, INV_LEG_BIT(by_duty[k]), 0u);
-        }
-    }
-}
-
 static void inv_schedule_edges(const inverter_t *inv, const double duty[PLANT_PHASES],
                                inv_schedule_t *sc)
 {
-    if (inverter_align_hack != 0) {
-        inv_schedule_edges_aligned(inv, duty, sc);
-        return;
-    }
-
     int by_duty[PLANT_PHASES], n_mid = 0, k;
     double d_of[PLANT_PHASES];
     unsigned start_set = 0u, start_clear = 0u;

@@ -40,7 +40,6 @@ typedef struct {
     plant_stepper_t stepper;      /* integrates the plant over the intervals */
 } inverter_t;
 
-extern int inverter_align_hack;
 void inverter_init(inverter_t *inv, const plant_params_t *p, double ts);
 
 /* Advance plant and inverter by one period with the given leg duties

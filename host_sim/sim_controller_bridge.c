@@ -6,7 +6,6 @@
  * the prefix "simflt_" at build time, so both live in one binary.
  */
 #include <stddef.h>
-#include <stdlib.h>
 
 #include "ctl.h"
 #include "ctl_pu.h"
@@ -73,9 +72,6 @@ static int bridge_init(const sim_ctl_config_t *cfg)
     if (cfg->mid_period_angle >= 0) {
         p.mid_period_angle = (cfg->mid_period_angle != 0);
     }
-    /* PROTOTYPE switches from the environment (issue 13 evaluation, reverted) */
-    p.single_edge = (int16_t)(getenv("PROTO_SINGLE_EDGE") ? atoi(getenv("PROTO_SINGLE_EDGE")) : 0);
-    p.flux_band = (int16_t)(getenv("PROTO_FLUX_BAND") ? atoi(getenv("PROTO_FLUX_BAND")) : 0);
     if (cfg->fewest_transitions >= 0) {
         p.fewest_transitions = (cfg->fewest_transitions != 0);
     }

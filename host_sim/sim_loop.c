@@ -154,7 +154,6 @@ static void loop_next_command(sim_run_t *rs, const sim_ctl_status_t *st)
         rs->duty[j] = hal_sim_duty_fraction(j);
     }
     sim_fault_duty(&rs->fault, hal_sim_bus.forced_off, rs->duty);
-    inverter_align_hack = hal_pwm_align_hack;
     if (!hal_sim_bus.forced_off && st->enable) {
         rs->applied_vector = st->vector;
         rs->applied_duty = st->duty;

@@ -70,7 +70,6 @@ typedef struct {
     int16_t vector;             /* active switching state 0..63 (S_A is bit 5) */
     ctl_q duty;                 /* fraction of the period the active vector is applied */
     bool enable;                /* false: all switches off */
-    int16_t align;              /* HACK 0 centred 1 leading 2 trailing */
 } ctl_cmd_t;
 
 typedef struct {

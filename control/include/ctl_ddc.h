@@ -35,7 +35,6 @@ typedef struct {
     /* improvement: the flux term decides only between levels whose torque errors are within
      * this times |Te(d=1) - Te(d=0)| of the best (the tie band over the levels' count); 0: off */
     ctl_q tie_per_span;
-    ctl_q flux_band; /* PROTOTYPE */
     ctl_q levels[CTL_DDC_LEVELS_MAX]; /* 1, (n-2)/(n-1), ..., 0; unused entries 0 */
 } ctl_ddc_config_t;
 

@@ -61,8 +61,6 @@ typedef struct {
                               * whose predicted torque errors lie within this fraction of one
                               * level's torque step of the best one, 0..1; 0: off (the flux term
                               * weighs every level the guard leaves, the paper's search) */
-    int16_t single_edge;     /* PROTOTYPE: 1 single-edge pulses (u00 or u77), 2 (u00 only) */
-    int16_t flux_band;       /* PROTOTYPE: flux error ignored within this permille of psi_ref */
     ctl_flux_ref_mode_t flux_ref_mode;
     float flux_ref_wb; /* used when flux_ref_mode is constant */
     /* speed loop */

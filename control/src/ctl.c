@@ -127,35 +127,7 @@ static void command_from_choice(int16_t vector, ctl_q duty, const ctl_t *c, bool
     cmd->vector = zero ? (high_zero ? 077 : 0) : vector;
     cmd->duty = zero ? CTL_Q(0.0) : d;
     cmd->enable = true;
-    cmd->align = 0;
     *edges = ctl_pulse_edges(vector, zero, high_zero, d >= CTL_Q(1.0));
-    if (c->config[c->config_active].params.single_edge && !zero && d < CTL_Q(1.0)) {
-        const int16_t E = c->applied_edges;
-        const int16_t ones = ctl_vector_ones(vector);
-        int16_t cost[4];
-        int16_t best = 0, k;
-        const int16_t mode = c->config[c->config_active].params.single_edge;
-        cost[0] = (int16_t)(ctl_pulse_legs_switching(E, vector) + ones);      /* [v 00] */
-        cost[1] = (int16_t)(ctl_pulse_legs_switching(E, 0) + ones);           /* [00 v] */
-        cost[2] = (int16_t)(ctl_pulse_legs_switching(E, vector) + 6 - ones);  /* [v 77] */
-        cost[3] = (int16_t)(ctl_pulse_legs_switching(E, 077) + 6 - ones);     /* [77 v] */
-        if (mode == 2) { /* u00 only */
-            cost[2] = cost[3] = 99;
-        }
-        for (k = 1; k < 4; k++) {
-            if (cost[k] < cost[best]) best = k;
-        }
-        for (leg = 0; leg < CTL_PHASES; leg++) {
-            const bool in_v = ctl_vector_leg(vector, leg) != 0;
-            if (best < 2) {
-                cmd->leg_duty[leg] = in_v ? d : CTL_Q(0.0);
-            } else {
-                cmd->leg_duty[leg] = in_v ? CTL_Q(1.0) : ctl_sub(CTL_Q(1.0), d);
-            }
-        }
-        cmd->align = (int16_t)((best == 0 || best == 3) ? 1 : 2);
-        *edges = (best == 0) ? 0 : ((best == 2) ? 077 : vector);
-    }
 }
 
 /* The sample angle advanced by delta (rad). For |delta| <= 0.5 rad (7 times rated speed at

@@ -22,7 +22,6 @@ ctl_param_error_t ctl_config_build(ctl_config_t *cfg, const ctl_params_t *p)
         ctl_from_float(ctl_speed_gain_pu(p->speed_ki_nm_per_rad, p->pole_pairs) * p->sample_time_s);
     ctl_ddc_config_init(&cfg->ddc, (int16_t)p->ddc_direction, p->duty_levels, p->ddc_torque_guard,
                         p->ddc_flux_tie_band);
-    cfg->ddc.flux_band = ctl_from_float((float)p->flux_band / 1000.0f);
     cfg->omega_pu_per_rev_s =
         ctl_from_float((CTL_TWO_PI_F / CTL_BASE_OMEGA_RAD_S_F) * (float)p->pole_pairs);
     ctl_protect_limits_build(&cfg->protect, &p->protect, p->sample_time_s, p->pole_pairs,

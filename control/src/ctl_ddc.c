@@ -89,13 +89,7 @@ static void duty_search(const ctl_horizon_t *h, const ctl_ddc_config_t *cfg, int
             continue;
         }
         flux = ctl_flux_magnitude(psi_d[k], psi_q[k]);
-        {
-            ctl_q ferr = ctl_abs(ctl_sub(flux, h->flux_ref));
-            if (cfg->flux_band > CTL_Q(0.0)) { /* PROTOTYPE: flux acted on outside a band */
-                ferr = ctl_max(CTL_Q(0.0), ctl_sub(ferr, ctl_mul(cfg->flux_band, h->flux_ref)));
-            }
-            cost = ctl_add(torque_err[k], ctl_mul(h->lambda, ferr));
-        }
+        cost = ctl_add(torque_err[k], ctl_mul(h->lambda, ctl_abs(ctl_sub(flux, h->flux_ref))));
         if (cost < out->cost) {
             out->cost = cost;
             out->duty = cfg->levels[k];
@@ -116,7 +110,6 @@ void ctl_ddc_config_init(ctl_ddc_config_t *cfg, int16_t direction, int16_t n_lev
     cfg->n_levels = n_levels;
     cfg->torque_guard = torque_guard;
     cfg->tie_per_span = ctl_from_float(tie_band / (float)(n_levels - 1));
-    cfg->flux_band = CTL_Q(0.0);
     /* the paper's {1, 0.8, 0.6, 0.4, 0.2, 0} for n = 6 */
     for (k = 0; k < CTL_DDC_LEVELS_MAX; k++) {
         cfg->levels[k] = (k < n_levels)

@@ -21,8 +21,6 @@ void ctl_params_default(ctl_params_t *p)
     p->ddc_torque_guard = true;  /* improvements (docs/improvements.md); false = the paper */
     p->mid_period_angle = false; /* measured: no closed-loop gain (docs/improvements.md) */
     p->fewest_transitions = true;
-    p->single_edge = 0;
-    p->flux_band = 0;
     p->ddc_flux_tie_band = 0.25f; /* measured over lambda 20..200 (docs/improvements.md) */
     p->flux_ref_mode = CTL_FLUX_REF_MTPA;
     p->flux_ref_wb = 0.26f;

@@ -209,8 +209,6 @@ uint16_t drive_duty_to_hal(ctl_q duty)
     return (uint16_t)q15;
 }
 
-int16_t hal_pwm_align_hack; /* PROTOTYPE: pulse placement of the next period */
-
 static void drive_run_step(drive_t *d)
 {
     uint16_t duty[HAL_PWM_LEGS];
@@ -224,7 +222,6 @@ static void drive_run_step(drive_t *d)
     for (i = 0; i < HAL_PWM_LEGS; i++) {
         duty[i] = drive_duty_to_hal(d->cmd.leg_duty[i]);
     }
-    hal_pwm_align_hack = d->cmd.align;
     hal_pwm_write(duty);
     prof_mark(PROF_PWM);
 }

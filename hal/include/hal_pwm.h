@@ -19,7 +19,6 @@
 /* Configure the six legs for a carrier frequency; outputs stay forced off. */
 bool hal_pwm_init(uint32_t carrier_hz, uint32_t dead_time_ns);
 
-extern int16_t hal_pwm_align_hack;
 /* Leg duties A..F for the next period; values above HAL_PWM_DUTY_ONE are clamped. */
 void hal_pwm_write(const uint16_t duty[HAL_PWM_LEGS]);
 
