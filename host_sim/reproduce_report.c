@@ -154,12 +154,13 @@ static void rep_section_steady(FILE *f, const rep_case_t *cases, int n)
         rep_row_lambda(f, cases, n, "steady_ddc", "DDC", li, true);
         rep_row_lambda(f, cases, n, "guard_ddc", "DDC, product", li, true);
     }
-    fprintf(f, "\n\"DDC\" is the paper's method (every improvement off, `--paper-ddc`); \"DDC, "
-               "product\" is the core's defaults: the torque guard, which limits how far the flux "
-               "weighting may move the duty, the zero-vector arrangement with the fewest "
-               "transitions and the flux tie band, which leaves the flux term only near-ties of "
-               "the torque errors (docs/improvements.md, section 8), none of them part of the "
-               "paper. MPTC-49 and MPTC-13 run as the paper describes them.\n");
+    fprintf(f,
+            "\n\"DDC\" is the paper's method (every improvement off, `--paper-ddc`); \"DDC, "
+            "product\" is the core's defaults: the torque guard, which limits how far the flux "
+            "weighting may move the duty, the zero-vector arrangement with the fewest "
+            "transitions and the flux tie band, which leaves the flux term only near-ties of "
+            "the torque errors (docs/improvements.md; section 8 below), none of them part of the "
+            "paper. MPTC-49 and MPTC-13 run as the paper describes them.\n");
     fprintf(f, "\nThe paper's \"conventional MPTC\" columns are repeated on the MPTC-13 rows for "
                "comparison; the paper evaluates 49 candidates (section 3.1) and mentions the "
                "13-candidate variant (section 3.2). Peak A: largest phase current at the control "
