@@ -135,6 +135,7 @@ int LLVMFuzzerTestOneInput(const unsigned char *data, size_t size)
             q.duty_levels = (int16_t)(take32(&s) % 16u);
             q.ddc_direction = (ctl_ddc_direction_t)(take32(&s) % 3u);
             q.ddc_torque_guard = (take32(&s) & 1u) != 0u;
+            q.ddc_flux_tie_band = take_float(&s);
             q.torque_limit_nm = take_float(&s);
             q.speed_kp_nm_per_rad_s = take_float(&s);
             q.lq_h = take_float(&s);
