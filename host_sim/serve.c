@@ -215,6 +215,7 @@ int sim_serve(const sim_config_t *c, const sim_serve_options_t *o)
         fprintf(stderr, "sixphase-sim: %s\n", err);
         return 1;
     }
+    hal_sim_use_host_clock(true); /* the board's profile shows host time */
     if (sim_setup(&rs, &cfg, err, sizeof err) != 0) {
         fprintf(stderr, "sixphase-sim: %s\n", err);
         sim_teardown(&rs, false);

@@ -48,6 +48,7 @@ static void loop_hw_trip(sim_run_t *rs, sim_result_t *r, const plant_out_t *o, d
 static void loop_control(sim_run_t *rs, sim_result_t *r, const plant_out_t *o, long k, double t,
                          sim_ctl_status_t *st)
 {
+    hal_sim_clock_advance(rs->ts_ns);
     sim_adc_sample(&rs->adc, &rs->plant, o->i_phase, &rs->fault);
     sim_encoder_sample(&rs->encoder, &rs->plant, &rs->x, t, rs->ts, &rs->fault);
     if (k % LOOP_ISR_TIMING_EVERY == 0) {

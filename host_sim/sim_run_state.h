@@ -8,6 +8,7 @@
 
 #include <stdbool.h>
 #include <stddef.h>
+#include <stdint.h>
 
 #include "fault_inject.h"
 #include "inverter.h"
@@ -33,6 +34,7 @@ typedef struct {
     sim_recorder_t rec;
     sim_metrics_t metrics;
     double ts;
+    uint32_t ts_ns; /* the period in the simulated clock's nanoseconds (hal_sim.h) */
     long n_periods, k_win;
     int n_fine;
     double *fine_times; /* the fine sampling instants within a period */

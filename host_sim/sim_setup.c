@@ -63,6 +63,7 @@ static int setup_timing(sim_run_t *rs, char *err, size_t err_len)
     const sim_config_t *c = rs->cfg;
     int j;
     rs->ts = 1.0 / c->fs_hz;
+    rs->ts_ns = (uint32_t)lround(1e9 * rs->ts);
     rs->n_periods = lround(rs->plan.duration / rs->ts);
     if (rs->n_periods < 10) {
         return setup_fail(err, err_len, "duration shorter than 10 control periods");
@@ -147,6 +148,7 @@ static void calibrate_periods(sim_run_t *rs, sim_ctl_status_t *st)
     rs->ops->status(st);
     for (cal = 0; cal < SIM_CAL_PERIODS_MAX && !st->ready; cal++) {
         double iph[6];
+        hal_sim_clock_advance(rs->ts_ns);
         plant_phase_currents(&rs->plant, &rs->x, iph);
         sim_adc_sample(&rs->adc, &rs->plant, iph, &rs->fault);
         sim_encoder_sample(&rs->encoder, &rs->plant, &rs->x,

@@ -43,12 +43,22 @@ typedef struct {
     uint16_t uart_rx[HAL_SIM_UART_FIFO], uart_tx[HAL_SIM_UART_FIFO];
     uint16_t uart_rx_head, uart_rx_count, uart_tx_head, uart_tx_count;
     uint32_t uart_rx_overruns; /* bytes that arrived with the receive FIFO full (lost) */
+    /* hal_cycles.h: simulated time in nanoseconds (see hal_sim_use_host_clock) */
+    uint32_t clock_ns;
 } hal_sim_bus_t;
 
 extern hal_sim_bus_t hal_sim_bus;
 
 /* Clear the bus to its power-on state (outputs forced off, no samples). */
 void hal_sim_reset(void);
+
+/* hal_cycles.h reads simulated time by default: nanoseconds, advanced by the plant at every
+ * period start (hal_sim_clock_advance), so a reading costs no host call and the profiler sees
+ * no time pass inside the ISR. With host true it reads the host's monotonic clock instead (the
+ * virtual board, whose profile shows host time). A process-wide choice: hal_sim_reset keeps it
+ * (and zeroes the simulated clock). */
+void hal_sim_use_host_clock(bool host);
+void hal_sim_clock_advance(uint32_t ns);
 
 /* The line side of the serial port: a byte arriving (false, and counted as an overrun, when
  * the receive FIFO is full) and the next byte leaving the transmit FIFO (false when empty). */

@@ -82,9 +82,22 @@ static void test_encoder_and_cycles(void **state)
     hal_encoder_read(&out);
     assert_true(out.elec_angle == 0x40000000u && out.mech_speed_q16 == 65536 && out.healthy);
     hal_cycles_init();
+    /* simulated time: no time passes between readings, a period per advance */
     c0 = hal_cycles_now();
-    c1 = hal_cycles_now();
-    assert_true((uint32_t)(c1 - c0) < hal_cycles_per_second());
+    assert_int_equal(hal_cycles_now(), c0);
+    hal_sim_clock_advance(100000u);
+    assert_int_equal((uint32_t)(hal_cycles_now() - c0), 100000u);
+    hal_sim_reset();
+    assert_int_equal(hal_cycles_now(), 0u);
+    /* the host's clock (the virtual board): moves on its own, in nanoseconds */
+    hal_sim_use_host_clock(true);
+    c0 = hal_cycles_now();
+    hal_sim_clock_advance(1000000000u);
+    do {
+        c1 = hal_cycles_now();
+    } while (c1 == c0);
+    assert_true((uint32_t)(c1 - c0) < hal_cycles_per_second() / 10u);
+    hal_sim_use_host_clock(false);
 }
 
 int main(void)
