@@ -158,11 +158,9 @@ static int bridge_read_fault_record(sim_fault_record_t *out)
     return 1;
 }
 
-static void bridge_status(sim_ctl_status_t *st)
+static void bridge_period_status(sim_ctl_status_t *st)
 {
-    const ctl_t *c = &bridge_drive.ctl;
-    const ctl_params_t *prm = ctl_params(c);
-    const ctl_diag_t *dg = &c->diag;
+    const ctl_diag_t *dg = &bridge_drive.ctl.diag;
     st->state = (int)bridge_drive.state;
     st->ready = bridge_drive.state == DRIVE_STATE_READY;
     st->running = bridge_drive.state == DRIVE_STATE_RUN;
@@ -170,11 +168,19 @@ static void bridge_status(sim_ctl_status_t *st)
     st->fault = (int)bridge_drive.fault;
     st->torque_ref_nm = q2d(dg->torque_ref) * CTL_BASE_TORQUE_NM;
     st->flux_ref_wb = q2d(dg->flux_ref) * CTL_BASE_FLUX_WB;
-    st->torque_est_nm = q2d(dg->torque_est) * CTL_BASE_TORQUE_NM;
-    st->flux_est_wb = q2d(ctl_diag_flux_est(dg)) * CTL_BASE_FLUX_WB;
     st->vector = (int)bridge_drive.cmd.vector;
     st->duty = q2d(bridge_drive.cmd.duty);
     st->enable = bridge_drive.cmd.enable ? 1 : 0;
+}
+
+static void bridge_status(sim_ctl_status_t *st)
+{
+    const ctl_t *c = &bridge_drive.ctl;
+    const ctl_params_t *prm = ctl_params(c);
+    const ctl_diag_t *dg = &c->diag;
+    bridge_period_status(st);
+    st->torque_est_nm = q2d(dg->torque_est) * CTL_BASE_TORQUE_NM;
+    st->flux_est_wb = q2d(ctl_diag_flux_est(dg)) * CTL_BASE_FLUX_WB;
     st->candidates = (int)dg->candidates;
     st->braking = dg->braking ? 1 : 0;
     st->p_lambda = (double)prm->lambda_nm_per_wb;
@@ -228,4 +234,4 @@ const sim_ctl_ops_t SIM_BRIDGE_OPS = {
     SIM_BRIDGE_ARITH,         bridge_init,          bridge_isr,       bridge_request_run,
     bridge_set_speed_rpm,     bridge_set_torque_nm, bridge_status,    bridge_report_overrun,
     bridge_read_fault_record, bridge_link_init,     bridge_link_step, bridge_link_frames,
-    bridge_link_shutdown};
+    bridge_link_shutdown,     bridge_period_status};

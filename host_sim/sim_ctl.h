@@ -89,6 +89,9 @@ typedef struct {
     /* 1 once the host asked the virtual board to stop (SXL_CMD_SIM_SHUTDOWN, answered OK) and
      * the reply has gone to the serial port */
     int (*link_shutdown)(void);
+    /* status's fields the period loop reads (state and flags, fault, references, command),
+     * without the rest's cost (the flux estimate's root, the parameters); others untouched */
+    void (*period_status)(sim_ctl_status_t *st);
 } sim_ctl_ops_t;
 
 /* Defined by the two builds of the bridge. The float build's symbols are all

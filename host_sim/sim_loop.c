@@ -62,7 +62,7 @@ static void loop_control(sim_run_t *rs, sim_result_t *r, const plant_out_t *o, l
     if (sim_fault_overrun(&rs->fault)) {
         rs->ops->report_overrun(); /* fw_isr's end-of-ISR check, on a simulated ISR time */
     }
-    rs->ops->status(st);
+    rs->ops->period_status(st);
     if (st->faulted && r->fault_time_s < 0.0) {
         r->fault_time_s = t;
         r->fault = st->fault;

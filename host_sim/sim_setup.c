@@ -145,7 +145,7 @@ int sim_setup(sim_run_t *rs, const sim_config_t *c, char *err, size_t err_len)
 static void calibrate_periods(sim_run_t *rs, sim_ctl_status_t *st)
 {
     long cal;
-    rs->ops->status(st);
+    rs->ops->period_status(st);
     for (cal = 0; cal < SIM_CAL_PERIODS_MAX && !st->ready; cal++) {
         double iph[6];
         hal_sim_clock_advance(rs->ts_ns);
@@ -156,7 +156,7 @@ static void calibrate_periods(sim_run_t *rs, sim_ctl_status_t *st)
         rs->ops->isr();
         (void)inverter_run_period(&rs->inv, &rs->plant, &rs->x, rs->duty, true, 0.0, true, NULL, 0,
                                   NULL, NULL);
-        rs->ops->status(st);
+        rs->ops->period_status(st);
         if (st->faulted) {
             rs->cal_isr_calls = cal + 1;
             return;
