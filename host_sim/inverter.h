@@ -17,30 +17,31 @@
 #include <stdint.h>
 
 #include "plant.h"
+#include "inverter_program.h"
 #include "plant_stepper.h"
 
 typedef void (*inverter_sample_fn)(void *ctx, double t_rel, const plant_state_t *s,
                                    unsigned leg_state);
 
 typedef struct {
-    double ts;             /* carrier period, s */
-    double td;             /* dead time in force (0 when off), s */
-    unsigned nominal_bits; /* commanded state (gate signals before the dead band), S_A = bit 5 */
-    double
-        dead_until[PLANT_PHASES]; /* end of the running dead interval, relative to period start */
-    double dead_last;             /* the latest of dead_until[] */
-    unsigned eff;                 /* effective leg states of the last interval (S_A = bit 5) */
-    bool off;                     /* outputs forced off in the last period */
-    bool counting;                /* count effective transitions */
-    uint64_t transitions;         /* effective leg transitions while counting */
-    double u_table[64][4];        /* per-unit-of-Vdc VSD voltage of each state */
-    double u_vdc[64][4];          /* u_table times the DC link voltage u_vdc_of */
-    double u_vdc_of;              /* the voltage u_vdc was built for (V) */
-    int intervals;                /* constant-voltage intervals in the last period */
-    plant_stepper_t stepper;      /* integrates the plant over the intervals */
+    double ts;               /* carrier period, s */
+    double td;               /* dead time in force (0 when off), s */
+    inv_legs_t legs;         /* commanded state and dead intervals, carried between periods */
+    unsigned eff;            /* effective leg states of the last interval (S_A = bit 5) */
+    bool off;                /* outputs forced off in the last period */
+    bool counting;           /* count effective transitions */
+    uint64_t transitions;    /* effective leg transitions while counting */
+    double u_table[64][4];   /* per-unit-of-Vdc VSD voltage of each state */
+    double u_vdc[64][4];     /* u_table times the DC link voltage u_vdc_of */
+    double u_vdc_of;         /* the voltage u_vdc was built for (V) */
+    int intervals;           /* constant-voltage intervals in the last period */
+    inv_cache_t cache;       /* recent periods' switching programs (inverter_program.h) */
+    plant_stepper_t stepper; /* integrates the plant over the intervals */
 } inverter_t;
 
+/* Start an inverter (all legs off); inverter_free releases what it takes. */
 void inverter_init(inverter_t *inv, const plant_params_t *p, double ts);
+void inverter_free(inverter_t *inv);
 
 /* Advance plant and inverter by one period with the given leg duties
  * (fractions 0..1). forced_off: all switches off (currents are commutated

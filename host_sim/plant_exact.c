@@ -45,6 +45,19 @@ void plant_exact_init(plant_exact_t *e, const plant_params_t *p)
     e->seven_psi7 = p->harmonics_on ? 7.0 * p->psi7_wb : 0.0;
     e->inv_lxy = 1.0 / p->lxy_h;
     e->a_xy = p->r_ohm / p->lxy_h;
+    /* the parts of plant_exact_set_speed's expressions that do not depend on the speed */
+    e->a[0][0] = -e->r * e->inv_ld;
+    e->a[1][1] = -e->r * e->inv_lq;
+    e->sigma = 0.5 * (e->a[0][0] + e->a[1][1]);
+    {
+        const double half_diff = 0.5 * (-e->r * e->inv_ld + e->r * e->inv_lq);
+        e->half_diff_sq = half_diff * half_diff;
+    }
+    e->a00_a11 = e->a[0][0] * e->a[1][1];
+    e->a_trace = e->a[0][0] + e->a[1][1];
+    e->n1_re = -e->a[1][1] * e->inv_ld;
+    e->n2_im = -e->a[0][0] * e->inv_lq;
+    e->a_xy_sq = e->a_xy * e->a_xy;
     plant_exact_set_speed(e, 0.0);
 }
 
@@ -52,14 +65,14 @@ void plant_exact_init(plant_exact_t *e, const plant_params_t *p)
  * voltage Park(u), which turns at -w. Cramer's rule on the complex 2x2 system, written out in
  * real arithmetic: det = (a11 a22 - a12 a21 - w^2) - j w (a11 + a22), and the numerators
  * n1 = -a22 / Ld + j (w / Ld + a12 / Lq), n2 = (a21 / Ld - w / Lq) - j a11 / Lq. */
-static void exact_forced_dq(plant_exact_t *e)
+static void exact_forced_dq(plant_exact_t *e, double det)
 {
     const double w = e->w_e;
-    const double det_re = e->a[0][0] * e->a[1][1] - e->a[0][1] * e->a[1][0] - w * w;
-    const double det_im = -w * (e->a[0][0] + e->a[1][1]);
+    const double det_re = det - w * w;
+    const double det_im = -w * e->a_trace;
     const double inv_mag2 = 1.0 / (det_re * det_re + det_im * det_im);
-    const double n1_re = -e->a[1][1] * e->inv_ld, n1_im = w * e->inv_ld + e->a[0][1] * e->inv_lq;
-    const double n2_re = e->a[1][0] * e->inv_ld - w * e->inv_lq, n2_im = -e->a[0][0] * e->inv_lq;
+    const double n1_re = e->n1_re, n1_im = w * e->inv_ld + e->a[0][1] * e->inv_lq;
+    const double n2_re = e->a[1][0] * e->inv_ld - w * e->inv_lq, n2_im = e->n2_im;
     /* n / det = n conj(det) / |det|^2 */
     e->x[0][0] = (n1_re * det_re + n1_im * det_im) * inv_mag2;
     e->x[0][1] = (n1_im * det_re - n1_re * det_im) * inv_mag2;
@@ -72,8 +85,8 @@ static void exact_forced_dq(plant_exact_t *e)
 static void exact_forced_xy(plant_exact_t *e)
 {
     const double w = e->w_e, a = e->a_xy;
-    const double g5 = w * e->inv_lxy * e->five_psi5 / (a * a + 25.0 * w * w);
-    const double g7 = w * e->inv_lxy * e->seven_psi7 / (a * a + 49.0 * w * w);
+    const double g5 = w * e->inv_lxy * e->five_psi5 / (e->a_xy_sq + 25.0 * w * w);
+    const double g7 = w * e->inv_lxy * e->seven_psi7 / (e->a_xy_sq + 49.0 * w * w);
     e->k5_re = -g5 * 5.0 * w;
     e->k5_im = -g5 * a;
     e->k7_re = -g7 * 7.0 * w;
@@ -83,21 +96,17 @@ static void exact_forced_xy(plant_exact_t *e)
 void plant_exact_set_speed(plant_exact_t *e, double omega_m)
 {
     const double w = e->pn * omega_m;
-    const double half_diff = 0.5 * (-e->r * e->inv_ld + e->r * e->inv_lq);
     const double back_emf_q = -w * e->psi_f * e->inv_lq; /* d i_q / dt from the PM flux */
     double det;
     e->omega_m = omega_m;
     e->w_e = w;
-    e->a[0][0] = -e->r * e->inv_ld;
     e->a[0][1] = w * e->lq * e->inv_ld;
     e->a[1][0] = -w * e->ld * e->inv_lq;
-    e->a[1][1] = -e->r * e->inv_lq;
-    e->sigma = 0.5 * (e->a[0][0] + e->a[1][1]);
-    e->q = -(half_diff * half_diff + e->a[0][1] * e->a[1][0]);
-    det = e->a[0][0] * e->a[1][1] - e->a[0][1] * e->a[1][0];
+    e->q = -(e->half_diff_sq + e->a[0][1] * e->a[1][0]);
+    det = e->a00_a11 - e->a[0][1] * e->a[1][0];
     e->p0_d = e->a[0][1] * back_emf_q / det;
     e->p0_q = -e->a[0][0] * back_emf_q / det;
-    exact_forced_dq(e);
+    exact_forced_dq(e, det);
     exact_forced_xy(e);
 }
 
@@ -225,9 +234,15 @@ void plant_exact_point(const plant_exact_t *e, const plant_state_t *s, plant_exa
     pt->torque_nm = exact_torque(e, s, pt);
 }
 
+void plant_exact_span(const plant_exact_t *e, double h, plant_exact_span_t *sp)
+{
+    sp->decay_dq = exact_exp(e->sigma * h);
+    sp->decay_xy = exact_exp(-e->a_xy * h);
+}
+
 /* d-q: forced response to Park(u) and the back-EMF at both ends, free response Phi(h). */
 static void exact_dq(const plant_exact_t *e, plant_state_t *s, const double u[4], double h,
-                     double c1, double s1)
+                     double decay, double c1, double s1)
 {
     const double c0 = s->cos_e, s0 = s->sin_e;
     const double ud0 = u[0] * c0 + u[1] * s0, uq0 = -u[0] * s0 + u[1] * c0;
@@ -236,7 +251,6 @@ static void exact_dq(const plant_exact_t *e, plant_state_t *s, const double u[4]
     const double forced_q0 = e->x[1][0] * ud0 + e->x[1][1] * uq0 + e->p0_q;
     const double forced_d1 = e->x[0][0] * ud1 + e->x[0][1] * uq1 + e->p0_d;
     const double forced_q1 = e->x[1][0] * ud1 + e->x[1][1] * uq1 + e->p0_q;
-    const double decay = exact_exp(e->sigma * h);
     const double free_d = s->i_d - forced_d0, free_q = s->i_q - forced_q0;
     double c, sh;
     exact_cos_sin_q(e->q, h, &c, &sh);
@@ -247,17 +261,16 @@ static void exact_dq(const plant_exact_t *e, plant_state_t *s, const double u[4]
 }
 
 /* x-y: forced response u / R + k5 e^{j 5 th} + k7 e^{-j 7 th} at both ends, free e^{-a h}. */
-static void exact_xy(const plant_exact_t *e, plant_state_t *s, const double u[4], double h,
+static void exact_xy(const plant_exact_t *e, plant_state_t *s, const double u[4], double decay,
                      const plant_exact_point_t *p0, const plant_exact_point_t *p1)
 {
     const double dc_x = u[2] * e->inv_r, dc_y = u[3] * e->inv_r;
-    const double decay = exact_exp(-e->a_xy * h);
     s->i_x = dc_x + p1->harm_x + decay * (s->i_x - dc_x - p0->harm_x);
     s->i_y = dc_y + p1->harm_y + decay * (s->i_y - dc_y - p0->harm_y);
 }
 
 double plant_exact_step(const plant_exact_t *e, plant_state_t *s, const double u[4], double h,
-                        plant_exact_point_t *pt)
+                        const plant_exact_span_t *sp, plant_exact_point_t *pt)
 {
     const double torque0 = pt->torque_nm;
     plant_exact_point_t end;
@@ -265,13 +278,13 @@ double plant_exact_step(const plant_exact_t *e, plant_state_t *s, const double u
     exact_rotation(e->w_e * h, &cr, &sr);
     c1 = s->cos_e * cr - s->sin_e * sr;
     s1 = s->sin_e * cr + s->cos_e * sr;
-    exact_dq(e, s, u, h, c1, s1);
+    exact_dq(e, s, u, h, sp->decay_dq, c1, s1);
     s->theta_m += e->omega_m * h;
     s->cos_e = c1;
     s->sin_e = s1;
     /* the harmonic phasors of the end instant, then x-y and the torque there */
     exact_phasors(e, c1, s1, &end);
-    exact_xy(e, s, u, h, pt, &end);
+    exact_xy(e, s, u, sp->decay_xy, pt, &end);
     end.torque_nm = exact_torque(e, s, &end);
     *pt = end;
     return 0.5 * h * (torque0 + end.torque_nm);

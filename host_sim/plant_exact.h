@@ -36,7 +36,8 @@ typedef struct {
     double pn, r, inv_r, ld, lq, inv_ld, inv_lq, psi_f, t3pn, ld_minus_lq;
     double five_psi5, seven_psi7, inv_lxy, a_xy; /* a_xy = R / L_xy */
     bool harm;
-    /* at the held speed */
+    double half_diff_sq, a00_a11, a_trace, n1_re, n2_im, a_xy_sq; /* set_speed's constant parts */
+    /* at the held speed (a[0][0], a[1][1] and sigma from the parameters) */
     double omega_m, w_e; /* mechanical and electrical rad/s */
     double a[2][2];      /* d-q system matrix */
     double sigma, q;     /* (A - sigma I)^2 = -q I */
@@ -53,6 +54,14 @@ typedef struct {
     double torque_nm;
 } plant_exact_point_t;
 
+/* What an interval's solution needs of its length h alone, not of the speed: the decay of the
+ * free response in both planes. The inverter's switching programs repeat (inverter_program.h),
+ * so this is computed once per interval of a program rather than once per interval run. */
+typedef struct {
+    double decay_dq; /* e^{sigma h} */
+    double decay_xy; /* e^{-R h / L_xy} */
+} plant_exact_span_t;
+
 /* True when the exact solution applies to these parameters. */
 bool plant_exact_applies(const plant_params_t *p);
 
@@ -65,11 +74,15 @@ void plant_exact_set_speed(plant_exact_t *e, double omega_m);
 /* The harmonic phasors and the torque of state s (cos_e / sin_e must be current). */
 void plant_exact_point(const plant_exact_t *e, const plant_state_t *s, plant_exact_point_t *pt);
 
-/* Advance s by h seconds with the stationary voltage u = [u_alpha, u_beta, u_x, u_y] (V) at the
- * held speed: currents exactly, angle (theta_m, cos_e, sin_e) by omega_m h; the speed is left
- * alone. pt is the start point on entry and the end point on return. Returns the torque
- * integral over the interval (N*m*s, trapezoidal: the torque is smooth within an interval). */
+/* The length-only coefficients of an interval of h seconds (h > 0). */
+void plant_exact_span(const plant_exact_t *e, double h, plant_exact_span_t *sp);
+
+/* Advance s by h seconds (sp from plant_exact_span for this h and e's parameters) with the
+ * stationary voltage u = [u_alpha, u_beta, u_x, u_y] (V) at the held speed: currents exactly,
+ * angle (theta_m, cos_e, sin_e) by omega_m h; the speed is left alone. pt is the start point on
+ * entry and the end point on return. Returns the torque integral over the interval (N*m*s,
+ * trapezoidal: the torque is smooth within an interval). */
 double plant_exact_step(const plant_exact_t *e, plant_state_t *s, const double u[4], double h,
-                        plant_exact_point_t *pt);
+                        const plant_exact_span_t *sp, plant_exact_point_t *pt);
 
 #endif /* SIM_PLANT_EXACT_H */

@@ -20,16 +20,12 @@
 #include "plant.h"
 #include "plant_exact.h"
 
-/* The parameters the exact coefficients depend on, to notice a change. */
-typedef struct {
-    double values[16];
-} plant_stepper_key_t;
-
 typedef struct {
     plant_exact_t exact;
-    plant_exact_point_t point; /* the present instant of the period being integrated */
-    plant_stepper_key_t key;
-    bool have_key;
+    plant_exact_point_t point;  /* the present instant of the period being integrated */
+    plant_params_t params_seen; /* a byte copy of the parameters the coefficients were made of */
+    bool have_params;
+    unsigned generation;            /* changes with the coefficients (plant_stepper_span) */
     bool use_exact;                 /* this period */
     bool lock_mech;                 /* this period */
     double omega_start, omega_prev; /* mechanical speed at this and the last period start */
@@ -45,14 +41,25 @@ void plant_stepper_mark_period(plant_stepper_t *st, const plant_state_t *s);
 void plant_stepper_begin(plant_stepper_t *st, const plant_params_t *p, plant_state_t *s,
                          bool lock_mech);
 
-/* One constant-voltage interval of h seconds; returns the torque integral (N*m*s). Inline: the
- * inverter calls it for every interval. */
+/* What plant_stepper_step needs of an interval's length alone (after plant_stepper_begin). It
+ * holds while st->generation does not change, so the inverter keeps it with the interval. */
+static inline void plant_stepper_span(const plant_stepper_t *st, double h, plant_exact_span_t *sp)
+{
+    if (st->use_exact && h > 0.0) {
+        plant_exact_span(&st->exact, h, sp);
+    } else {
+        sp->decay_dq = sp->decay_xy = 0.0; /* not used */
+    }
+}
+
+/* One constant-voltage interval of h seconds, sp from plant_stepper_span(h); returns the torque
+ * integral (N*m*s). Inline: the inverter calls it for every interval. */
 static inline double plant_stepper_step(plant_stepper_t *st, const plant_params_t *p,
                                         plant_state_t *s, const double u[4], double t_load,
-                                        double h)
+                                        double h, const plant_exact_span_t *sp)
 {
     if (st->use_exact) {
-        return (h > 0.0) ? plant_exact_step(&st->exact, s, u, h, &st->point) : 0.0;
+        return (h > 0.0) ? plant_exact_step(&st->exact, s, u, h, sp, &st->point) : 0.0;
     }
     return plant_integrate_nosync(p, s, u, t_load, st->lock_mech, h);
 }

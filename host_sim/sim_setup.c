@@ -203,6 +203,7 @@ void sim_teardown(sim_run_t *rs, bool ok)
         sim_recorder_discard(&rs->rec);
     }
     sim_metrics_close(&rs->metrics);
+    inverter_free(&rs->inv);
     free(rs->fine_times);
     rs->fine_times = NULL;
 }

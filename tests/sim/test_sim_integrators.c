@@ -47,6 +47,7 @@ static void check_one_interval(double rpm, unsigned vector, bool harmonics)
     plant_state_t a, b;
     plant_exact_t e;
     plant_exact_point_t pt;
+    plant_exact_span_t sp;
     double u[4];
     plant_params_default(&p);
     p.harmonics_on = harmonics;
@@ -63,7 +64,8 @@ static void check_one_interval(double rpm, unsigned vector, bool harmonics)
     plant_exact_init(&e, &p);
     plant_exact_set_speed(&e, a.omega_m);
     plant_exact_point(&e, &a, &pt);
-    (void)plant_exact_step(&e, &a, u, 73e-6, &pt);
+    plant_exact_span(&e, 73e-6, &sp);
+    (void)plant_exact_step(&e, &a, u, 73e-6, &sp, &pt);
     rk4_fine(&p, &b, u, 73e-6);
     assert_true(fabs(a.i_d - b.i_d) < 1e-5);
     assert_true(fabs(a.i_q - b.i_q) < 1e-5);
@@ -230,6 +232,7 @@ static void replay_case(int controller, double lambda, const char *name)
     assert_int_equal(sim_run(&c, &r, err, sizeof err), 0);
     compare_replays(&rep, name);
     for (m = 0; m < 2; m++) {
+        inverter_free(&rep.plant[m].inv);
         for (k = 0; k < 6; k++) {
             free(rep.plant[m].iph[k]);
         }

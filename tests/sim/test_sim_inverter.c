@@ -3,6 +3,7 @@
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
+#include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
 
@@ -48,6 +49,7 @@ static void test_average_voltage_without_dead_time(void **state)
         assert_true(fabs((s.i_x - s0.i_x) * p.lxy_h / ts - exp_u[2]) < 1e-6);
         assert_true(fabs((s.i_y - s0.i_y) * p.lxy_h / ts - exp_u[3]) < 1e-6);
     }
+    inverter_free(&inv);
 }
 
 typedef struct {
@@ -105,6 +107,7 @@ static void test_dead_time_follows_current_sign(void **state)
         assert_true(fabs(iph[k]) > 0.1);
         assert_true(fabs(got - expect) < 1.0e-3);
     }
+    inverter_free(&inv);
 }
 
 /* A pulse shorter than the dead time vanishes for i > 0 and is stretched by
@@ -137,6 +140,7 @@ static void test_short_pulse(void **state)
     assert_true(a.on[0] == 0.0);
     assert_true(fabs(a.on[1] / 4000.0 - (0.01 + p.dead_time_s / ts)) < 1e-3);
     assert_int_equal((int)inv.transitions, 2); /* only leg B switches */
+    inverter_free(&inv);
 }
 
 /* Transition count: duty 0.5 on every leg switches each leg twice a period. */
@@ -169,6 +173,7 @@ static void test_switching_count(void **state)
     assert_int_equal((int)inv.transitions,
                      6 * 10 - 3); /* the first switch of D-F already matches */
     assert_true(isfinite(s.i_d) && isfinite(s.i_x));
+    inverter_free(&inv);
 }
 
 /* Forced off: currents are zero and nothing switches. */
@@ -190,6 +195,87 @@ static void test_forced_off(void **state)
     assert_true(s.i_d == 0.0 && s.i_q == 0.0 && s.i_x == 0.0 && s.i_y == 0.0);
     assert_true(s.omega_m < 10.0 && s.omega_m > 9.99);
     assert_int_equal((int)inv.transitions, 0);
+    inverter_free(&inv);
+}
+
+/* Every sample the callback saw, to compare two runs. */
+typedef struct {
+    double v[8192];
+    int n;
+} sample_log_t;
+
+static void log_cb(void *ctx, double t_rel, const plant_state_t *s, unsigned legs)
+{
+    sample_log_t *l = (sample_log_t *)ctx;
+    if (l->n + 4 <= 8192) {
+        l->v[l->n++] = t_rel;
+        l->v[l->n++] = s->i_d;
+        l->v[l->n++] = s->i_x;
+        l->v[l->n++] = (double)legs;
+    }
+}
+
+/* The switching programs kept from earlier periods (inverter_program.h) change nothing: an
+ * inverter that builds every period as it runs and one that reuses programs give the same bits
+ * over 3,000 periods of duty patterns drawn from a small set, with pulses short enough to vanish,
+ * dead intervals that run into the next period, equal duties, forced-off periods, new sample
+ * instants and a plant parameter changed on the way. */
+static void test_program_cache_changes_nothing(void **state)
+{
+    static const double patterns[8][6] = {
+        {0.5, 0.5, 0.5, 0.5, 0.5, 0.5},          {1.0, 0.0, 0.0, 1.0, 1.0, 0.0},
+        {0.7, 0.2, 0.45, 0.9, 0.1, 0.55},        {0.99, 0.995, 0.0, 0.01, 1.0, 0.98},
+        {0.3125, 0.3125, 0.0, 0.3125, 0.0, 0.0}, {0.0, 0.0, 0.0, 0.0, 0.0, 0.0},
+        {0.015, 1.0, 0.985, 0.5, 0.25, 0.75},    {0.6, 0.6, 0.6, 0.0, 1.0, 0.0}};
+    static sample_log_t log_a, log_b;
+    double t_ten[10], t_seven[7];
+    plant_params_t p, p_changed;
+    plant_state_t sa = {0}, sb;
+    inverter_t a, b;
+    unsigned long lcg = 12345u;
+    int k;
+    (void)state;
+    plant_params_default(&p);
+    p_changed = p;
+    p_changed.r_ohm = 2.5;
+    sa.i_d = -1.0;
+    sa.i_q = 6.0;
+    sa.i_x = 0.2;
+    sa.omega_m = 150.0;
+    plant_sync_angle(&p, &sa);
+    sb = sa;
+    for (k = 0; k < 10; k++) {
+        t_ten[k] = 1e-5 * (double)k;
+    }
+    for (k = 0; k < 7; k++) {
+        t_seven[k] = 1e-4 * (double)k / 7.0;
+    }
+    inverter_init(&a, &p, 1e-4);
+    inverter_init(&b, &p, 1e-4);
+    b.cache.off = true;
+    a.counting = b.counting = true;
+    log_a.n = log_b.n = 0;
+    for (k = 0; k < 3000; k++) {
+        const plant_params_t *pk = (k >= 2000) ? &p_changed : &p;
+        const double *samples = (k < 1000) ? NULL : ((k < 2500) ? t_ten : t_seven);
+        const int n = (k < 1000) ? 0 : ((k < 2500) ? 10 : 7);
+        const bool off = (k % 997) == 500;
+        double ta, tb;
+        lcg = lcg * 1103515245u + 12345u;
+        ta = inverter_run_period(&a, pk, &sa, patterns[(lcg >> 16) % 8u], off, 1.0, false, samples,
+                                 n, (k % 50 == 0) ? log_cb : NULL, &log_a);
+        tb = inverter_run_period(&b, pk, &sb, patterns[(lcg >> 16) % 8u], off, 1.0, false, samples,
+                                 n, (k % 50 == 0) ? log_cb : NULL, &log_b);
+        assert_memory_equal(&ta, &tb, sizeof ta);
+        assert_memory_equal(&sa, &sb, sizeof sa);
+    }
+    assert_true(a.transitions == b.transitions && a.transitions > 10000u);
+    assert_int_equal(log_a.n, log_b.n);
+    assert_memory_equal(log_a.v, log_b.v, (size_t)log_a.n * sizeof(double));
+    print_message("programs reused %lu times, built %lu\n", a.cache.hits, a.cache.built);
+    assert_true(a.cache.hits > 2000u && b.cache.hits == 0u);
+    inverter_free(&a);
+    inverter_free(&b);
 }
 
 int main(void)
@@ -200,6 +286,7 @@ int main(void)
         cmocka_unit_test(test_short_pulse),
         cmocka_unit_test(test_switching_count),
         cmocka_unit_test(test_forced_off),
+        cmocka_unit_test(test_program_cache_changes_nothing),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
