@@ -213,9 +213,9 @@ double inverter_run_period(inverter_t *inv, const plant_params_t *p, plant_state
     const inv_samples_t smp = {{sample_t, n_samples}, cb, ctx};
     inv_program_t *pr;
     double te_int;
-    plant_sync_angle(p, s); /* once per period: no drift of the carried cos / sin */
     plant_stepper_mark_period(&inv->stepper, s);
     if (forced_off) {
+        plant_sync_angle(p, s);
         inv_forced_off(inv, p, s, t_load, lock_mech, &smp);
         return 0.0;
     }

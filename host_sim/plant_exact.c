@@ -196,9 +196,18 @@ static EXACT_INLINE void exact_cos_sin_q(double q, double h, double *c, double *
     }
 }
 
+/* The forced x-y response to the harmonic EMF at the point's phasors: k5 e^{j 5 th} +
+ * k7 e^{-j 7 th}. */
+static EXACT_INLINE void exact_harmonic_response(const plant_exact_t *e, plant_exact_point_t *pt)
+{
+    pt->harm_x = e->k5_re * pt->c5 - e->k5_im * pt->s5 + e->k7_re * pt->c7 + e->k7_im * pt->s7;
+    pt->harm_y = e->k5_re * pt->s5 + e->k5_im * pt->c5 - e->k7_re * pt->s7 + e->k7_im * pt->c7;
+}
+
 /* e^{j 5 th} and e^{j 7 th} from cos th, sin th by complex products (no libm), and the forced
- * x-y response to the harmonic EMF there: k5 e^{j 5 th} + k7 e^{-j 7 th}. */
-static void exact_phasors(const plant_exact_t *e, double c, double sn, plant_exact_point_t *pt)
+ * x-y response there. */
+static EXACT_INLINE void exact_phasors(const plant_exact_t *e, double c, double sn,
+                                       plant_exact_point_t *pt)
 {
     if (e->harm) {
         const double c2 = c * c - sn * sn, s2 = 2.0 * c * sn;
@@ -207,8 +216,7 @@ static void exact_phasors(const plant_exact_t *e, double c, double sn, plant_exa
         pt->s5 = c4 * sn + s4 * c;
         pt->c7 = pt->c5 * c2 - pt->s5 * s2;
         pt->s7 = pt->c5 * s2 + pt->s5 * c2;
-        pt->harm_x = e->k5_re * pt->c5 - e->k5_im * pt->s5 + e->k7_re * pt->c7 + e->k7_im * pt->s7;
-        pt->harm_y = e->k5_re * pt->s5 + e->k5_im * pt->c5 - e->k7_re * pt->s7 + e->k7_im * pt->c7;
+        exact_harmonic_response(e, pt);
     } else {
         pt->c5 = pt->c7 = 1.0;
         pt->s5 = pt->s7 = 0.0;
@@ -232,6 +240,13 @@ void plant_exact_point(const plant_exact_t *e, const plant_state_t *s, plant_exa
 {
     exact_phasors(e, s->cos_e, s->sin_e, pt);
     pt->torque_nm = exact_torque(e, s, pt);
+}
+
+void plant_exact_point_new_speed(const plant_exact_t *e, plant_exact_point_t *pt)
+{
+    if (e->harm) {
+        exact_harmonic_response(e, pt);
+    }
 }
 
 void plant_exact_span(const plant_exact_t *e, double h, plant_exact_span_t *sp)

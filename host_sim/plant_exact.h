@@ -74,6 +74,9 @@ void plant_exact_set_speed(plant_exact_t *e, double omega_m);
 /* The harmonic phasors and the torque of state s (cos_e / sin_e must be current). */
 void plant_exact_point(const plant_exact_t *e, const plant_state_t *s, plant_exact_point_t *pt);
 
+/* The same point after plant_exact_set_speed: only its forced x-y response depends on the speed. */
+void plant_exact_point_new_speed(const plant_exact_t *e, plant_exact_point_t *pt);
+
 /* The length-only coefficients of an interval of h seconds (h > 0). */
 void plant_exact_span(const plant_exact_t *e, double h, plant_exact_span_t *sp);
 

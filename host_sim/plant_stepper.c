@@ -19,6 +19,14 @@ void plant_stepper_mark_period(plant_stepper_t *st, const plant_state_t *s)
     }
 }
 
+/* Whether the last period's end point is this state's: the state was not written since. */
+static bool stepper_point_holds(const plant_stepper_t *st, const plant_state_t *s)
+{
+    const plant_state_t *o = &st->point_of;
+    return st->point_known && o->i_d == s->i_d && o->i_q == s->i_q && o->i_x == s->i_x &&
+           o->i_y == s->i_y && o->cos_e == s->cos_e && o->sin_e == s->sin_e;
+}
+
 /* The speed held over the period: the predicted mid-period speed while the rotor is free. */
 static double stepper_held_speed(const plant_stepper_t *st, const plant_state_t *s, bool lock_mech)
 {
@@ -44,6 +52,8 @@ void plant_stepper_begin(plant_stepper_t *st, const plant_params_t *p, plant_sta
     }
     st->lock_mech = lock_mech;
     if (!st->use_exact) {
+        st->point_known = false;
+        plant_sync_angle(p, s);
         return;
     }
     {
@@ -53,10 +63,14 @@ void plant_stepper_begin(plant_stepper_t *st, const plant_params_t *p, plant_sta
         }
         s->omega_m = held; /* what the period's samples see */
     }
-    plant_exact_point(&st->exact, s, &st->point);
+    if (stepper_point_holds(st, s)) {
+        plant_exact_point_new_speed(&st->exact, &st->point);
+    } else {
+        plant_exact_point(&st->exact, s, &st->point);
+    }
 }
 
-void plant_stepper_end(const plant_stepper_t *st, const plant_params_t *p, plant_state_t *s,
+void plant_stepper_end(plant_stepper_t *st, const plant_params_t *p, plant_state_t *s,
                        double t_load, double torque_integral, double ts)
 {
     if (!st->use_exact) {
@@ -67,4 +81,12 @@ void plant_stepper_end(const plant_stepper_t *st, const plant_params_t *p, plant
         const double held = st->exact.omega_m;
         s->omega_m += (torque_integral - (t_load + p->b_nms * held) * ts) / p->j_kgm2;
     }
+    {
+        /* one Newton step towards unit length: the rotations' rounding cannot accumulate */
+        const double k = 1.5 - 0.5 * (s->cos_e * s->cos_e + s->sin_e * s->sin_e);
+        s->cos_e *= k;
+        s->sin_e *= k;
+    }
+    st->point_of = *s;
+    st->point_known = true;
 }

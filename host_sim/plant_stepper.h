@@ -23,6 +23,8 @@
 typedef struct {
     plant_exact_t exact;
     plant_exact_point_t point;  /* the present instant of the period being integrated */
+    plant_state_t point_of;     /* the state the last period's end point belongs to */
+    bool point_known;           /* point_of holds: a period ended exactly (plant_stepper_end) */
     plant_params_t params_seen; /* a byte copy of the parameters the coefficients were made of */
     bool have_params;
     unsigned generation;            /* changes with the coefficients (plant_stepper_span) */
@@ -37,7 +39,10 @@ void plant_stepper_init(plant_stepper_t *st);
 /* Every period start, forced off or not: the speed history for the held-speed prediction. */
 void plant_stepper_mark_period(plant_stepper_t *st, const plant_state_t *s);
 
-/* Choose the method and prepare the period (s->cos_e / sin_e must be current). */
+/* Choose the method and prepare the period. The exact method carries cos_e / sin_e from period
+ * to period (plant_stepper_end keeps them of unit length) and takes them as they are; RK4
+ * recomputes them from theta_m first. After writing the state directly, call plant_sync_angle
+ * (plant.h) as always. */
 void plant_stepper_begin(plant_stepper_t *st, const plant_params_t *p, plant_state_t *s,
                          bool lock_mech);
 
@@ -65,8 +70,9 @@ static inline double plant_stepper_step(plant_stepper_t *st, const plant_params_
 }
 
 /* Close the period of length ts with its torque integral: the speed update of the exact
- * method (RK4 has integrated the mechanics already). */
-void plant_stepper_end(const plant_stepper_t *st, const plant_params_t *p, plant_state_t *s,
+ * method (RK4 has integrated the mechanics already), cos_e / sin_e scaled back to unit length,
+ * and the end point kept for the next period when nothing else moves the state. */
+void plant_stepper_end(plant_stepper_t *st, const plant_params_t *p, plant_state_t *s,
                        double t_load, double torque_integral, double ts);
 
 #endif /* SIM_PLANT_STEPPER_H */
