@@ -110,12 +110,19 @@ void plant_exact_set_speed(plant_exact_t *e, double omega_m)
     exact_forced_xy(e);
 }
 
-/* cos and sin of an angle: Taylor series where it is short enough (error below 1e-18 for
- * |d| < 1/16, the usual case: w_e h is a few hundredths; below 1e-13 for |d| < 0.35), else libm. */
+/* cos and sin of an angle: Taylor series cut where the next term is below 1e-19 (|d| < 2^-9, a
+ * dead interval at rated speed: terms to d^5; |d| < 2^-6, the usual interval: to d^7; |d| < 1/16:
+ * to d^9), below 1e-13 for |d| < 0.35; else libm. */
 static EXACT_INLINE void exact_rotation(double d, double *c, double *s)
 {
     const double d2 = d * d;
-    if (fabs(d) < 0.0625) {
+    if (fabs(d) < 0.001953125) {
+        *c = 1.0 + d2 * (-1.0 / 2.0 + d2 / 24.0);
+        *s = d * (1.0 + d2 * (-1.0 / 6.0 + d2 / 120.0));
+    } else if (fabs(d) < 0.015625) {
+        *c = 1.0 + d2 * (-1.0 / 2.0 + d2 * (1.0 / 24.0 + d2 * (-1.0 / 720.0)));
+        *s = d * (1.0 + d2 * (-1.0 / 6.0 + d2 * (1.0 / 120.0 + d2 * (-1.0 / 5040.0))));
+    } else if (fabs(d) < 0.0625) {
         *c = 1.0 + d2 * (-1.0 / 2.0 + d2 * (1.0 / 24.0 + d2 * (-1.0 / 720.0 + d2 / 40320.0)));
         *s = d *
              (1.0 + d2 * (-1.0 / 6.0 + d2 * (1.0 / 120.0 + d2 * (-1.0 / 5040.0 + d2 / 362880.0))));
@@ -163,11 +170,19 @@ static EXACT_INLINE double exact_exp(double x)
 
 /* C = sum (-q)^k h^2k / (2k)!, S = sum (-q)^k h^(2k+1) / (2k+1)!: cos(b h) and sin(b h) / b with
  * b = sqrt(q) for q > 0, cosh and sinh for q < 0 (real eigenvalues at very low speed). Series
- * in z = q h^2 while |z| < 1/4 (error below 1e-15; below 1e-18 for the usual |z| < 0.03). */
+ * in z = q h^2 while |z| < 1/4 (error below 1e-15), cut where the next term is below 1e-19:
+ * |z| < 2^-18 (a dead interval at rated speed) to z^2, |z| < 2^-12 (the usual interval) to z^3,
+ * |z| < 0.03 to z^5. */
 static EXACT_INLINE void exact_cos_sin_q(double q, double h, double *c, double *s)
 {
     const double z = q * h * h;
-    if (fabs(z) < 0.03) {
+    if (fabs(z) < 3.814697265625e-6) {
+        *c = 1.0 + z * (-1.0 / 2.0 + z / 24.0);
+        *s = h * (1.0 + z * (-1.0 / 6.0 + z / 120.0));
+    } else if (fabs(z) < 2.44140625e-4) {
+        *c = 1.0 + z * (-1.0 / 2.0 + z * (1.0 / 24.0 + z * (-1.0 / 720.0)));
+        *s = h * (1.0 + z * (-1.0 / 6.0 + z * (1.0 / 120.0 + z * (-1.0 / 5040.0))));
+    } else if (fabs(z) < 0.03) {
         *c = 1.0 + z * (-1.0 / 2.0 +
                         z * (1.0 / 24.0 +
                              z * (-1.0 / 720.0 + z * (1.0 / 40320.0 + z * (-1.0 / 3628800.0)))));
