@@ -7,6 +7,14 @@
 
 #define INV_H3 0.86602540378443864676 /* sqrt(3)/2, as plant.c has it */
 
+/* The interval runner is forced inline into both period loops (without, gcc calls it and saves
+ * and restores its registers for every interval). */
+#if defined(__GNUC__)
+#define INV_INLINE inline __attribute__((always_inline))
+#else
+#define INV_INLINE inline
+#endif
+
 void inverter_init(inverter_t *inv, const plant_params_t *p, double ts)
 {
     unsigned st;
@@ -147,9 +155,10 @@ static unsigned inv_effective_legs(unsigned nominal, unsigned dead, const plant_
 
 /* One interval: the effective legs, the transition count, the caller's sample, the plant;
  * returns the torque integral. */
-static double inv_run_interval(inverter_t *inv, const plant_params_t *p, plant_state_t *s,
-                               const double (*u)[4], const inv_interval_t *iv, double t_load,
-                               const inv_samples_t *smp)
+static INV_INLINE double inv_run_interval(inverter_t *inv, const plant_params_t *p,
+                                          plant_state_t *s, const double (*u)[4],
+                                          const inv_interval_t *iv, double t_load,
+                                          const inv_samples_t *smp)
 {
     const unsigned eff = inv_effective_legs(iv->nominal, iv->dead, s);
     if (inv->counting) {
