@@ -63,11 +63,12 @@ typedef struct {
  * duration, trace.csv does: about 1.7 MB per simulated second at 10 kHz). */
 #define SIM_MAX_DURATION_S 36000.0
 
-/* What the inverter applied in one control period. */
+/* What the inverter applied in one control period, to the plant as it then was. */
 typedef struct {
     double duty[6];  /* leg duties, fractions of the period */
     bool forced_off; /* every switch open */
     double t_load_nm;
+    const plant_params_t *plant; /* as any injected fault leaves it */
 } sim_period_input_t;
 
 /* Sees every trace row and fine sample of a run (whether or not files are written) and what

@@ -196,6 +196,7 @@ int sim_loop_period(sim_run_t *rs, sim_result_t *r, long k)
         in.duty[j] = rs->duty[j];
     }
     in.forced_off = hal_sim_bus.forced_off;
+    in.plant = &rs->plant;
     row.te_avg = loop_integrate(rs, in_win, t, &in);
     sim_recorder_trace(&rs->rec, &row);
     sim_metrics_add_period(&rs->metrics, &row, in_win);
