@@ -143,6 +143,49 @@ static void rep_row_lambda(FILE *f, const rep_case_t *cases, int n, const char *
                    ddc ? rep_paper_rip_ddc[li] : rep_paper_rip_mptc[li]);
 }
 
+/* One row of the per-phase THD table: the six phases, their mean (the headline) and spread. */
+static void rep_row_phase_thd(FILE *f, const char *label, const rep_case_t *c)
+{
+    double lo = 1e300, hi = 0.0;
+    char cell[32];
+    int k;
+    fprintf(f, "| %s |", label);
+    for (k = 0; k < 6; k++) {
+        const double v = c ? c->res.thd_phase_percent[k] : -1.0;
+        fmt_opt(cell, sizeof cell, v, 1);
+        fprintf(f, " %s |", cell);
+        lo = (v >= 0.0 && v < lo) ? v : lo;
+        hi = (v > hi) ? v : hi;
+    }
+    fmt_opt(cell, sizeof cell, c ? c->res.thd_percent : -1.0, 1);
+    fprintf(f, " **%s** |", cell);
+    fmt_opt(cell, sizeof cell, (c && lo > 0.0 && c->res.thd_percent >= 0.0) ? hi / lo : -1.0, 2);
+    fprintf(f, " %s |\n", cell);
+}
+
+/* THD of each phase for section 1's runs (the mean is the headline figure, issue 12). */
+static void rep_steady_phase_thd(FILE *f, const rep_case_t *cases, int n)
+{
+    static const char *const prefix[4] = {"steady_mptc49", "steady_mptc13", "steady_ddc",
+                                          "guard_ddc"};
+    static const char *const method[4] = {"MPTC-49", "MPTC-13", "DDC", "DDC, product"};
+    int li, mi;
+    fprintf(f,
+            "\nTHD of each phase current (%%), the same runs and window. The THD columns above "
+            "are the six-phase mean, the headline figure: one phase alone is not a stable figure "
+            "for MPTC-49 (max/min: the spread over the six).\n\n");
+    fprintf(f, "| method, lambda | A | B | C | D | E | F | mean | max/min |\n"
+               "|---|---|---|---|---|---|---|---|---|\n");
+    for (li = 0; li < 3; li++) {
+        for (mi = 0; mi < 4; mi++) {
+            char nm[64], label[64];
+            (void)snprintf(nm, sizeof nm, "%s_l%.0f", prefix[mi], rep_paper_lambda[li]);
+            (void)snprintf(label, sizeof label, "%s, %.0f", method[mi], rep_paper_lambda[li]);
+            rep_row_phase_thd(f, label, rep_find(cases, n, nm));
+        }
+    }
+}
+
 static void rep_section_steady(FILE *f, const rep_case_t *cases, int n)
 {
     int li;
@@ -165,6 +208,7 @@ static void rep_section_steady(FILE *f, const rep_case_t *cases, int n)
                "comparison; the paper evaluates 49 candidates (section 3.1) and mentions the "
                "13-candidate variant (section 3.2). Peak A: largest phase current at the control "
                "samples in the window.\n");
+    rep_steady_phase_thd(f, cases, n);
     fprintf(
         f,
         "\n![steady lambda 20](plots/steady_l20.png)\n![steady lambda 100](plots/steady_l100.png)\n"
