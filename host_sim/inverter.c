@@ -160,7 +160,8 @@ static INV_INLINE double inv_run_interval(inverter_t *inv, const plant_params_t 
                                           const inv_interval_t *iv, double t_load,
                                           const inv_samples_t *smp)
 {
-    const unsigned eff = inv_effective_legs(iv->nominal, iv->dead, s);
+    const unsigned eff =
+        (iv->dead != 0u) ? inv_effective_legs(iv->nominal, iv->dead, s) : iv->nominal;
     if (inv->counting) {
         inv->transitions += popcount6(eff ^ inv->eff);
     }
