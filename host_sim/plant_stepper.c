@@ -19,6 +19,25 @@ void plant_stepper_mark_period(plant_stepper_t *st, const plant_state_t *s)
     }
 }
 
+/* Whether p holds the values the coefficients were made of (the fields they depend on, compared
+ * by value: a byte comparison would read the structure's padding). */
+static bool stepper_params_same(const plant_params_t *seen, const plant_params_t *p)
+{
+    int n;
+    if (seen->r_ohm != p->r_ohm || seen->ld_h != p->ld_h || seen->lq_h != p->lq_h ||
+        seen->lxy_h != p->lxy_h || seen->psi_f_wb != p->psi_f_wb || seen->psi5_wb != p->psi5_wb ||
+        seen->psi7_wb != p->psi7_wb || seen->pole_pairs != p->pole_pairs ||
+        seen->harmonics_on != p->harmonics_on || seen->integrator != p->integrator) {
+        return false;
+    }
+    for (n = 0; n < PLANT_PHASES; n++) {
+        if (seen->phase_extra_r_ohm[n] != p->phase_extra_r_ohm[n]) {
+            return false;
+        }
+    }
+    return true;
+}
+
 /* Whether the last period's end point is this state's: the state was not written since. */
 static bool stepper_point_holds(const plant_stepper_t *st, const plant_state_t *s)
 {
@@ -39,10 +58,8 @@ static double stepper_held_speed(const plant_stepper_t *st, const plant_state_t 
 void plant_stepper_begin(plant_stepper_t *st, const plant_params_t *p, plant_state_t *s,
                          bool lock_mech)
 {
-    /* Any change of the bytes (a fault injected into the plant) rebuilds the coefficients: one
-     * comparison per period, and rebuilding them from unchanged parameters gives them again. */
-    if (!st->have_params || memcmp(&st->params_seen, p, sizeof *p) != 0) {
-        memcpy(&st->params_seen, p, sizeof *p);
+    if (!st->have_params || !stepper_params_same(&st->params_seen, p)) { /* a fault injected */
+        st->params_seen = *p;
         st->have_params = true;
         st->generation++;
         st->use_exact = p->integrator == PLANT_INTEGRATOR_EXACT && plant_exact_applies(p);

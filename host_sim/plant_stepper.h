@@ -25,7 +25,7 @@ typedef struct {
     plant_exact_point_t point;  /* the present instant of the period being integrated */
     plant_state_t point_of;     /* the state the last period's end point belongs to */
     bool point_known;           /* point_of holds: a period ended exactly (plant_stepper_end) */
-    plant_params_t params_seen; /* a byte copy of the parameters the coefficients were made of */
+    plant_params_t params_seen; /* the parameters the coefficients were made of */
     bool have_params;
     unsigned generation;            /* changes with the coefficients (plant_stepper_span) */
     bool use_exact;                 /* this period */
