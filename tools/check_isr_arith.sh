@@ -22,5 +22,5 @@ for inc in "${includes[@]}"; do flags+=(-I "$here/$inc"); done
 for src in "${sources[@]}" tools/ti_link_proxy/ti_link_stubs.c; do
   (cd "$out" && "$cc" "${flags[@]}" -c "$here/$src" -o "$out/$(basename "$src" .c).o")
 done
-python3 "$here/tools/isr_arith.py" --root fw_adc_isr --indirect prof_ctl_stage \
+python3 "$here/tools/isr_arith.py" --root fw_adc_isr \
   --forbid '^__aeabi_(l|ul|d)|di3$|df' "$out"/*.ci

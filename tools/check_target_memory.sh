@@ -35,9 +35,10 @@ for arith in float fixed; do
     objs+=("$obj")
   done
   echo "== $arith build"
-  # The control core's stage hook is the only indirect call of the ISR path (profile.c).
+  # Indirect calls (the serial command table, the stage hook) follow the sources'
+  # `indirect-call:` notes; one without a note fails.
   python3 "$here/tools/stack_depth.py" --background main --isr fw_adc_isr \
-    --indirect prof_ctl_stage --stack-words "$((stack_words))" "${objs[@]/%.o/.ci}"
+    --stack-words "$((stack_words))" "${objs[@]/%.o/.ci}"
   budget=(--linker "$here/firmware/f28335/F28335_flash.cmd" --size arm-none-eabi-size)
   [ $arith = fixed ] && budget+=(--report-only)
   python3 "$here/tools/ram_budget.py" "${budget[@]}" "${objs[@]}"

@@ -362,6 +362,8 @@ static uint16_t on_capture_stop(drive_t *d, const sxl_frame_t *req, sxl_frame_t 
 
 #define LINK_ANY_LENGTH 0xFFFFu /* the handler checks the length */
 
+/* indirect-call: drive_link_handle -> table link_commands (tools/stack_depth.py) */
+
 static const struct {
     uint16_t cmd, len;
     link_handler_t handler;

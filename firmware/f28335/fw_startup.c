@@ -92,6 +92,7 @@ bool fw_startup(void)
     link_service_init(&fw_state.link, FW_LINK_GAP_CYCLES);
 
     drive_init(&fw_drive, &p);
+    /* indirect-call: ctl_step, ctl_ddc_select -> prof_ctl_stage (tools/stack_depth.py) */
     ctl_set_stage_hook(&fw_drive.ctl, prof_ctl_stage); /* stage timing (profile.h) */
     if (!fw_state.clock_ok || !hal_ok) {
         /* Never run on a limp-mode clock or a half-configured inverter; the

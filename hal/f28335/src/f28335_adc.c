@@ -30,7 +30,8 @@ static void adc_factory_calibration(void)
 {
 #if F28335_TARGET
     /* TI's ADC_cal in OTP writes the factory ADCREFSEL/ADCOFFTRIM trim; it
-     * needs the ADC clock on. Called through its fixed address. */
+     * needs the ADC clock on. Called through its fixed address.
+     * indirect-call: adc_factory_calibration, hal_adc_init -> external ADC_cal */
     void (*const adc_cal)(void) = (void (*)(void))F28335_ADC_CAL_ADDR;
     adc_cal();
 #else
