@@ -155,10 +155,17 @@ void sim_fault_encoder(const sim_fault_state_t *s, hal_encoder_sample_t *e)
     if (!s->active) {
         return;
     }
-    if (s->kind == SIM_FAULT_ENCODER_JUMP) {
+    if (s->kind == SIM_FAULT_ENCODER_JUMP && !s->encoder_rehomed) {
         e->elec_angle += (uint32_t)(FAULT_ENCODER_JUMP_TURN * 4294967296.0);
     } else if (s->kind == SIM_FAULT_ENCODER_INDEX) {
         e->healthy = false;
+    }
+}
+
+void sim_fault_encoder_rehomed(sim_fault_state_t *s)
+{
+    if (s->active) {
+        s->encoder_rehomed = true;
     }
 }
 

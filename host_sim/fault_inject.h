@@ -68,6 +68,7 @@ typedef struct {
     bool adc_frozen;
     double frozen_theta_m;
     bool encoder_frozen;
+    bool encoder_rehomed; /* the drive re-homed after the slip: the index reset the count */
 } sim_fault_state_t;
 
 void sim_fault_begin(sim_fault_state_t *s, sim_fault_t kind, double t_inject);
@@ -91,6 +92,10 @@ double sim_fault_encoder_angle(sim_fault_state_t *s, double theta_m);
 
 /* The encoder interface's reading after the fault. */
 void sim_fault_encoder(const sim_fault_state_t *s, hal_encoder_sample_t *e);
+
+/* The index passed while the drive waited for it (hal_encoder_rehome after a clear): the count
+ * starts again from the index, so a slipped reading is right from now on. */
+void sim_fault_encoder_rehomed(sim_fault_state_t *s);
 
 /* Leg duties the inverter actually applies (a gate fault overrides a leg). */
 void sim_fault_duty(const sim_fault_state_t *s, bool forced_off, double duty[6]);

@@ -128,6 +128,7 @@ static void bridge_isr(void)
     }
 }
 static void bridge_request_run(void) { drive_request_run(&bridge_drive); }
+static void bridge_request_clear(void) { drive_request_clear_fault(&bridge_drive); }
 static void bridge_set_speed_rpm(double rpm) { drive_set_speed_ref_rpm(&bridge_drive, (float)rpm); }
 static void bridge_set_torque_nm(double nm) { drive_set_torque_ref_nm(&bridge_drive, (float)nm); }
 
@@ -197,6 +198,8 @@ static void bridge_status(sim_ctl_status_t *st)
     st->p_flux_tie_band = (double)prm->ddc_flux_tie_band;
     st->faults_latched = (unsigned)drive_faults_latched(&bridge_drive);
     st->fault_records = (int)ctl_protect_log_pending(&bridge_drive.protect);
+    st->run_refusal = (int)bridge_drive.run_refusal;
+    st->run_refused = (unsigned)bridge_drive.run_refused;
 }
 
 /* The virtual board's own command (a board answers it "unknown"): SXL_CMD_SIM_SHUTDOWN is
@@ -231,7 +234,7 @@ static int bridge_link_shutdown(void)
 }
 
 const sim_ctl_ops_t SIM_BRIDGE_OPS = {
-    SIM_BRIDGE_ARITH,         bridge_init,          bridge_isr,       bridge_request_run,
-    bridge_set_speed_rpm,     bridge_set_torque_nm, bridge_status,    bridge_report_overrun,
-    bridge_read_fault_record, bridge_link_init,     bridge_link_step, bridge_link_frames,
-    bridge_link_shutdown,     bridge_period_status};
+    SIM_BRIDGE_ARITH,         bridge_init,          bridge_isr,          bridge_request_run,
+    bridge_set_speed_rpm,     bridge_set_torque_nm, bridge_status,       bridge_report_overrun,
+    bridge_read_fault_record, bridge_link_init,     bridge_link_step,    bridge_link_frames,
+    bridge_link_shutdown,     bridge_period_status, bridge_request_clear};

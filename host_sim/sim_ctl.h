@@ -53,6 +53,8 @@ typedef struct {
     double p_flux_tie_band;
     unsigned faults_latched; /* ctl_fault_t bits since the last clear */
     int fault_records;       /* unread records in the drive's fault log */
+    int run_refusal;         /* drive_run_refusal_t of the last refused run request */
+    unsigned run_refused;    /* run requests refused since init */
 } sim_ctl_status_t;
 
 /* One record of the drive's fault log, in SI units. */
@@ -92,6 +94,7 @@ typedef struct {
     /* status's fields the period loop reads (state and flags, fault, references, command),
      * without the rest's cost (the flux estimate's root, the parameters); others untouched */
     void (*period_status)(sim_ctl_status_t *st);
+    void (*request_clear)(void); /* a fault clear, acted on by the next ISR */
 } sim_ctl_ops_t;
 
 /* Defined by the two builds of the bridge. The float build's symbols are all

@@ -21,9 +21,28 @@ void sim_encoder_init(sim_encoder_t *enc, double ts)
     enc->first = true;
     enc->edge_speed_rev_s = 0.0;
     enc->qep_error = false;
+    enc->index_known = false;
 }
 
-void sim_encoder_restart(sim_encoder_t *enc) { enc->first = true; }
+void sim_encoder_restart(sim_encoder_t *enc)
+{
+    enc->first = true;
+    enc->index_known = false;
+}
+
+/* Index pulse: the shaft as the encoder sees it crossed a whole mechanical turn (either way). */
+static void enc_index(sim_encoder_t *enc, double theta_m, sim_fault_state_t *fs)
+{
+    const double turn = floor(theta_m * (1.0 / ENC_TWO_PI));
+    if (enc->index_known && turn != enc->index_turn) {
+        if (hal_sim_bus.encoder_homing_lost) {
+            sim_fault_encoder_rehomed(fs);
+        }
+        hal_sim_post_encoder_index();
+    }
+    enc->index_turn = turn;
+    enc->index_known = true;
+}
 
 /* lround for |q| < 2^31 without the library call: truncate (exact), then step away from zero
  * when the exact remainder is at least one half. */
@@ -147,6 +166,7 @@ void sim_encoder_sample(sim_encoder_t *enc, const plant_params_t *p, const plant
     plant_state_t seen = *x; /* the shaft as the encoder interface sees it */
     hal_encoder_sample_t e;
     seen.theta_m = sim_fault_encoder_angle(fs, x->theta_m);
+    enc_index(enc, seen.theta_m, fs);
     e.healthy = true;
     if (!p->encoder_quant_on) {
         e.elec_angle = enc_turn_u32((double)p->pole_pairs * seen.theta_m / ENC_TWO_PI);

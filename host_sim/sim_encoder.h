@@ -4,7 +4,8 @@
  * change over the last 1 ms divided by the time between the latest edges at both ends of
  * that window: eQEP capture, "T-method"; edge times interpolated between samples), and the
  * HAL's edge watchdog (no edge for 10 ms after turning faster than 5 rev/s: signal lost,
- * latched). With quantisation off the encoder reports the exact angle and speed.
+ * latched), and the index at mechanical angle 0, which re-homes the HAL after
+ * hal_encoder_rehome. With quantisation off the encoder reports the exact angle and speed.
  */
 #ifndef SIM_ENCODER_H
 #define SIM_ENCODER_H
@@ -27,7 +28,9 @@ typedef struct {
     int64_t ring_count[SIM_ENCODER_RING_MAX];
     double ring_t[SIM_ENCODER_RING_MAX];
     int ring_len, ring_pos;
-    bool first; /* the next sample starts the speed window afresh */
+    bool first;        /* the next sample starts the speed window afresh */
+    double index_turn; /* mechanical turn of the last sample (the index sits at theta_m = 0) */
+    bool index_known;
 } sim_encoder_t;
 
 void sim_encoder_init(sim_encoder_t *enc, double ts);

@@ -330,14 +330,22 @@ uint16_t drive_clear_blockers(const drive_t *d, bool fresh)
 /* FAULT: a clear request leaves it only when nothing stands against it in this period. */
 static void drive_fault_step(drive_t *d, bool fresh)
 {
+    bool encoder_fault;
     hal_pwm_force_off();
     if (!d->clear_requested) {
         return;
     }
     d->clear_requested = false;
     d->clear_blocked = drive_clear_blockers(d, fresh);
+    encoder_fault = (d->protect.latched & CTL_FAULT_ENCODER) != 0u;
     if (d->clear_blocked != 0u || !ctl_protect_clear(&d->protect)) {
         return;
+    }
+    if (encoder_fault) {
+        /* A jump or a stop under torque may have left the count wrong, and a healthy flag at
+         * standstill does not say otherwise: the index must be seen again before RUN. */
+        hal_encoder_rehome();
+        d->encoder.healthy = false;
     }
     d->fault = DRIVE_FAULT_NONE;
     if (d->calibrated) {

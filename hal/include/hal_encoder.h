@@ -19,4 +19,8 @@ bool hal_encoder_init(uint32_t lines, uint16_t pole_pairs, uint32_t elec_offset)
 
 void hal_encoder_read(hal_encoder_sample_t *s);
 
+/* Forget the homing: the count may be wrong (a cleared ENCODER fault). The encoder reports
+ * unhealthy until the index has been seen again, which re-homes the count. */
+void hal_encoder_rehome(void);
+
 #endif /* HAL_ENCODER_H */

@@ -26,6 +26,8 @@ void hal_sim_post_adc(const hal_adc_sample_t *s)
 
 void hal_sim_post_encoder(const hal_encoder_sample_t *s) { hal_sim_bus.encoder = *s; }
 
+void hal_sim_post_encoder_index(void) { hal_sim_bus.encoder_homing_lost = false; }
+
 /* ---- hal_pwm.h ---- */
 
 bool hal_pwm_init(uint32_t carrier_hz, uint32_t dead_time_ns)
@@ -99,7 +101,15 @@ bool hal_encoder_init(uint32_t lines, uint16_t pole_pairs, uint32_t elec_offset)
     return true;
 }
 
-void hal_encoder_read(hal_encoder_sample_t *s) { *s = hal_sim_bus.encoder; }
+void hal_encoder_read(hal_encoder_sample_t *s)
+{
+    *s = hal_sim_bus.encoder;
+    if (hal_sim_bus.encoder_homing_lost) {
+        s->healthy = false;
+    }
+}
+
+void hal_encoder_rehome(void) { hal_sim_bus.encoder_homing_lost = true; }
 
 /* ---- hal_serial.h and its line side ---- */
 

@@ -38,6 +38,7 @@ typedef struct {
     uint16_t encoder_pole_pairs;
     uint32_t encoder_elec_offset;
     bool encoder_initialised;
+    bool encoder_homing_lost; /* hal_encoder_rehome: unhealthy until the plant posts the index */
     /* serial port (hal_serial.h): 16-byte FIFOs as the board's SCI has; the virtual board moves
      * bytes between them and the outside at the baud rate */
     uint16_t uart_rx[HAL_SIM_UART_FIFO], uart_tx[HAL_SIM_UART_FIFO];
@@ -97,6 +98,9 @@ void hal_sim_post_adc(const hal_adc_sample_t *s);
 
 /* Publish the encoder reading of this period. */
 void hal_sim_post_encoder(const hal_encoder_sample_t *s);
+
+/* The shaft passed the encoder's index: the homing is back (the eQEP's first-index flag). */
+void hal_sim_post_encoder_index(void);
 
 /* Duty of one leg as a fraction of the period, from the shadow registers. */
 static inline double hal_sim_duty_fraction(int leg)

@@ -64,6 +64,13 @@ bool hal_encoder_init(uint32_t lines, uint16_t pole_pairs, uint32_t elec_offset)
 
 void hal_encoder_read(hal_encoder_sample_t *s) { *s = mock_encoder; }
 
+/* As the HAL promises: unhealthy until the test lets the index pass (mock_encoder.healthy). */
+void hal_encoder_rehome(void)
+{
+    mock_rec.rehome++;
+    mock_encoder.healthy = false;
+}
+
 bool hal_pwm_init(uint32_t carrier_hz, uint32_t dead_time_ns)
 {
     (void)carrier_hz;

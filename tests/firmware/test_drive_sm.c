@@ -345,6 +345,46 @@ static void test_overrun_and_encoder_faults(void **state)
     assert_int_equal(d.state, DRIVE_STATE_READY);
 }
 
+/* A jump of the position reading latches ENCODER while the encoder still reports healthy: the
+ * clear is accepted, but it drops the homing, and RUN is refused for the encoder until the
+ * HAL has seen the index again (the count may be wrong until then). */
+static void test_encoder_clear_needs_the_index_again(void **state)
+{
+    (void)state;
+    calibrate();
+    mock_cmd.enable = true;
+    drive_request_run(&d);
+    run_isr(2);
+    assert_int_equal(d.state, DRIVE_STATE_RUN);
+    mock_encoder.elec_angle += 0x40000000u; /* a quarter electrical turn at standstill */
+    run_isr(1);
+    assert_int_equal(d.fault, DRIVE_FAULT_ENCODER);
+    assert_true(mock_encoder.healthy); /* nothing else says the count is wrong */
+
+    drive_request_clear_fault(&d);
+    run_isr(1);
+    assert_int_equal(d.state, DRIVE_STATE_READY);
+    assert_int_equal(mock_rec.rehome, 1u);
+    drive_request_run(&d);
+    run_isr(10);
+    assert_int_equal(d.state, DRIVE_STATE_READY);
+    assert_int_equal(d.run_refusal, DRIVE_RUN_REFUSED_ENCODER);
+    assert_int_equal(mock_rec.enable, 1u); /* only the first run */
+
+    mock_encoder.healthy = true; /* the index passed */
+    drive_request_run(&d);
+    run_isr(1);
+    assert_int_equal(d.state, DRIVE_STATE_RUN);
+    assert_int_equal(mock_rec.enable, 2u);
+
+    /* a clear of another fault keeps the homing */
+    drive_trip(&d, DRIVE_FAULT_OVERRUN);
+    drive_request_clear_fault(&d);
+    run_isr(1);
+    assert_int_equal(d.state, DRIVE_STATE_READY);
+    assert_int_equal(mock_rec.rehome, 1u);
+}
+
 static void test_params_rejected_at_init(void **state)
 {
     ctl_params_t p;
@@ -568,6 +608,7 @@ int main(void)
         cmocka_unit_test_setup(test_stale_clear_does_not_clear_later_fault, setup),
         cmocka_unit_test_setup(test_missing_conversion_faults_in_run, setup),
         cmocka_unit_test_setup(test_overrun_and_encoder_faults, setup),
+        cmocka_unit_test_setup(test_encoder_clear_needs_the_index_again, setup),
         cmocka_unit_test_setup(test_params_rejected_at_init, setup),
         cmocka_unit_test_setup(test_request_params, setup),
         cmocka_unit_test_setup(test_dead_adc_faults_in_ready_and_blocks_the_clear, setup),

@@ -343,6 +343,25 @@ static void test_32bit_forms_equal_64bit_references(void **state)
     assert_int_equal(f28335_qep_state()->cap_shift, 0u); /* the board's encoder: exact */
 }
 
+/* hal_encoder_rehome writes only FIMF's clear bit to QEPSTS (write 1 to clear; the zeros leave
+ * the other flags alone): unhealthy until the next index sets FIMF again. */
+static void test_rehome_waits_for_the_index(void **state)
+{
+    hal_encoder_sample_t s;
+    (void)state;
+    R.eqep1.QEPSTS = EQEP_STS_FIMF | EQEP_STS_QDF;
+    hal_encoder_read(&s);
+    assert_true(s.healthy);
+    hal_encoder_rehome();
+    assert_int_equal(R.eqep1.QEPSTS, EQEP_STS_FIMF);
+    R.eqep1.QEPSTS = EQEP_STS_QDF; /* what the device then shows: FIMF cleared */
+    hal_encoder_read(&s);
+    assert_false(s.healthy);
+    R.eqep1.QEPSTS = EQEP_STS_FIMF | EQEP_STS_QDF; /* the index passed */
+    hal_encoder_read(&s);
+    assert_true(s.healthy);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -353,6 +372,7 @@ int main(void)
         cmocka_unit_test_setup(test_low_speed_capture, setup),
         cmocka_unit_test_setup(test_switch_with_hysteresis, setup),
         cmocka_unit_test_setup(test_health, setup),
+        cmocka_unit_test_setup(test_rehome_waits_for_the_index, setup),
         cmocka_unit_test_setup(test_loss_of_edges_at_speed, setup),
         cmocka_unit_test_setup(test_loss_of_edges_after_unit_timer_reported_zero, setup),
         cmocka_unit_test_setup(test_slow_stop_stays_healthy, setup),

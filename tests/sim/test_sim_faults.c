@@ -10,8 +10,11 @@
 #include <stdint.h>
 
 #include <cmocka.h>
+#include <math.h>
+#include <string.h>
 
 #include "sim.h"
+#include "sxlink.h"
 
 static void run(sim_config_t *c, sim_result_t *r)
 {
@@ -135,6 +138,94 @@ static void test_mptc49_trips_the_protection(void **state)
     assert_true(r.outputs_off);
 }
 
+/* fault-encoder-jump, then a clear and a run request every period: the clear drops the homing,
+ * so RUN is refused for the encoder until the shaft has passed the index (mechanical angle 0),
+ * then accepted; the index re-homed the slipped count, so the drive runs on without a fault. */
+#define REHOME_TWO_PI 6.28318530717958647692
+
+typedef struct {
+    const sim_ctl_ops_t *ops;
+    double pole_pairs;
+    double theta_m; /* latest plant sample of the mechanical angle (analysis window) */
+    int phase;      /* 0 until FAULT, 1 clear sent, 2 READY: asking to run, 3 running */
+    double turn_at_clear;
+    bool index_passed; /* a whole mechanical turn crossed since the clear */
+    double t_index, t_run;
+    unsigned refused_seen; /* the drive's refusal count when the last request was sent */
+    unsigned refused_before_index, refused_after_index, refusal_reason_other;
+    bool faulted_again;
+} rehome_probe_t;
+
+static void rehome_fine(void *ctx, const sim_fine_row_t *row)
+{
+    rehome_probe_t *p = ctx;
+    p->theta_m = row->theta_e_unwrapped / p->pole_pairs;
+    if (p->phase >= 1 && !p->index_passed &&
+        floor(p->theta_m / REHOME_TWO_PI) != p->turn_at_clear) {
+        p->index_passed = true;
+        p->t_index = row->t;
+    }
+}
+
+static void rehome_period(void *ctx, const sim_trace_row_t *row, const sim_period_input_t *in)
+{
+    rehome_probe_t *p = ctx;
+    sim_ctl_status_t st;
+    (void)in;
+    p->ops->status(&st);
+    if (p->phase == 0 && st.faulted) {
+        p->phase = 1;
+        p->turn_at_clear = floor(p->theta_m / REHOME_TWO_PI);
+        p->ops->request_clear();
+    } else if (p->phase >= 1 && p->phase <= 2 && st.ready) {
+        if (p->phase == 2 && st.run_refused != p->refused_seen) {
+            p->refused_before_index += p->index_passed ? 0u : 1u;
+            p->refused_after_index += p->index_passed ? 1u : 0u;
+            if (strcmp(sxl_run_refusal_name((uint16_t)st.run_refusal), "ENCODER") != 0) {
+                p->refusal_reason_other++;
+            }
+        }
+        p->refused_seen = st.run_refused;
+        p->phase = 2;
+        p->ops->request_run();
+    } else if (p->phase == 2 && st.running) {
+        p->phase = 3;
+        p->t_run = row->t;
+    } else if (p->phase == 3 && st.faulted) {
+        p->faulted_again = true;
+    }
+}
+
+static void test_encoder_clear_waits_for_the_index(void **state)
+{
+    int arith;
+    (void)state;
+    for (arith = 0; arith <= 1; arith++) {
+        rehome_probe_t p;
+        sim_observer_t ob = {&p, rehome_period, rehome_fine};
+        sim_config_t c;
+        sim_result_t r;
+        memset(&p, 0, sizeof p);
+        sim_config_default(&c);
+        c.arith = arith;
+        c.fault = SIM_FAULT_ENCODER_JUMP;
+        c.observer = &ob;
+        p.ops = arith ? &simflt_sim_ctl_ops_float : &sim_ctl_ops_fixed;
+        p.pole_pairs = (double)c.plant.pole_pairs;
+        run(&c, &r);
+        print_message("%s: refused %u times before the index (at %.4f s), %u after; running "
+                      "from %.4f s\n",
+                      r.arith, p.refused_before_index, p.t_index, p.refused_after_index, p.t_run);
+        assert_int_equal(p.phase, 3);
+        assert_true(p.index_passed);
+        assert_true(p.refused_before_index > 0u);
+        assert_int_equal(p.refused_after_index, 0u);
+        assert_int_equal(p.refusal_reason_other, 0u);
+        assert_true(p.t_run >= p.t_index && p.t_run < p.t_index + 3e-4); /* at the next ISR */
+        assert_false(p.faulted_again);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -143,6 +234,7 @@ int main(void)
         cmocka_unit_test(test_injection_time_is_honoured),
         cmocka_unit_test(test_healthy_runs_do_not_trip),
         cmocka_unit_test(test_mptc49_trips_the_protection),
+        cmocka_unit_test(test_encoder_clear_waits_for_the_index),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

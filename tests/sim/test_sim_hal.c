@@ -81,6 +81,14 @@ static void test_encoder_and_cycles(void **state)
     hal_sim_post_encoder(&e);
     hal_encoder_read(&out);
     assert_true(out.elec_angle == 0x40000000u && out.mech_speed_q16 == 65536 && out.healthy);
+    /* re-homing: unhealthy, whatever the plant posts, until the plant reports the index */
+    hal_encoder_rehome();
+    hal_sim_post_encoder(&e);
+    hal_encoder_read(&out);
+    assert_false(out.healthy);
+    hal_sim_post_encoder_index();
+    hal_encoder_read(&out);
+    assert_true(out.healthy);
     hal_cycles_init();
     /* simulated time: no time passes between readings, a period per advance */
     c0 = hal_cycles_now();

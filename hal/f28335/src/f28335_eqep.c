@@ -15,6 +15,8 @@
  *   health     first index seen (QEPSTS.FIMF) and no position-counter error,
  *              quadrature phase error or loss of edges above 5 rev/s (QEP
  *              watchdog, 10 ms) since init
+ *   re-homing  hal_encoder_rehome clears FIMF (write 1 to clear): unhealthy
+ *              until the next index sets it again and resets the count
  */
 #include "f28335_hal.h"
 #include "f28335_internal.h"
@@ -220,3 +222,6 @@ void hal_encoder_read(hal_encoder_sample_t *s)
     s->mech_speed_q16 = qep.speed_q16;
     s->healthy = ((sts & EQEP_STS_FIMF) != 0u) && !qep.error_latched;
 }
+
+/* FIMF is write-1-to-clear; the zeros written with it leave the other status bits alone. */
+void hal_encoder_rehome(void) { F28335_EQEP1->QEPSTS = EQEP_STS_FIMF; }
