@@ -43,8 +43,10 @@ set(CMAKE_TRY_COMPILE_TARGET_TYPE STATIC_LIBRARY)
 set(TI_C2000_TARGET_FLAGS
     "--silicon_version=28 --large_memory_model --unified_memory --float_support=fpu32 --abi=coffabi")
 
+# --gen_func_subsections=on: each function in its own subsection (.text:_name), which the
+# flash linker file's ramfuncs list places one by one (F28335_flash.cmd).
 set(CMAKE_C_FLAGS_INIT
-    "${TI_C2000_TARGET_FLAGS} --c99 --display_error_number --diag_wrap=off --diag_warning=225")
+    "${TI_C2000_TARGET_FLAGS} --c99 --gen_func_subsections=on --display_error_number --diag_wrap=off --diag_warning=225")
 set(CMAKE_ASM_FLAGS_INIT "${TI_C2000_TARGET_FLAGS}")
 set(CMAKE_C_FLAGS_RELEASE_INIT "-O2 --opt_for_speed=5")
 set(CMAKE_C_FLAGS_DEBUG_INIT "-g -O0")

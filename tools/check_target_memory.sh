@@ -1,18 +1,26 @@
 #!/usr/bin/env bash
-# Memory of the F28335 image, checked without TI's compiler (CI runs this):
+# Memory of the F28335 image, checked without TI's compiler (CI runs this), for both builds:
 #   - stack: the deepest background path plus a nested control interrupt must fit the stack
 #     the TI link reserves (--stack_size in cmake/ti-c2000-toolchain.cmake), with margin;
-#   - RAM: the per-period path the flash linker file copies to L0..L3 (ramfuncs) and all
-#     static data (.ebss in L4..L7) must fit their blocks, with margin.
+#   - placement: every function the control interrupt can reach runs from RAM (the flash linker
+#     file's ramfuncs list), except what the build leaves in flash on purpose;
+#   - RAM: that code (L0..L3), its constant tables and all static data (L4..L7) must fit their
+#     blocks with margin.
 # Compiles exactly the target's C sources (cmake/sources.cmake, target code paths as in the
-# host link check) with arm-none-eabi-gcc -O2 -fcallgraph-info=su, a 32-bit proxy for cl2000,
-# in the float build (the F28335 default) and the fixed build. tools/stack_depth.py and
-# tools/ram_budget.py do the sums; their output goes into docs/porting.md section 7. The RAM
-# budget is enforced for the float build; the fixed build's is reported (its inlined 64-bit
-# arithmetic is far larger on the proxy than it may be on the C28x; see porting.md).
-# usage: tools/check_target_memory.sh [OUTDIR]   (non-zero exit if anything does not fit)
+# host link check) with arm-none-eabi-gcc, a 32-bit proxy for cl2000, twice per build: -O2
+# with one section per function and -fcallgraph-info=su (sizes, stack frames), and -O2
+# -fno-inline (the complete call graph of the period, whatever cl2000 inlines).
+# tools/stack_depth.py and tools/ram_budget.py do the sums; tools/target_memory_doc.py puts the
+# figures into docs/porting.md section 7 (--write-doc) or checks that they are there
+# (--check-doc, CI).
+# usage: tools/check_target_memory.sh [--write-doc | --check-doc] [OUTDIR]
+#        (non-zero exit if anything does not fit, or the doc differs with --check-doc)
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
+doc_mode=
+case "${1:-}" in
+  --write-doc | --check-doc) doc_mode=$1; shift ;;
+esac
 out=${1:-$(mktemp -d)}
 mkdir -p "$out" && out=$(cd "$out" && pwd)   # the compiles run inside it
 cc=${ARM_CC:-arm-none-eabi-gcc}
@@ -21,25 +29,43 @@ mapfile -t sources < <(cmake -P "$here/tools/print_sources.cmake" SIXPHASE_TARGE
 mapfile -t includes < <(cmake -P "$here/tools/print_sources.cmake" SIXPHASE_TARGET_INCLUDE_DIRS)
 stack_words=$(sed -n 's/.*--stack_size=\(0x[0-9A-Fa-f]*\).*/\1/p' "$here/cmake/ti-c2000-toolchain.cmake")
 [ -n "$stack_words" ] || { echo "check_target_memory: no --stack_size in the toolchain file" >&2; exit 1; }
+linker="$here/firmware/f28335/F28335_flash.cmd"
+
+compile() { # dir, extra flags...
+  local dir=$1 src
+  shift
+  mkdir -p "$dir"
+  for src in "${sources[@]}" tools/ti_link_proxy/ti_link_stubs.c; do
+    (cd "$dir" && "$cc" "${flags[@]}" "$@" -c "$here/$src" -o "$dir/$(basename "$src" .c).o")
+  done
+}
+
 for arith in float fixed; do
   dir="$out/$arith"
-  mkdir -p "$dir"
-  flags=(-std=c99 -ffreestanding -mcpu=cortex-m4 -mthumb -O2 -fcallgraph-info=su
-         -DF28335_LINK_PROXY=1 --param=min-pagesize=0)
-  [ $arith = float ] && flags+=(-DCTL_MATH_FLOAT=1) || flags+=(-DCTL_MATH_FLOAT=0)
+  flags=(-std=c99 -ffreestanding -mcpu=cortex-m4 -mthumb -O2 -DF28335_LINK_PROXY=1
+         --param=min-pagesize=0)
+  # The fixed (Q24) image leaves the MPTC-49/13 search in flash (F28335_flash.cmd, the
+  # SIXPHASE_FW_Q24 branch; docs/porting.md section 7): the linker's define and what it moves.
+  link=()
+  from_flash=
+  if [ $arith = float ]; then
+    flags+=(-DCTL_MATH_FLOAT=1)
+  else
+    flags+=(-DCTL_MATH_FLOAT=0)
+    link=(--define SIXPHASE_FW_Q24=1)
+    from_flash=ctl_mptc_select
+  fi
   for inc in "${includes[@]}"; do flags+=(-I "$here/$inc"); done
-  objs=()
-  for src in "${sources[@]}" tools/ti_link_proxy/ti_link_stubs.c; do
-    obj="$dir/$(basename "$src" .c).o"
-    (cd "$dir" && "$cc" "${flags[@]}" -c "$here/$src" -o "$obj")
-    objs+=("$obj")
-  done
+  compile "$dir/o2" -ffunction-sections -fdata-sections -fcallgraph-info=su
+  compile "$dir/noinline" -fno-inline -fcallgraph-info
+  rm "$dir/noinline/ti_link_stubs.ci" # the stand-ins of cl2000's intrinsics: no code of the image
   echo "== $arith build"
-  # Indirect calls (the serial command table, the stage hook) follow the sources'
-  # `indirect-call:` notes; one without a note fails.
   python3 "$here/tools/stack_depth.py" --background main --isr fw_adc_isr \
-    --stack-words "$((stack_words))" "${objs[@]/%.o/.ci}"
-  budget=(--linker "$here/firmware/f28335/F28335_flash.cmd" --size arm-none-eabi-size)
-  [ $arith = fixed ] && budget+=(--report-only)
-  python3 "$here/tools/ram_budget.py" "${budget[@]}" "${objs[@]}"
+    --stack-words "$((stack_words))" --summary "$dir/stack.json" "$dir"/o2/*.ci
+  python3 "$here/tools/ram_budget.py" --linker "$linker" "${link[@]}" --objects "$dir/o2" \
+    --callgraph "$dir/noinline" --from-flash "$from_flash" --summary "$dir/ram.json"
 done
+if [ -n "$doc_mode" ]; then
+  python3 "$here/tools/target_memory_doc.py" "$doc_mode" "$here/docs/porting.md" \
+    --stack-words "$((stack_words))" --float "$out/float" --fixed "$out/fixed"
+fi

@@ -1,28 +1,50 @@
 #!/usr/bin/env python3
-"""RAM budget of the F28335 image from a 32-bit proxy build (tools/check_target_memory.sh).
+"""RAM placement and budget of the F28335 image from a 32-bit proxy build
+(tools/check_target_memory.sh).
 
-usage: ram_budget.py --linker F28335_flash.cmd [--size arm-none-eabi-size] OBJ.o...
+usage: ram_budget.py --linker F28335_flash.cmd [--define NAME=VALUE]... --objects DIR
+                     --callgraph DIR [--isr fw_adc_isr] [--from-flash FN,...]
+                     [--size arm-none-eabi-size] [--summary FILE.json]
 
-Reads from the linker command file what it copies to RAM - the output sections `ramfuncs`
-(code) and `ramconsts` (constant tables), one `*NAME.*obj(SECTION)` line per object and
-section - and the blocks they and `.ebss` run in; measures those sections in the proxy
-objects; checks that each block holds what goes into it. Proxy bytes to C28x words:
+The linker command file is read as TI's linker reads it, preprocessed with the build's
+--define macros (#if / #ifdef / #ifndef / #else / #endif). What it copies to RAM:
+  - ramfuncs: the code of the per-period path, one `*(.text:_NAME)` line per function (cl2000
+    --gen_func_subsections puts each function in a subsection of that name), plus every function
+    marked F28335_RAMFUNC (`*(ramfuncs)`) and the run-time library (`-l...lib(.text)`);
+  - ramconsts: constant tables, one `*NAME.*obj(.econst)` line per object;
+and the blocks they and `.ebss` run in.
+
+Placement check: every function the control interrupt (--isr) can reach, in the call graph of
+a build without inlining (--callgraph: gcc -fno-inline -fcallgraph-info, indirect calls
+resolved as tools/stack_depth.py does), must run from RAM, except what only the --from-flash
+functions reach (a build that leaves a controller in flash on purpose). A missing function
+fails the check with the line to add.
+
+Budget: sizes measured in the proxy objects (--objects: gcc -O2 -ffunction-sections, so each
+function is a `.text.NAME` section; a function inlined there costs nothing of its own). Proxy
+bytes to C28x words:
   - tables and static data: words = bytes / 2, exact for arrays of 16- and 32-bit values
     (the C28x's 16-bit char and bool make small structs larger: the data gets the margin);
   - code: words = margin * bytes / 2, for the unknown density of C28x code against Thumb-2.
-The run-time library routines the linker file also copies (-l rts2800_fpu32.lib) cannot be
-measured here; a fixed reserve stands for them. Exits non-zero if a block overflows.
+The run-time library routines (division, 64-bit helpers) cannot be measured here; a fixed
+reserve stands for them. Fails if a block holds more than LIMIT of its size.
 """
 import argparse
+import glob
+import json
 import math
 import os
 import re
 import subprocess
 import sys
 
+import stack_depth
+
 MARGIN = 1.5
 RTS_RESERVE_WORDS = 1024  # FPU32 run-time routines called from the period (division, 64-bit)
-PROXY_SECTIONS = {".text": (".text",), ".econst": (".rodata",), ".ebss": (".bss", ".data")}
+LIMIT = 0.90              # the most of a block the estimate may fill
+PROXY_SECTIONS = {".econst": (".rodata",), ".ebss": (".bss", ".data")}
+LIBRARY = re.compile(r"^(__|mem(cpy|set|move)$)")  # compiler helpers: the run-time library
 
 
 def fail(msg):
@@ -30,28 +52,58 @@ def fail(msg):
     sys.exit(1)
 
 
+def preprocess(text, defines):
+    """The linker file after TI's preprocessing of #if/#ifdef/#ifndef/#else/#endif."""
+    out, stack = [], []
+    for line in text.splitlines():
+        d = re.match(r"\s*#\s*(ifdef|ifndef|if|else|endif)\b\s*(\w*)", line)
+        if not d:
+            if all(stack):
+                out.append(line)
+            continue
+        kind, name = d.groups()
+        if kind in ("ifdef", "ifndef", "if"):
+            value = defines.get(name)
+            on = {"ifdef": value is not None, "ifndef": value is None,
+                  "if": value not in (None, "0")}[kind]
+            stack.append(on)
+        elif not stack:
+            fail("#%s without #if in the linker file" % kind)
+        elif kind == "else":
+            stack[-1] = not stack[-1]
+        else:
+            stack.pop()
+    if stack:
+        fail("unterminated #if in the linker file")
+    return "\n".join(out)
+
+
 def copied_section(text, name):
-    """Objects and sections of a copied output section, and the block it runs in."""
+    """Body of a copied output section and the block it runs in."""
     block = re.search(r"\b%s\s*:\s*\{(.*?)\}\s*LOAD\s*=\s*\w+,\s*RUN\s*=\s*(\w+)" % name, text,
                       re.S)
     if not block:
         fail("no %s section with LOAD and RUN in the linker file" % name)
-    placed = re.findall(r"\*(\w+)\.\*obj\((\.\w+)\)", block.group(1))
-    if not placed:
-        fail("no object list in %s" % name)
-    return placed, block.group(2)
+    return re.sub(r"/\*.*?\*/", " ", block.group(1), flags=re.S), block.group(2)
 
 
-def parse_linker(path):
-    text = open(path).read()
+def parse_linker(path, defines):
+    text = preprocess(open(path).read(), defines)
     regions = {m.group(1): int(m.group(2), 16) for m in re.finditer(
         r"^\s*(\w+)\s*:\s*origin\s*=\s*0x[0-9A-Fa-f]+,\s*length\s*=\s*(0x[0-9A-Fa-f]+)",
         text, re.M)}
     ebss = re.search(r"^\s*\.ebss\s*:\s*>\s*(\w+)", text, re.M)
     if not ebss:
         fail("%s: no .ebss placement" % path)
-    return regions, copied_section(text, "ramfuncs"), copied_section(text, "ramconsts"), \
-        ebss.group(1)
+    code, code_region = copied_section(text, "ramfuncs")
+    functions = re.findall(r"\*\(\.text:_(\w+)\)", code)
+    if not functions or "*(ramfuncs)" not in code.replace(" ", ""):
+        fail("ramfuncs lists no `*(.text:_NAME)` function or lacks `*(ramfuncs)`")
+    tables, tables_region = copied_section(text, "ramconsts")
+    placed = re.findall(r"\*(\w+)\.\*obj\((\.\w+)\)", tables)
+    if not placed:
+        fail("no object list in ramconsts")
+    return regions, (set(functions), code_region), (placed, tables_region), ebss.group(1)
 
 
 def section_sizes(size_tool, obj):
@@ -61,7 +113,7 @@ def section_sizes(size_tool, obj):
     for line in out.splitlines():
         f = line.split()
         if len(f) >= 2 and f[0].startswith(".") and f[1].isdigit():
-            sizes[f[0]] = int(f[1])
+            sizes[f[0]] = sizes.get(f[0], 0) + int(f[1])
     return sizes
 
 
@@ -70,29 +122,86 @@ def proxy_bytes(sizes, target_section):
                if any(name == p or name.startswith(p + ".") for p in PROXY_SECTIONS[target_section]))
 
 
-def placed_bytes(objs, placed):
-    total = 0
+def ramfunc_pragmas(sources):
+    """Functions the sources place in ramfuncs themselves (F28335_RAMFUNC)."""
+    names = set()
+    for src in sources:
+        names.update(re.findall(r"\bF28335_RAMFUNC\((\w+)\)", open(src).read()))
+    return names
+
+
+def reachable(edges, root, stop):
+    seen, todo = {root}, [root]
+    while todo:
+        for callee in edges.get(todo.pop(), ()):
+            if callee not in seen and callee not in stop:
+                seen.add(callee)
+                todo.append(callee)
+    return seen
+
+
+def check_placement(a, listed):
+    """Functions of the period's path that the linker file leaves in flash (must be none)."""
+    files = sorted(glob.glob(os.path.join(a.callgraph, "*.ci")))
+    if not files:
+        fail("no .ci files in %s" % a.callgraph)
+    _, edges, sites, sources, defined = stack_depth.load_raw(files)
+    stack_depth.resolve(defined, edges, sites, sources)
+    flash = set(f for f in a.from_flash.split(",") if f)
+    if a.isr not in defined:
+        fail("%s is not in the call graph" % a.isr)
+    for fn in sorted(flash):
+        if fn not in defined:
+            fail("--from-flash %s is not a function of the call graph" % fn)
+        if fn in listed:
+            fail("%s is listed in ramfuncs and named --from-flash" % fn)
+    in_ram = listed | ramfunc_pragmas(sources)
+    path = set(stack_depth.c_name(fn) for fn in reachable(edges, a.isr, flash) if fn in defined)
+    missing = sorted(fn for fn in path - in_ram if not LIBRARY.match(fn))
+    for fn in missing:
+        sys.stderr.write("ram_budget: %s runs in the control interrupt but from flash: add "
+                         "`*(.text:_%s)` to ramfuncs in the linker file\n" % (fn, fn))
+    print("per-period path: %d functions, %s%s" % (
+        len(path), "%d of them missing from ramfuncs" % len(missing) if missing else
+        "all in ramfuncs", "; in flash on purpose: " + ", ".join(sorted(flash)) if flash else ""))
+    return missing
+
+
+def measure(a, listed, placed):
+    objs = {os.path.basename(o)[:-2]: section_sizes(a.size, o)
+            for o in sorted(glob.glob(os.path.join(a.objects, "*.o")))
+            if not os.path.basename(o).startswith("ti_link_stubs")}
+    if not objs:
+        fail("no objects in %s" % a.objects)
+    code = sum(n for sizes in objs.values() for name, n in sizes.items()
+               if name.startswith(".text.") and stack_depth.c_name(name[6:]) in listed)
+    tables = 0
     for name, section in placed:
         if name not in objs:
             fail("the linker file copies %s, which is not a source of the image" % name)
-        total += proxy_bytes(objs[name], section)
-    return total
+        tables += proxy_bytes(objs[name], section)
+    ebss = sum(proxy_bytes(s, ".ebss") for s in objs.values())
+    return code, tables, ebss
 
 
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--linker", required=True)
+    ap.add_argument("--define", action="append", default=[],
+                    help="NAME=VALUE: a macro of the build's link (TI: --define)")
+    ap.add_argument("--objects", required=True, help="directory of the -O2 proxy objects")
+    ap.add_argument("--callgraph", required=True, help="directory of the no-inline .ci files")
+    ap.add_argument("--isr", default="fw_adc_isr")
+    ap.add_argument("--from-flash", default="",
+                    help="functions this build leaves in flash on purpose (comma-separated)")
     ap.add_argument("--size", default="arm-none-eabi-size")
-    ap.add_argument("--report-only", action="store_true",
-                    help="print the budget, do not fail on an overflow")
-    ap.add_argument("objects", nargs="+")
+    ap.add_argument("--summary", help="write the figures as JSON")
     a = ap.parse_args()
-    regions, (code, code_region), (tables, tables_region), ebss_region = parse_linker(a.linker)
-    objs = {os.path.basename(o)[:-2]: section_sizes(a.size, o) for o in a.objects
-            if not os.path.basename(o).startswith("ti_link_stubs")}
-    code_bytes = placed_bytes(objs, code)
-    table_bytes = placed_bytes(objs, tables)
-    ebss_bytes = sum(proxy_bytes(s, ".ebss") for s in objs.values())
+    defines = dict(d.split("=", 1) if "=" in d else (d, "1") for d in a.define)
+    regions, (listed, code_region), (placed, tables_region), ebss_region = \
+        parse_linker(a.linker, defines)
+    missing = check_placement(a, listed)
+    code_bytes, table_bytes, ebss_bytes = measure(a, listed, placed)
     code_words = int(math.ceil(MARGIN * code_bytes / 2.0)) + RTS_RESERVE_WORDS
     table_words = (table_bytes + 1) // 2
     ebss_words = int(math.ceil(MARGIN * ebss_bytes / 2.0))
@@ -110,9 +219,18 @@ def main():
     for region, need in sorted(use.items()):
         print("%s: %d of %d words (%.0f %%)" % (region, need, regions[region],
                                                 100.0 * need / regions[region]))
-    for region, need in use.items():
-        if need > regions[region] and not a.report_only:
-            fail("%s needs %d words, the block holds %d" % (region, need, regions[region]))
+    if a.summary:
+        with open(a.summary, "w") as f:
+            json.dump({"code_words": code_words, "table_words": table_words,
+                       "ebss_words": ebss_words, "code_region": code_region,
+                       "data_region": ebss_region, "regions": regions, "use": use,
+                       "from_flash": sorted(f for f in a.from_flash.split(",") if f)}, f)
+    over = [r for r, need in sorted(use.items()) if need > LIMIT * regions[r]]
+    for region in over:
+        sys.stderr.write("ram_budget: %s needs %d words, more than %.0f %% of its %d\n"
+                         % (region, use[region], 100 * LIMIT, regions[region]))
+    if missing or over:
+        sys.exit(1)
 
 
 if __name__ == "__main__":

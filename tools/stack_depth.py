@@ -24,11 +24,13 @@ no note resolves, on a note no indirect call needs, on recursion (the depth woul
 unbounded) and on dynamic (VLA / alloca) frames.
 """
 import argparse
+import json
 import math
 import re
 import sys
 
 INDIRECT = "__indirect_call"
+CLONE = re.compile(r"(\.(isra|constprop|part|cold|lto_priv)\.\d+)+$")
 NOTE = re.compile(r"indirect-call:[ \t]*([\w \t,]+?)[ \t]*->[ \t]*([\w \t,]+)")
 
 
@@ -38,7 +40,13 @@ def fail(msg):
 
 
 def name_of(title):
+    """The function's name, without the file of a static one."""
     return title.split(":")[-1]
+
+
+def c_name(name):
+    """The C function a gcc clone comes from (ctl_flux_d.isra.0 is ctl_flux_d specialised)."""
+    return CLONE.sub("", name)
 
 
 def load_raw(paths):
@@ -171,7 +179,7 @@ class CallGraph:
         total, path = self.deepest(root)
         print("worst-case stack from %s: %d bytes" % (root, total))
         print("path: " + " -> ".join(path))
-        return total
+        return total, path
 
     def print_external(self):
         print("not measured: " + ", ".join(sorted(e for e in self.external
@@ -194,6 +202,7 @@ def main():
     ap.add_argument("--stack-words", type=int)
     ap.add_argument("--margin", type=float, default=1.5)
     ap.add_argument("--context-words", type=int, default=64)
+    ap.add_argument("--summary", help="write the figures as JSON")
     ap.add_argument("files", nargs="+")
     a = ap.parse_args()
     if a.background is None and a.isr is None:
@@ -207,10 +216,15 @@ def main():
     if a.background is None or a.isr is None:
         fail("--background and --isr go together")
     graph = load_graph(a.files)
-    background = graph.report(a.background)
-    isr = graph.report(a.isr)
+    background, background_path = graph.report(a.background)
+    isr, isr_path = graph.report(a.isr)
     graph.print_external()
     need = int(math.ceil(a.margin * (background + isr) / 2.0)) + a.context_words
+    if a.summary:
+        with open(a.summary, "w") as f:
+            json.dump({"background_bytes": background, "isr_bytes": isr, "need_words": need,
+                       "background_path": background_path, "isr_path": isr_path,
+                       "margin": a.margin, "context_words": a.context_words}, f)
     print("background + nested ISR: %d bytes on the proxy; C28x requirement %d words "
           "(%.1f x bytes / 2 + %d words of interrupt context)"
           % (background + isr, need, a.margin, a.context_words))

@@ -7,15 +7,18 @@
  *
  *   code start   BEGIN 0x33FFF6 (boot-to-flash entry) -> codestart.asm
  *   ramfuncs     loaded to FLASHD, run from L0..L3 (copied by fw_ramfuncs_copy): the
- *                code of the whole per-period path - control ISR, drive step, control
- *                step, protection, the drivers they call and the run-time library
- *                routines the compiler calls from them - and the flash wait-state set-up
+ *                code of the whole per-period path, function by function - control ISR,
+ *                drive step, control step, protection, the drivers they call and the
+ *                run-time library routines the compiler calls from them - and the flash
+ *                wait-state set-up. The Q24 image (linked with --define=SIXPHASE_FW_Q24,
+ *                firmware/f28335/CMakeLists.txt) leaves the MPTC-49/13 search in flash: it
+ *                would not fit L0..L3 beside the rest (docs/porting.md section 7)
  *   ramconsts    loaded to FLASHA, run from L4..L7 (copied likewise): the constant
- *                tables of that path. Nothing of a control period waits on flash.
+ *                tables of that path. Nothing else of a control period waits on flash.
  *   .text        FLASHC, FLASHB (start-up, background loop, parameter builds)
  *   constants    FLASHA: .cinit, .pinit, .econst, .switch of everything else
- *   .stack       M0 + M1, 0x700 words (tools/check_stack.sh sizes it: background plus a
- *                nested control interrupt, with margin; the stack must lie below 0x10000)
+ *   .stack       M0 + M1, 0x700 words (tools/check_target_memory.sh sizes it: background
+ *                plus a nested control interrupt, with margin; it must lie below 0x10000)
  *   .ebss        L4..L7
  * docs/porting.md section 7 has the RAM budget (tools/check_target_memory.sh).
  *
@@ -53,27 +56,94 @@ SECTIONS
 {
    codestart  : > BEGIN,   PAGE = 0
    /* Object names match both CMake's (ctl.c.obj) and CCS's (ctl.obj) naming. */
+   /* The functions a control period can execute (tools/check_target_memory.sh fails when one
+    * is missing: it names the line to add), each in its own subsection (cl2000
+    * --gen_func_subsections=on); static helpers and header inlines are listed too, in case
+    * cl2000 keeps them out of line. Those of the HAL marked F28335_RAMFUNC (the ISR, ADC,
+    * PWM and encoder reads, the cycle counter, the flash set-up) come with *(ramfuncs). */
    ramfuncs   : {
                    *(ramfuncs)
-                   *fw_isr.*obj(.text)
-                   *drive.*obj(.text)
-                   *drive_capture.*obj(.text)
-                   *capture.*obj(.text)
-                   *profile.*obj(.text)
-                   *ctl.*obj(.text)
-                   *ctl_q.*obj(.text)
-                   *ctl_vsd.*obj(.text)
-                   *ctl_ddc.*obj(.text)
-                   *ctl_mptc.*obj(.text)
-                   *ctl_speed_pi.*obj(.text)
-                   *ctl_flux_ref.*obj(.text)
-                   *ctl_protect.*obj(.text)
-                   *ctl_barrier.*obj(.text)
-                   *f28335_pwm.*obj(.text)
-                   *f28335_adc.*obj(.text)
-                   *f28335_eqep.*obj(.text)
-                   *f28335_cycles.*obj(.text)
-                   *f28335_gpio.*obj(.text)
+                   /* control/include/ctl_predict.h */
+                   *(.text:_ctl_flux_d) *(.text:_ctl_flux_magnitude) *(.text:_ctl_flux_q)
+                   *(.text:_ctl_predict_dq) *(.text:_ctl_predict_dq_free)
+                   *(.text:_ctl_predict_xy) *(.text:_ctl_torque_flux) *(.text:_ctl_torque_psi)
+                   /* control/include/ctl_pulse.h */
+                   *(.text:_ctl_pulse_edges) *(.text:_ctl_pulse_high_zero)
+                   *(.text:_ctl_pulse_legs_switching)
+                   /* control/include/ctl_q.h */
+                   *(.text:_ctl_abs) *(.text:_ctl_add) *(.text:_ctl_clamp)
+                   *(.text:_ctl_from_turn_u32) *(.text:_ctl_max) *(.text:_ctl_min)
+                   *(.text:_ctl_mul) *(.text:_ctl_mul_acc) *(.text:_ctl_mul_add)
+                   *(.text:_ctl_mul_dec) *(.text:_ctl_mul_int) *(.text:_ctl_mul_q16)
+                   *(.text:_ctl_mul_sub) *(.text:_ctl_q48_to_q24) *(.text:_ctl_sat64)
+                   *(.text:_ctl_sub) *(.text:_ctl_to_qn)
+                   /* control/include/ctl_search.h */
+                   *(.text:_ctl_horizon_cost) *(.text:_ctl_horizon_cost_of)
+                   *(.text:_ctl_horizon_forced) *(.text:_ctl_horizon_prepare)
+                   /* control/include/ctl_vectors.h */
+                   *(.text:_ctl_vector_leg) *(.text:_ctl_vector_ones)
+                   /* control/include/ctl_vsd.h */
+                   *(.text:_ctl_park) *(.text:_ctl_park_inverse)
+                   /* control/src/ctl.c */
+                   *(.text:_advance_angle) *(.text:_command_from_choice) *(.text:_command_off)
+                   *(.text:_ctl_config) *(.text:_ctl_config_take) *(.text:_ctl_diag_flux_est)
+                   *(.text:_ctl_reset) *(.text:_ctl_step) *(.text:_predict) *(.text:_record_diag)
+                   *(.text:_select_ddc) *(.text:_use_config)
+                   /* control/src/ctl_ddc.c */
+                   *(.text:_competing_levels) *(.text:_ctl_ddc_select) *(.text:_duty_search)
+                   /* control/src/ctl_flux_ref.c */
+                   *(.text:_ctl_flux_ref_run)
+#ifndef SIXPHASE_FW_Q24   /* the Q24 image runs the MPTC-49/13 search from flash */
+                   /* control/src/ctl_mptc.c */
+                   *(.text:_ctl_mptc_select)
+#endif
+                   /* control/src/ctl_protect.c */
+                   *(.text:_any_nan) *(.text:_check_adc) *(.text:_check_encoder)
+                   *(.text:_check_open_phase) *(.text:_ctl_protect_check)
+                   *(.text:_ctl_protect_clear) *(.text:_ctl_protect_converter_alive)
+                   *(.text:_ctl_protect_raise) *(.text:_drop_one) *(.text:_fill_record)
+                   *(.text:_filtered) *(.text:_open_phase_restart) *(.text:_record)
+                   *(.text:_reset_filters) *(.text:_turn_difference)
+                   /* control/src/ctl_q.c */
+                   *(.text:_ctl_cos_pu) *(.text:_ctl_sector24) *(.text:_ctl_sin_pu)
+                   *(.text:_ctl_sincos_pu) *(.text:_ctl_sqrt) *(.text:_ctl_sqrtf)
+                   *(.text:_ctl_wrap_turn) *(.text:_top_bit)
+                   /* control/src/ctl_speed_pi.c */
+                   *(.text:_ctl_speed_pi_reset) *(.text:_ctl_speed_pi_run)
+                   /* control/src/ctl_vsd.c */
+                   *(.text:_ctl_vsd_forward)
+                   /* firmware/app/capture.c */
+                   *(.text:_capture_due) *(.text:_capture_sample) *(.text:_capture_triggered)
+                   /* firmware/app/drive.c */
+                   *(.text:_drive_calibrate) *(.text:_drive_clear_blockers)
+                   *(.text:_drive_control_isr) *(.text:_drive_control_step)
+                   *(.text:_drive_duty_to_hal) *(.text:_drive_enter_fault)
+                   *(.text:_drive_fault_from_mask) *(.text:_drive_fault_step)
+                   *(.text:_drive_fault_to_mask) *(.text:_drive_latch_fault)
+                   *(.text:_drive_limits) *(.text:_drive_omega_scale) *(.text:_drive_protect)
+                   *(.text:_drive_ready_step) *(.text:_drive_refuse_run)
+                   *(.text:_drive_report_overrun) *(.text:_drive_run_check)
+                   *(.text:_drive_run_step) *(.text:_drive_scale_measurements)
+                   *(.text:_drive_start_calibration) *(.text:_drive_trip)
+                   /* firmware/app/drive_capture.c */
+                   *(.text:_capture_pu) *(.text:_capture_scale) *(.text:_drive_capture_period)
+                   *(.text:_drive_capture_value)
+                   /* firmware/app/profile.c */
+                   *(.text:_prof_begin) *(.text:_prof_count_overrun) *(.text:_prof_ctl_stage)
+                   *(.text:_prof_elapsed) *(.text:_prof_end) *(.text:_prof_mark)
+                   *(.text:_prof_permille) *(.text:_prof_record)
+                   /* hal/f28335/src/f28335_adc.c */
+                   *(.text:_f28335_adc_sequence_pending)
+                   /* hal/f28335/src/f28335_eqep.c */
+                   *(.text:_abs32) *(.text:_f28335_qep_angle) *(.text:_f28335_qep_speed_capture)
+                   *(.text:_f28335_qep_speed_unit) *(.text:_hal_encoder_rehome)
+                   *(.text:_qep_unit_period)
+                   /* hal/f28335/src/f28335_gpio.c */
+                   *(.text:_f28335_gpio_read)
+                   /* hal/f28335/src/f28335_pwm.c */
+                   *(.text:_f28335_pwm_cmpa_for) *(.text:_f28335_pwm_force_for)
+                   *(.text:_hal_pwm_enable) *(.text:_hal_pwm_hw_trip_seen)
+                   *(.text:_hal_pwm_is_off) *(.text:_pwm_force_all)
                    -lrts2800_fpu32.lib(.text)
                 }
                 LOAD = FLASHD,

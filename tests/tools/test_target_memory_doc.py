@@ -1,0 +1,75 @@
+#!/usr/bin/env python3
+"""tools/target_memory_doc.py: docs/porting.md's stack and RAM figures are written from the
+tools' summaries, and the CI check fails as soon as the document and the tools disagree."""
+import json
+import os
+import subprocess
+import sys
+import tempfile
+import unittest
+
+TOOL = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools",
+                    "target_memory_doc.py")
+
+
+def write_build(d, code_words, isr_bytes, from_flash):
+    os.makedirs(d)
+    with open(os.path.join(d, "stack.json"), "w") as f:
+        json.dump({"background_bytes": 688, "isr_bytes": isr_bytes, "need_words": 1096,
+                   "background_path": ["main (8)", "fw_startup (152)"],
+                   "isr_path": ["fw_adc_isr (16)", "ctl_step (272)"]}, f)
+    with open(os.path.join(d, "ram.json"), "w") as f:
+        json.dump({"code_words": code_words, "table_words": 5524, "ebss_words": 5247,
+                   "code_region": "RAML0L3", "data_region": "RAML4L7",
+                   "regions": {"RAML0L3": 16384, "RAML4L7": 16384},
+                   "use": {"RAML0L3": code_words, "RAML4L7": 10771},
+                   "from_flash": from_flash}, f)
+
+
+class TargetMemoryDoc(unittest.TestCase):
+    def test_write_then_check_then_drift(self):
+        with tempfile.TemporaryDirectory() as d:
+            doc = os.path.join(d, "porting.md")
+            with open(doc, "w") as f:
+                f.write("before\n<!-- target-memory -->\nold 14998 words\n"
+                        "<!-- /target-memory -->\nafter\n")
+            write_build(os.path.join(d, "float"), 10237, 688, [])
+            write_build(os.path.join(d, "fixed"), 13663, 696, ["ctl_mptc_select"])
+            base = [sys.executable, TOOL, doc, "--stack-words", "1792", "--float",
+                    os.path.join(d, "float"), "--fixed", os.path.join(d, "fixed")]
+
+            def run(mode):
+                return subprocess.run(base[:2] + [mode] + base[2:], stdout=subprocess.PIPE,
+                                      stderr=subprocess.PIPE, text=True)
+
+            self.assertNotEqual(run("--check-doc").returncode, 0)  # the hand-written block
+            self.assertEqual(run("--write-doc").returncode, 0)
+            text = open(doc).read()
+            self.assertTrue(text.startswith("before\n") and text.endswith("after\n"))
+            self.assertIn("| float (default) | 10237 words (62 %) |", text)
+            self.assertIn("| fixed (Q24; `ctl_mptc_select` in flash) | 13663 words (83 %) |", text)
+            self.assertIn("688 + 696 B -> 1096 words", text)
+            self.assertNotIn("14998", text)
+            r = run("--check-doc")
+            self.assertEqual(r.returncode, 0, r.stderr)
+            write_build(os.path.join(d, "float2"), 10300, 688, [])  # the code grew
+            base[base.index(os.path.join(d, "float"))] = os.path.join(d, "float2")
+            r = run("--check-doc")
+            self.assertNotEqual(r.returncode, 0)
+            self.assertIn("out of date", r.stderr)
+
+    def test_missing_markers_fail(self):
+        with tempfile.TemporaryDirectory() as d:
+            doc = os.path.join(d, "porting.md")
+            with open(doc, "w") as f:
+                f.write("no block\n")
+            write_build(os.path.join(d, "b"), 1, 1, [])
+            r = subprocess.run([sys.executable, TOOL, "--write-doc", doc, "--stack-words", "1",
+                                "--float", os.path.join(d, "b"), "--fixed", os.path.join(d, "b")],
+                               stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+            self.assertNotEqual(r.returncode, 0)
+            self.assertIn("no <!-- target-memory -->", r.stderr)
+
+
+if __name__ == "__main__":
+    unittest.main()
