@@ -1,7 +1,9 @@
 /*
  * ADC: one conversion sequence per control period, started by the PWM at
- * counter zero (centre of the zero vector). Raw 12-bit results; scaling to
- * physical units uses hal_board.h, scaling to per unit is the application's.
+ * counter zero: the period boundary, the symmetry point of the centred pulses.
+ * A leg is low there unless its duty is 100 %, so the inverter need not be in
+ * its all-low state when the currents are sampled. Raw 12-bit results; scaling
+ * to physical units uses hal_board.h, scaling to per unit is the application's.
  */
 #ifndef HAL_ADC_H
 #define HAL_ADC_H

@@ -24,7 +24,9 @@
  *               complementary: xA = upper switch, xB = lower switch
  *   trip zone   TZ1 (GPIO12, active low) one-shot trips every module, both
  *               outputs forced low; software force-off = TZFRC.OST
- *   ADC start   ePWM1 SOCA at CTR = 0 (centre of the zero vector)
+ *   ADC start   ePWM1 SOCA at CTR = 0: the period boundary, the symmetry
+ *               point of the centred pulses; a leg is low there unless its
+ *               duty is 100 % (not always all legs low)
  */
 #include "f28335_hal.h"
 #include "f28335_internal.h"
