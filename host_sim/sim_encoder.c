@@ -30,17 +30,21 @@ void sim_encoder_restart(sim_encoder_t *enc)
     enc->index_known = false;
 }
 
-/* Index pulse: the shaft as the encoder sees it crossed a whole mechanical turn (either way). */
+/* Index pulse: the shaft as the encoder sees it crossed a whole mechanical turn (either way).
+ * Two compares per period; the turn's bounds are recomputed only after a crossing. */
 static void enc_index(sim_encoder_t *enc, double theta_m, sim_fault_state_t *fs)
 {
-    const double turn = floor(theta_m * (1.0 / ENC_TWO_PI));
-    if (enc->index_known && turn != enc->index_turn) {
+    if (enc->index_known && theta_m >= enc->index_lo && theta_m < enc->index_hi) {
+        return;
+    }
+    if (enc->index_known) {
         if (hal_sim_bus.encoder_homing_lost) {
             sim_fault_encoder_rehomed(fs);
         }
         hal_sim_post_encoder_index();
     }
-    enc->index_turn = turn;
+    enc->index_lo = floor(theta_m * (1.0 / ENC_TWO_PI)) * ENC_TWO_PI;
+    enc->index_hi = enc->index_lo + ENC_TWO_PI;
     enc->index_known = true;
 }
 

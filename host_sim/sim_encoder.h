@@ -28,8 +28,9 @@ typedef struct {
     int64_t ring_count[SIM_ENCODER_RING_MAX];
     double ring_t[SIM_ENCODER_RING_MAX];
     int ring_len, ring_pos;
-    bool first;        /* the next sample starts the speed window afresh */
-    double index_turn; /* mechanical turn of the last sample (the index sits at theta_m = 0) */
+    bool first;                /* the next sample starts the speed window afresh */
+    double index_lo, index_hi; /* the mechanical turn of the last sample, rad (the index sits at
+                                  theta_m = 0 mod 2 pi) */
     bool index_known;
 } sim_encoder_t;
 
