@@ -1,13 +1,16 @@
 #!/usr/bin/env python3
 """Compares the output streams of tools/avr_proxy/replay.c from the host and the AVR build.
 
-usage: compare.py --arith {fixed,float} [--quiet] HOST_OUT AVR_OUT
+usage: compare.py --arith {fixed,float} [--quiet] [--summary FILE.json] HOST_OUT AVR_OUT
 fixed: the streams must be byte-identical; otherwise the first differing record and field.
 float: the commands (vector, duty, leg duties, enable) must be identical; every other field
        that differs is reported (the largest difference of each number field).
-Exit status 0 when the rule holds, 1 otherwise.
+Exit status 0 when the rule holds, 1 otherwise. --summary writes the result as JSON (steps,
+records, bytes, identical, largest diagnostic difference and its field) for the benchmark
+report (tools/bench/run_benchmark.py).
 """
 import argparse
+import json
 import struct
 import sys
 
@@ -111,6 +114,7 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--arith", choices=("fixed", "float"), required=True)
     ap.add_argument("--quiet", action="store_true", help="no coverage line")
+    ap.add_argument("--summary", help="write the result as JSON")
     ap.add_argument("host")
     ap.add_argument("avr")
     a = ap.parse_args()
@@ -170,6 +174,12 @@ def main():
     if len(host) != len(avr) and not failed:
         failed = True
         first = "output lengths differ: host %d bytes, avr %d bytes" % (len(host), len(avr))
+    largest = max(diffs.items(), key=lambda kv: kv[1][1], default=(None, [0, 0.0, ""]))
+    if a.summary:
+        with open(a.summary, "w") as f:
+            json.dump({"arith": a.arith, "ok": not failed, "steps": steps, "records": nrec,
+                       "bytes": len(host), "identical": host == avr,
+                       "max_diag_diff": largest[1][1], "max_diag_field": largest[0]}, f)
     if failed:
         print("%s: FAIL: first difference: %s" % (label, first))
         for key, (n, m, msg) in sorted(diffs.items())[:20]:

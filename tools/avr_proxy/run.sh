@@ -15,6 +15,8 @@
 #   --inject-bug   teeth check: build from a scratch copy of control/ with an int-width bug
 #                  (an int16 product that overflows a 16-bit int) and expect the fixed
 #                  comparison to FAIL; exits 0 only if the proxy catches it
+# The host-vs-AVR results also go to DIR/compare-fixed.json and compare-float.json (steps,
+# identical or not, largest float diagnostic difference): docs/performance.md reports them.
 # env: SIXPHASE_SIM=path to a built sixphase-sim (else it is built in DIR/host)
 # Needs gcc-avr avr-libc binutils-avr simavr libsimavr-dev python3 (tools/install-deps.sh).
 set -euo pipefail
@@ -121,8 +123,10 @@ done
 
 # 4. Compare and summarise.
 echo "host vs AVR (${ti_paths[*]:-gcc builtin paths} on both):"
-python3 "$proxy/compare.py" --arith fixed "$out/host-0.out" "$out/avr-0.out" || rc=1
-python3 "$proxy/compare.py" --arith float "$out/host-1.out" "$out/avr-1.out" || rc=1
+python3 "$proxy/compare.py" --arith fixed --summary "$out/compare-fixed.json" \
+  "$out/host-0.out" "$out/avr-0.out" || rc=1
+python3 "$proxy/compare.py" --arith float --summary "$out/compare-float.json" \
+  "$out/host-1.out" "$out/avr-1.out" || rc=1
 if [ ${#ti_paths[@]} -gt 0 ]; then
   echo "host, gcc builtin paths vs TI paths:"
   python3 "$proxy/compare.py" --arith fixed --quiet "$out/host-gcc-0.out" "$out/host-0.out" || rc=1

@@ -4,10 +4,11 @@ real-time factor (wall clock, machine-dependent), with the default output (trace
 fine.csv) and without output, for `sixphase-sim run --controller ddc --scenario steady` at
 10 kHz. The per-period figure is the difference between a 2 s and a 1 s run divided by the
 10,000 periods between them, so start-up, calibration and the end-of-run metrics cancel.
-Writes the block between the sim-benchmark markers of docs/simulator.md; fails when a figure
-exceeds its regression budget.
+Writes the block between the sim-benchmark markers of docs/simulator.md (--doc), or the block
+alone to a file of its own (--block-out, CI: the committed document is neither read nor
+changed); fails when a figure exceeds its regression budget.
 
-usage: sim_benchmark.py --sim PATH --doc docs/simulator.md --work DIR
+usage: sim_benchmark.py --sim PATH (--doc docs/simulator.md | --block-out FILE) --work DIR
 """
 import argparse
 import os
@@ -79,20 +80,27 @@ def block(rows):
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--sim", required=True)
-    ap.add_argument("--doc", required=True)
+    where = ap.add_mutually_exclusive_group(required=True)
+    where.add_argument("--doc")
+    where.add_argument("--block-out")
     ap.add_argument("--work", required=True)
     args = ap.parse_args()
     if not os.access(args.sim, os.X_OK):
         fail(f"not an executable: {args.sim}")
     os.makedirs(args.work, exist_ok=True)
     rows = measure(args.sim, args.work)
-    with open(args.doc) as f:
-        doc = f.read()
-    if BEGIN not in doc or END not in doc:
-        fail(f"{args.doc} has no {BEGIN} ... {END} block")
-    doc = doc[:doc.index(BEGIN)] + block(rows) + doc[doc.index(END) + len(END):]
-    with open(args.doc, "w") as f:
-        f.write(doc)
+    if args.block_out:
+        os.makedirs(os.path.dirname(os.path.abspath(args.block_out)), exist_ok=True)
+        with open(args.block_out, "w") as f:
+            f.write(block(rows) + "\n")
+    else:
+        with open(args.doc) as f:
+            doc = f.read()
+        if BEGIN not in doc or END not in doc:
+            fail(f"{args.doc} has no {BEGIN} ... {END} block")
+        doc = doc[:doc.index(BEGIN)] + block(rows) + doc[doc.index(END) + len(END):]
+        with open(args.doc, "w") as f:
+            f.write(doc)
     for label, per_period, rtf in rows:
         print(f"simulator, {label}: {per_period:,.0f} instructions per period, {rtf:.0f}x real time")
     over = [(label, p) for label, p, _ in rows if p > BUDGET[label]]
