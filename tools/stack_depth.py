@@ -18,7 +18,8 @@ kept next to the table or the hook they call through:
     /* indirect-call: CALLER[, CALLER...] -> TARGET[, TARGET...] */
 where a TARGET is a function, `table NAME` (every function named in the initializer of the
 array NAME in the same file) or `external NAME` (a routine outside the compiled sources, not
-measured). CALLER is the function that makes the call as gcc reports it (list the function
+measured); `nothing` alone says the image never sets the pointer (a hook only a host build
+uses). CALLER is the function that makes the call as gcc reports it (list the function
 that holds the call and the one it may be inlined into). The tool fails on an indirect call
 no note resolves, on a note no indirect call needs, on recursion (the depth would be
 unbounded) and on dynamic (VLA / alloca) frames.
@@ -105,7 +106,10 @@ def read_notes(sources, functions):
             where = "%s:%d" % (src, text.count("\n", 0, m.start()) + 1)
             callers = [c for c in re.split(r"[\s,]+", m.group(1)) if c]
             targets, externals = set(), set()
-            for item in (t.strip() for t in m.group(2).split(",")):
+            items = [t.strip() for t in m.group(2).split(",")]
+            if items == ["nothing"]:
+                items = []
+            for item in items:
                 words = item.split()
                 if len(words) == 2 and words[0] == "table":
                     targets.update(table_functions(text, words[1], functions, where))

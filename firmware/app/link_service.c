@@ -17,6 +17,8 @@ void link_service_init(link_service_t *s, uint32_t gap_cycles)
     s->platform_ctx = 0;
 }
 
+/* indirect-call: link_service_step, link_receive -> nothing (the board sets no platform hook;
+ * the simulator's virtual board does) */
 void link_service_set_platform(link_service_t *s, link_platform_fn fn, void *ctx)
 {
     s->platform = fn;

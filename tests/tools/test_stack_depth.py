@@ -72,6 +72,11 @@ class StackDepthIndirect(unittest.TestCase):
         self.assertNotEqual(r.returncode, 0)
         self.assertIn("'smal' is not a function", r.stderr)
 
+    def test_a_pointer_the_image_never_sets(self):
+        r = self.run_tool("/* indirect-call: dispatch -> nothing (a host-only hook) */")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn("worst-case stack from dispatch: 24 bytes", r.stdout)
+
     def test_external_target_is_reported_not_measured(self):
         r = self.run_tool("/* indirect-call: dispatch -> small, external rom_routine */")
         self.assertEqual(r.returncode, 0, r.stderr)
