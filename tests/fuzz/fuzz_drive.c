@@ -169,7 +169,7 @@ static void parameter_set(stream_t *s)
     (void)drive_request_params(&drive, &p);
 }
 
-/* The ISR's view of one period: ADC words, the encoder, the trip pin. */
+/* The ISR's view of one period: ADC words, the encoder and its index, the trip pin. */
 static void period_inputs(stream_t *s, uint16_t flags)
 {
     hal_adc_sample_t adc;
@@ -185,6 +185,9 @@ static void period_inputs(stream_t *s, uint16_t flags)
     enc.mech_speed_q16 = (int32_t)(int16_t)take16(s);
     enc.healthy = (flags & 4u) != 0u;
     hal_sim_post_encoder(&enc);
+    if ((flags & 16u) != 0u) {
+        hal_sim_post_encoder_index(); /* the index: homed again after an ENCODER clear */
+    }
     if ((flags & 1u) != 0u) {
         hal_sim_post_adc(&adc);
     }
