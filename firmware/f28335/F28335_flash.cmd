@@ -87,8 +87,9 @@ SECTIONS
                    /* control/src/ctl.c */
                    *(.text:_advance_angle) *(.text:_command_from_choice) *(.text:_command_off)
                    *(.text:_ctl_config) *(.text:_ctl_config_take) *(.text:_ctl_diag_flux_est)
-                   *(.text:_ctl_reset) *(.text:_ctl_step) *(.text:_predict) *(.text:_record_diag)
-                   *(.text:_select_ddc) *(.text:_use_config)
+                   *(.text:_ctl_reset) *(.text:_ctl_step) *(.text:_mid_period_angles)
+                   *(.text:_predict) *(.text:_record_diag) *(.text:_select_ddc)
+                   *(.text:_use_config)
                    /* control/src/ctl_ddc.c */
                    *(.text:_competing_levels) *(.text:_ctl_ddc_select) *(.text:_duty_search)
                    /* control/src/ctl_flux_ref.c */
@@ -107,7 +108,8 @@ SECTIONS
                    /* control/src/ctl_q.c */
                    *(.text:_ctl_cos_pu) *(.text:_ctl_sector24) *(.text:_ctl_sin_pu)
                    *(.text:_ctl_sincos_pu) *(.text:_ctl_sqrt) *(.text:_ctl_sqrtf)
-                   *(.text:_ctl_wrap_turn) *(.text:_top_bit)
+                   *(.text:_ctl_wrap_turn) *(.text:_quarter_turn_on) *(.text:_sin_of_wrapped)
+                   *(.text:_top_bit)
                    /* control/src/ctl_speed_pi.c */
                    *(.text:_ctl_speed_pi_reset) *(.text:_ctl_speed_pi_run)
                    /* control/src/ctl_vsd.c */
