@@ -74,7 +74,7 @@ static int request(uint16_t cmd, const uint16_t *payload, uint16_t len, sxl_fram
 {
     uint16_t frame[SXL_MAX_FRAME];
     const uint16_t n = sxl_encode(cmd, payload, len, frame, (uint16_t)SXL_MAX_FRAME);
-    const double deadline = now_s() + 1.0;
+    const double deadline = now_s() + 5.0; /* a loaded host may answer late */
     send_bytes(frame, n);
     while (now_s() < deadline) {
         struct pollfd p = {port, POLLIN, 0};
@@ -95,17 +95,34 @@ static int32_t st_i32(const sxl_frame_t *r, uint16_t at)
     return sxl_get_i32(&r->payload[1 + at]);
 }
 
-/* Polls the status until pred holds or timeout_s passes; false on timeout. */
+/* Control periods of the server's drive per simulated second (serve's default 10 kHz). */
+#define SERVE_PERIODS_PER_S 10000.0
+/* The host may fall behind real time on a loaded machine: the wall clock only guards against a
+ * dead server, with this much slack over the simulated time asked for. */
+#define SERVE_WALL_SLACK 20.0
+
+/* Polls the status until pred holds or timeout_s of the drive's own (simulated) time passes,
+ * counted by its control periods; false on timeout. */
 static bool wait_for(bool (*pred)(const sxl_frame_t *), double timeout_s, sxl_frame_t *r)
 {
-    const double deadline = now_s() + timeout_s;
+    const double wall_deadline = now_s() + SERVE_WALL_SLACK * timeout_s + 5.0;
+    uint32_t first = 0u;
+    bool have_first = false;
     do {
+        uint32_t periods;
         status(r);
         if (pred(r)) {
             return true;
         }
+        periods = sxl_get_u32(&r->payload[1 + SXL_ST_ISR_COUNT]);
+        if (!have_first) {
+            first = periods;
+            have_first = true;
+        } else if ((double)(uint32_t)(periods - first) > timeout_s * SERVE_PERIODS_PER_S) {
+            return false;
+        }
         sleep_s(0.02);
-    } while (now_s() < deadline);
+    } while (now_s() < wall_deadline);
     return false;
 }
 
