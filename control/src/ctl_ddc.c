@@ -20,24 +20,12 @@ typedef struct {
  *   flux tie band: levels whose torque error is within a fraction of one level's torque step
  *     of the best, so the flux term only breaks near-ties (the step from the levels' span).
  * Only the competing levels need a flux root. */
-static void competing_levels(const ctl_ddc_config_t *cfg, const ctl_q *torque,
-                             const ctl_q *torque_err, int16_t *first, int16_t *last, ctl_q *bound)
+static void competing_levels(const ctl_ddc_config_t *cfg, const ctl_q *torque, int16_t best,
+                             ctl_q best_err, int16_t *first, int16_t *last, ctl_q *bound)
 {
-    int16_t best = 0;
-    ctl_q best_err = CTL_Q_MAX;
-    int16_t k;
     *first = 0;
     *last = (int16_t)(cfg->n_levels - 1);
     *bound = CTL_Q_MAX;
-    if (!cfg->torque_guard && cfg->tie_per_span == CTL_Q(0.0)) {
-        return;
-    }
-    for (k = 0; k < cfg->n_levels; k++) {
-        if (torque_err[k] < best_err) {
-            best_err = torque_err[k];
-            best = k;
-        }
-    }
     if (cfg->torque_guard) {
         *first = (best > 0) ? (int16_t)(best - 1) : 0;
         *last = (best < *last) ? (int16_t)(best + 1) : *last;
@@ -63,20 +51,26 @@ static void duty_search(const ctl_horizon_t *h, const ctl_ddc_config_t *cfg, int
     int16_t last;
     ctl_q bound;
     int16_t k;
+    const int16_t zero_level = (int16_t)(cfg->n_levels - 1); /* levels 1 first, 0 last */
+    int16_t best = zero_level;
+    ctl_q best_err;
     ctl_horizon_forced(h, &ctl_vector_vsd[vector], &did, &diq);
-    for (k = 0; k < cfg->n_levels; k++) {
+    torque[zero_level] = zero->torque;
+    psi_d[zero_level] = zero->psi_d;
+    psi_q[zero_level] = zero->psi_q;
+    torque_err[zero_level] = ctl_abs(ctl_sub(zero->torque, h->torque_ref));
+    best_err = torque_err[zero_level];
+    for (k = (int16_t)(zero_level - 1); k >= 0; k--) { /* ties: the larger duty, as before */
         const ctl_q d = cfg->levels[k];
-        if (d == CTL_Q(0.0)) {
-            torque[k] = zero->torque;
-            psi_d[k] = zero->psi_d;
-            psi_q[k] = zero->psi_q;
-        } else {
-            torque[k] = ctl_torque_psi(h->model, ctl_mul_acc(h->id2_free, d, did),
-                                       ctl_mul_acc(h->iq2_free, d, diq), &psi_d[k], &psi_q[k]);
-        }
+        torque[k] = ctl_torque_psi(h->model, ctl_mul_acc(h->id2_free, d, did),
+                                   ctl_mul_acc(h->iq2_free, d, diq), &psi_d[k], &psi_q[k]);
         torque_err[k] = ctl_abs(ctl_sub(torque[k], h->torque_ref));
+        if (torque_err[k] <= best_err) {
+            best_err = torque_err[k];
+            best = k;
+        }
     }
-    competing_levels(cfg, torque, torque_err, &first, &last, &bound);
+    competing_levels(cfg, torque, best, best_err, &first, &last, &bound);
     out->vector = vector;
     out->cost = CTL_Q_MAX;
     out->duty = CTL_Q(0.0);
