@@ -24,7 +24,7 @@ void sim_cli_usage(FILE *f)
         "                   [--ddc-direction {flux-error,xy-table}] [--duty-levels N] "
         "[--ddc-torque-guard | --paper-ddc]\n"
         "                   [--delay-angle {period-start,mid-period}] "
-        "[--pulse-pattern {by-ones,fewest-transitions}]\n"
+        "[--pulse-pattern {by-ones,fewest-transitions,fewest-per-set}]\n"
         "                   [--flux-tie-band LEVELS]\n"
         "                   [--flux-ref {constant,mtpa}] [--torque-limit NM] [--trip-current A] "
         "[--lxy H] [--vdc V] [--dead-time S]\n"
@@ -93,7 +93,9 @@ static const char *const directions[] = {"flux-error", "xy-table", NULL};
 static const char *const flux_refs[] = {"constant", "mtpa", NULL};
 static const char *const integrators[] = {"exact", "rk4", NULL}; /* plant_integrator_t order */
 static const char *const delay_angles[] = {"period-start", "mid-period", NULL};
-static const char *const pulse_patterns[] = {"by-ones", "fewest-transitions", NULL};
+/* ctl_pulse_pattern_t order */
+static const char *const pulse_patterns[] = {"by-ones", "fewest-transitions", "fewest-per-set",
+                                             NULL};
 
 #define F(member) offsetof(sim_cli_t, member)
 #define FLAG(n, k, m, g, v)                                                                        \
@@ -168,7 +170,7 @@ static const opt_t options[] = {
     FLAG("--ddc-torque-guard", OPT_SET_INT, cfg.ddc_torque_guard, G_GUARD, 1),
     {"--paper-ddc", OPT_PAPER, OPT_RUN, 0u, G_GUARD, 0.0, 0.0, 0, NULL},
     CHOICE("--delay-angle", cfg.mid_period_angle, G_DELAY_ANGLE, delay_angles),
-    CHOICE("--pulse-pattern", cfg.fewest_transitions, G_PULSE_PATTERN, pulse_patterns),
+    CHOICE("--pulse-pattern", cfg.pulse_pattern, G_PULSE_PATTERN, pulse_patterns),
     NUM("--flux-tie-band", cfg.flux_tie_band, G_TIE_BAND, 0.0, 1.0),
     NUM("--lambda", cfg.lambda, G_LAMBDA, 0.0, 10000.0),
     NUM("--fs", cfg.fs_hz, G_FS, 1000.0, 100000.0),
@@ -338,7 +340,7 @@ static int apply_option(const opt_t *opt, const char *v, sim_cli_t *o, char *err
     case OPT_PAPER:
         o->cfg.ddc_torque_guard = 0;
         o->cfg.mid_period_angle = 0;
-        o->cfg.fewest_transitions = 0;
+        o->cfg.pulse_pattern = 0;
         o->cfg.flux_tie_band = 0.0;
         return 1;
     case OPT_NUMBER:

@@ -71,7 +71,7 @@ static void rep_apply_variant(sim_config_t *c, rep_variant_t v)
     }
     switch (v) {
     case REP_GUARD: /* the product's DDC: the core's defaults */
-        c->ddc_torque_guard = c->mid_period_angle = c->fewest_transitions = -1;
+        c->ddc_torque_guard = c->mid_period_angle = c->pulse_pattern = -1;
         c->flux_tie_band = -1.0;
         break;
     case REP_FS_7K5:
@@ -131,7 +131,7 @@ static rep_case_t *rep_add(rep_case_t *cases, int *n, const char *dir, const cha
     /* the paper's method (every improvement off) unless a case asks otherwise */
     c->cfg.ddc_torque_guard = 0;
     c->cfg.mid_period_angle = 0;
-    c->cfg.fewest_transitions = 0;
+    c->cfg.pulse_pattern = 0;
     c->cfg.flux_tie_band = 0.0;
     /* MPTC-49 peaks near 30 A (beyond the 15 A limit): the firmware trips it within
      * milliseconds (row protect_mptc49_l100), so its comparison rows run with the software
@@ -181,7 +181,7 @@ void rep_cases_first_batch(rep_case_t *cases, int *n, const char *dir)
         c = rep_add(cases, n, dir, "fault", name, 0, SIM_SCEN_STEADY, 100.0);
         c->cfg.fault = (sim_fault_t)k;
         /* the product's DDC, as `sixphase-sim run` */
-        c->cfg.ddc_torque_guard = c->cfg.mid_period_angle = c->cfg.fewest_transitions = -1;
+        c->cfg.ddc_torque_guard = c->cfg.mid_period_angle = c->cfg.pulse_pattern = -1;
         c->cfg.flux_tie_band = -1.0;
     }
 }
@@ -291,11 +291,15 @@ int rep_cases_equal_switching(rep_case_t *cases, int *n, const char *dir, int ro
     return added;
 }
 
-const char *const rep_sweep_variant[REP_SWEEP_VARIANTS] = {"paper", "guard", "fewest", "product",
-                                                           "product_mid"};
+const char *const rep_sweep_variant[REP_SWEEP_VARIANTS] = {"paper", "guard",   "fewest",
+                                                           "tie",   "product", "product_mid"};
 const char *const rep_sweep_label[REP_SWEEP_VARIANTS] = {
-    "the paper's DDC", "+ torque guard", "+ fewest transitions",
-    "+ flux tie band (product default)", "+ mid-period angle (option)"};
+    "the paper's DDC",
+    "+ torque guard",
+    "+ fewest transitions",
+    "+ flux tie band 0.25 (the earlier default)",
+    "+ zero state per set, tie band 0.5 (product default)",
+    "+ mid-period angle (option)"};
 
 void rep_cases_improvement_sweep(rep_case_t *cases, int *n, const char *dir)
 {
@@ -312,9 +316,10 @@ void rep_cases_improvement_sweep(rep_case_t *cases, int *n, const char *dir)
                 c->cfg.seed = (uint64_t)seed;
                 c->cfg.out_dir = NULL; /* metrics only */
                 c->cfg.ddc_torque_guard = (v >= 1) ? 1 : 0;
-                c->cfg.fewest_transitions = (v >= 2) ? 1 : 0;
-                c->cfg.flux_tie_band = (v >= REP_SWEEP_PRODUCT) ? -1.0 : 0.0; /* -1: default */
-                c->cfg.mid_period_angle = (v >= 4) ? 1 : 0;
+                /* -1: the core's default */
+                c->cfg.pulse_pattern = (v >= REP_SWEEP_PRODUCT) ? -1 : ((v >= 2) ? 1 : 0);
+                c->cfg.flux_tie_band = (v >= REP_SWEEP_PRODUCT) ? -1.0 : ((v >= 3) ? 0.25 : 0.0);
+                c->cfg.mid_period_angle = (v >= REP_SWEEP_PRODUCT + 1) ? 1 : 0;
             }
         }
     }

@@ -48,8 +48,8 @@ const rep_case_t *rep_eqsw_best(const rep_case_t *cases, int n, const char *base
  * no output files). */
 #define REP_SWEEP_SEEDS 3
 #define REP_SWEEP_LAMBDAS 10
-#define REP_SWEEP_VARIANTS 5
-#define REP_SWEEP_PRODUCT 3 /* the variant that is the core's default */
+#define REP_SWEEP_VARIANTS 6
+#define REP_SWEEP_PRODUCT 4 /* the variant that is the core's default */
 extern const char *const rep_sweep_variant[REP_SWEEP_VARIANTS]; /* names */
 extern const char *const rep_sweep_label[REP_SWEEP_VARIANTS];
 void rep_cases_improvement_sweep(rep_case_t *cases, int *n, const char *dir);

@@ -53,7 +53,7 @@ void sim_config_default(sim_config_t *c)
     c->flux_ref_mode = -1;
     c->ddc_torque_guard = -1;
     c->mid_period_angle = -1;
-    c->fewest_transitions = -1;
+    c->pulse_pattern = -1;
     c->flux_tie_band = -1.0;
     c->protect = true;
     c->fault = SIM_FAULT_NONE;

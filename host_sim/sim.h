@@ -37,9 +37,9 @@ typedef struct {
     int flux_ref_mode;      /* < 0: core default */
     int ddc_torque_guard;   /* < 0: core default (on); 0: the paper's method */
     int mid_period_angle;   /* < 0: core default (off: the paper's Eq. 17, period start); 1 on */
-    double flux_tie_band;   /* < 0: core default (0.25 of a duty level); 0: off (the paper) */
-    int fewest_transitions; /* < 0: core default (on); 0: zero vector placed by the count of
-                               upper switches on */
+    double flux_tie_band;   /* < 0: core default (0.5 of a duty level); 0: off (the paper) */
+    int pulse_pattern;      /* < 0: core default (fewest transitions per set); else a
+                               ctl_pulse_pattern_t (0: by ones, the paper's DDC here) */
     double torque_limit_nm; /* <= 0: scenario default (rated 7 N*m; 1.2x rated with rated load) */
     double trip_current_a;  /* > 0: simulated hardware over-current comparator (trip zone) */
     sim_fault_t fault;      /* injected fault (scenario fault-<name>): steady scenario */
@@ -125,7 +125,7 @@ typedef struct {
     /* core parameters in force */
     double p_speed_kp, p_speed_ki, p_torque_limit, p_flux_ref_wb;
     int p_duty_levels, p_ddc_direction, p_flux_ref_mode, p_ddc_torque_guard;
-    int p_mid_period_angle, p_fewest_transitions;
+    int p_mid_period_angle, p_pulse_pattern;
     double p_flux_tie_band;
 } sim_result_t;
 

@@ -72,8 +72,8 @@ static int bridge_init(const sim_ctl_config_t *cfg)
     if (cfg->mid_period_angle >= 0) {
         p.mid_period_angle = (cfg->mid_period_angle != 0);
     }
-    if (cfg->fewest_transitions >= 0) {
-        p.fewest_transitions = (cfg->fewest_transitions != 0);
+    if (cfg->pulse_pattern >= 0) {
+        p.pulse_pattern = (ctl_pulse_pattern_t)cfg->pulse_pattern;
     }
     if (cfg->flux_tie_band >= 0.0) {
         p.ddc_flux_tie_band = (float)cfg->flux_tie_band;
@@ -194,7 +194,7 @@ static void bridge_status(sim_ctl_status_t *st)
     st->p_flux_ref_mode = (int)prm->flux_ref_mode;
     st->p_ddc_torque_guard = prm->ddc_torque_guard ? 1 : 0;
     st->p_mid_period_angle = prm->mid_period_angle ? 1 : 0;
-    st->p_fewest_transitions = prm->fewest_transitions ? 1 : 0;
+    st->p_pulse_pattern = (int)prm->pulse_pattern;
     st->p_flux_tie_band = (double)prm->ddc_flux_tie_band;
     st->faults_latched = (unsigned)drive_faults_latched(&bridge_drive);
     st->fault_records = (int)ctl_protect_log_pending(&bridge_drive.protect);

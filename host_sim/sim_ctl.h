@@ -11,17 +11,17 @@
 #include <stdbool.h>
 
 typedef struct {
-    int controller;         /* 0 ddc, 1 mptc49, 2 mptc13 (ctl_controller_t) */
-    double lambda;          /* N*m/Wb */
-    double ts_s;            /* control period */
-    int duty_levels;        /* <= 0: core default */
-    int ddc_direction;      /* < 0: core default; 0 flux-error, 1 xy-table */
-    int flux_ref_mode;      /* < 0: core default; 0 constant, 1 MTPA */
-    int ddc_torque_guard;   /* < 0: core default (on); 0 off (paper), 1 on (docs/improvements.md) */
-    int mid_period_angle;   /* < 0: core default (off); 1 on */
-    int fewest_transitions; /* the same */
-    double flux_tie_band;   /* < 0: core default; 0 off (paper), else a fraction of a level */
-    double flux_ref_wb;     /* <= 0: core default */
+    int controller;       /* 0 ddc, 1 mptc49, 2 mptc13 (ctl_controller_t) */
+    double lambda;        /* N*m/Wb */
+    double ts_s;          /* control period */
+    int duty_levels;      /* <= 0: core default */
+    int ddc_direction;    /* < 0: core default; 0 flux-error, 1 xy-table */
+    int flux_ref_mode;    /* < 0: core default; 0 constant, 1 MTPA */
+    int ddc_torque_guard; /* < 0: core default (on); 0 off (paper), 1 on (docs/improvements.md) */
+    int mid_period_angle; /* < 0: core default (off); 1 on */
+    int pulse_pattern;    /* < 0: core default; else a ctl_pulse_pattern_t */
+    double flux_tie_band; /* < 0: core default; 0 off (paper), else a fraction of a level */
+    double flux_ref_wb;   /* <= 0: core default */
     /* machine as the controller knows it */
     double r_ohm, ld_h, lq_h, lxy_h, psi_f_wb;
     int pole_pairs;
@@ -49,7 +49,7 @@ typedef struct {
     /* effective core parameters (after defaults) */
     double p_lambda, p_speed_kp, p_speed_ki, p_torque_limit, p_flux_ref_wb;
     int p_duty_levels, p_ddc_direction, p_flux_ref_mode, p_ddc_torque_guard;
-    int p_mid_period_angle, p_fewest_transitions;
+    int p_mid_period_angle, p_pulse_pattern;
     double p_flux_tie_band;
     unsigned faults_latched; /* ctl_fault_t bits since the last clear */
     int fault_records;       /* unread records in the drive's fault log */

@@ -160,11 +160,11 @@ static void sim_print_json(FILE *f, const sim_config_t *c, const sim_result_t *r
             "%.6g, \"speed_ki_nm_per_rad\": %.6g, \"torque_limit_nm\": %.6g, "
             "\"flux_ref_wb\": %.6g, \"flux_ref_mode\": %d, \"duty_levels\": %d, "
             "\"ddc_direction\": %d, \"ddc_torque_guard\": %s, \"mid_period_angle\": %s, "
-            "\"fewest_transitions\": %s, \"flux_tie_band\": %.6g},\n",
+            "\"pulse_pattern\": %d, \"flux_tie_band\": %.6g},\n",
             r->lambda, r->p_speed_kp, r->p_speed_ki, r->p_torque_limit, r->p_flux_ref_wb,
             r->p_flux_ref_mode, r->p_duty_levels, r->p_ddc_direction,
             r->p_ddc_torque_guard ? "true" : "false", r->p_mid_period_angle ? "true" : "false",
-            r->p_fewest_transitions ? "true" : "false", r->p_flux_tie_band);
+            r->p_pulse_pattern, r->p_flux_tie_band);
     sim_print_plant_json(f, &c->plant);
     fprintf(f, "}\n");
 }

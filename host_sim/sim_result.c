@@ -53,7 +53,7 @@ static void result_drive(const sim_run_t *rs, sim_result_t *r)
     r->p_flux_ref_mode = st.p_flux_ref_mode;
     r->p_ddc_torque_guard = st.p_ddc_torque_guard;
     r->p_mid_period_angle = st.p_mid_period_angle;
-    r->p_fewest_transitions = st.p_fewest_transitions;
+    r->p_pulse_pattern = st.p_pulse_pattern;
     r->p_flux_tie_band = st.p_flux_tie_band;
 }
 

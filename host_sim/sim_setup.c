@@ -42,7 +42,7 @@ static void setup_controller_config(const sim_run_t *rs, sim_ctl_config_t *cc)
     cc->flux_ref_mode = c->flux_ref_mode;
     cc->ddc_torque_guard = c->ddc_torque_guard;
     cc->mid_period_angle = c->mid_period_angle;
-    cc->fewest_transitions = c->fewest_transitions;
+    cc->pulse_pattern = c->pulse_pattern;
     cc->flux_tie_band = c->flux_tie_band;
     cc->j_kgm2 = p->j_kgm2;
     cc->flux_ref_wb = 0.0;

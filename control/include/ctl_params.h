@@ -31,6 +31,16 @@ typedef enum {
     CTL_DDC_DIRECTION_XY_TABLE = 1    /* paper's table 2 literally: x-y sector picks one of four */
 } ctl_ddc_direction_t;
 
+/* Where the zero vector goes in a discrete-duty command (control/include/ctl_pulse.h). */
+typedef enum {
+    CTL_PULSE_BY_ONES = 0,            /* u77 in the middle for vectors with four or more upper
+                                       * switches on, u00 at the edges otherwise */
+    CTL_PULSE_FEWEST_TRANSITIONS = 1, /* u00 or u77, whichever switches fewer legs, the period
+                                       * boundary included */
+    CTL_PULSE_FEWEST_PER_SET = 2      /* the same over u00, u07, u70 and u77: each three-phase
+                                       * set's zero state on its own (two isolated neutrals) */
+} ctl_pulse_pattern_t;
+
 typedef struct {
     /* machine */
     float resistance_ohm;
@@ -47,17 +57,15 @@ typedef struct {
     int16_t duty_levels;    /* DDC: levels k/(n-1), k = 0..n-1; paper: 6 */
     ctl_ddc_direction_t ddc_direction;
     /* improvements over the paper (docs/improvements.md); false = the paper */
-    bool ddc_torque_guard;   /* (default on) flux weighting moves the duty at most one level
-                              * from the level that best meets the torque reference */
-    bool mid_period_angle;   /* every controller: each period's voltage enters the prediction
-                              * at the rotor angle of the period's middle (false, the default:
-                              * at its start, the paper's Eq. 17; measured no better in closed
-                              * loop) */
-    bool fewest_transitions; /* (default on) the zero vector (u00 or u77) and its place (edges or
-                              * middle) that switch the fewest legs, the period boundary included
-                              * (false: u77 in the middle for vectors with four or more upper
-                              * switches on, u00 at the edges otherwise) */
-    float ddc_flux_tie_band; /* (default 0.25) the flux term decides only between duty levels
+    bool ddc_torque_guard; /* (default on) flux weighting moves the duty at most one level
+                            * from the level that best meets the torque reference */
+    bool mid_period_angle; /* every controller: each period's voltage enters the prediction
+                            * at the rotor angle of the period's middle (false, the default:
+                            * at its start, the paper's Eq. 17; measured no better in closed
+                            * loop) */
+    ctl_pulse_pattern_t pulse_pattern; /* every controller (default: fewest transitions per
+                                        * set; by ones: the earlier rule) */
+    float ddc_flux_tie_band; /* (default 0.5) the flux term decides only between duty levels
                               * whose predicted torque errors lie within this fraction of one
                               * level's torque step of the best one, 0..1; 0: off (the flux term
                               * weighs every level the guard leaves, the paper's search) */
@@ -90,7 +98,8 @@ typedef struct {
     X(CTL_PARAM_SPEED_GAINS, "speed gains negative or too large for the number format")            \
     X(CTL_PARAM_TORQUE_LIMIT, "torque limit outside 1 mN*m..500 N*m")                              \
     X(CTL_PARAM_PROTECTION, "a protection threshold is out of range")                              \
-    X(CTL_PARAM_FLUX_TIE_BAND, "DDC flux tie band outside 0..1 duty level")
+    X(CTL_PARAM_FLUX_TIE_BAND, "DDC flux tie band outside 0..1 duty level")                        \
+    X(CTL_PARAM_PULSE_PATTERN, "unknown pulse pattern")
 
 #define CTL_PARAM_ERROR_ENUM(code, text) code,
 typedef enum { CTL_PARAM_ERRORS(CTL_PARAM_ERROR_ENUM) CTL_PARAM_ERROR_COUNT } ctl_param_error_t;

@@ -109,25 +109,31 @@ static void command_off(ctl_cmd_t *cmd)
 
 /* Leg duties of the choice, the zero vector arranged as ctl_pulse.h says, and the legs'
  * states at the period boundary. */
-static void command_from_choice(int16_t vector, ctl_q duty, const ctl_t *c, bool fewest,
-                                ctl_cmd_t *cmd, int16_t *edges)
+static void command_from_choice(int16_t vector, ctl_q duty, const ctl_t *c,
+                                ctl_pulse_pattern_t pattern, ctl_cmd_t *cmd, int16_t *edges)
 {
     int16_t leg;
-    const bool zero = (duty <= CTL_Q(0.0)) || vector == 0 || vector == 077;
-    const bool high_zero =
-        ctl_pulse_high_zero(vector, zero, c->applied_vector, c->applied_edges, fewest);
     const ctl_q d = ctl_clamp(duty, CTL_Q(0.0), CTL_Q(1.0));
-    /* the duty of a leg of the vector and of one off it, whichever arrangement */
-    const ctl_q off = zero ? (high_zero ? CTL_Q(1.0) : CTL_Q(0.0))
-                           : (high_zero ? ctl_sub(CTL_Q(1.0), d) : CTL_Q(0.0));
-    const ctl_q on = zero ? off : (high_zero ? CTL_Q(1.0) : d);
-    for (leg = 0; leg < CTL_PHASES; leg++) {
-        cmd->leg_duty[leg] = (ctl_vector_leg(vector, leg) != 0) ? on : off;
+    const ctl_pulse_kind_t kind = (d <= CTL_Q(0.0) || vector == 0 || vector == 077)
+                                      ? CTL_PULSE_ZERO
+                                      : ((d >= CTL_Q(1.0)) ? CTL_PULSE_FULL : CTL_PULSE_PART);
+    const ctl_q rest = ctl_sub(CTL_Q(1.0), d);
+    ctl_pulse_t p;
+    ctl_pulse_arrange(pattern, kind, vector, c->applied_vector, c->applied_edges, &p);
+    for (leg = 0; leg < CTL_PHASES; leg += 3) {
+        /* a set with zero state 111: its legs of the active state on all period, the others
+         * high for the rest in the middle; with 000: on for d in the middle, the others off */
+        const bool high = ctl_vector_leg(p.zero, leg) != 0;
+        const ctl_q on = high ? CTL_Q(1.0) : d;
+        const ctl_q off = high ? rest : CTL_Q(0.0);
+        cmd->leg_duty[leg] = (ctl_vector_leg(p.active, leg) != 0) ? on : off;
+        cmd->leg_duty[leg + 1] = (ctl_vector_leg(p.active, (int16_t)(leg + 1)) != 0) ? on : off;
+        cmd->leg_duty[leg + 2] = (ctl_vector_leg(p.active, (int16_t)(leg + 2)) != 0) ? on : off;
     }
-    cmd->vector = zero ? (high_zero ? 077 : 0) : vector;
-    cmd->duty = zero ? CTL_Q(0.0) : d;
+    cmd->vector = (kind == CTL_PULSE_ZERO) ? p.zero : p.active;
+    cmd->duty = (kind == CTL_PULSE_ZERO) ? CTL_Q(0.0) : d;
     cmd->enable = true;
-    *edges = ctl_pulse_edges(vector, zero, high_zero, d >= CTL_Q(1.0));
+    *edges = ctl_pulse_edges(kind, &p);
 }
 
 /* The sample angle advanced by delta (rad). For |delta| <= 0.5 rad (7 times rated speed at
@@ -283,7 +289,7 @@ void ctl_step(ctl_t *c, const ctl_meas_t *m, ctl_cmd_t *cmd)
                         &choice);
     }
 
-    command_from_choice(choice.vector, choice.duty, c, cfg->params.fewest_transitions, cmd,
+    command_from_choice(choice.vector, choice.duty, c, cfg->params.pulse_pattern, cmd,
                         &c->applied_edges);
     c->applied_vector = cmd->vector;
     c->applied_duty = cmd->duty;

@@ -20,8 +20,8 @@ void ctl_params_default(ctl_params_t *p)
     p->ddc_direction = CTL_DDC_DIRECTION_FLUX_ERROR;
     p->ddc_torque_guard = true;  /* improvements (docs/improvements.md); false = the paper */
     p->mid_period_angle = false; /* measured: no closed-loop gain (docs/improvements.md) */
-    p->fewest_transitions = true;
-    p->ddc_flux_tie_band = 0.25f; /* measured over lambda 20..200 (docs/improvements.md) */
+    p->pulse_pattern = CTL_PULSE_FEWEST_PER_SET;
+    p->ddc_flux_tie_band = 0.5f; /* measured over lambda 20..200 (docs/improvements.md) */
     p->flux_ref_mode = CTL_FLUX_REF_MTPA;
     p->flux_ref_wb = 0.26f;
     p->speed_kp_nm_per_rad_s = 1.5f;
@@ -85,6 +85,11 @@ static ctl_param_error_t check_control(const ctl_params_t *p)
     }
     if (!ctl_float_in_range(p->ddc_flux_tie_band, 0.0f, 1.0f)) {
         return CTL_PARAM_FLUX_TIE_BAND;
+    }
+    if (!(p->pulse_pattern == CTL_PULSE_BY_ONES ||
+          p->pulse_pattern == CTL_PULSE_FEWEST_TRANSITIONS ||
+          p->pulse_pattern == CTL_PULSE_FEWEST_PER_SET)) {
+        return CTL_PARAM_PULSE_PATTERN;
     }
     if (!(p->flux_ref_mode == CTL_FLUX_REF_MTPA ||
           (p->flux_ref_mode == CTL_FLUX_REF_CONSTANT &&

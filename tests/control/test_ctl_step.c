@@ -66,6 +66,10 @@ static void test_invalid_parameters_are_rejected(void **state)
     assert_int_equal(ctl_params_check(&bad), CTL_PARAM_FLUX_TIE_BAND);
     bad = p, bad.ddc_flux_tie_band = -0.25f;
     assert_int_equal(ctl_params_check(&bad), CTL_PARAM_FLUX_TIE_BAND);
+    bad = p, bad.pulse_pattern = (ctl_pulse_pattern_t)3;
+    assert_int_equal(ctl_params_check(&bad), CTL_PARAM_PULSE_PATTERN);
+    bad = p, bad.pulse_pattern = (ctl_pulse_pattern_t)-1;
+    assert_int_equal(ctl_params_check(&bad), CTL_PARAM_PULSE_PATTERN);
 }
 
 /* Not a normal number is refused with the field's reason, whatever its range: a denormal
@@ -214,55 +218,62 @@ static void test_hand_off_never_writes_the_buffer_in_force(void **state)
     }
 }
 
-/* A leg the vector leaves off (the vector is neither u00 nor u77). */
-static int16_t first_leg_off(int16_t vector)
+/* The expected duty of a leg at 1 or 0 in the active state and in the zero state. */
+static ctl_q leg_duty(bool active, bool zero, ctl_q d)
 {
-    int16_t leg = 0;
-    while (leg < 5 && ctl_vector_leg(vector, leg) != 0) {
-        leg++;
+    if (active == zero) {
+        return zero ? CTL_Q(1.0) : CTL_Q(0.0);
     }
-    return leg;
+    return active ? d : ctl_sub(CTL_Q(1.0), d);
 }
 
-/* Leg duties realise "vector for d, zero vector for the rest" with centred pulses, one
- * arrangement for every leg: u00 at the edges (a leg of the vector on for d) or u77 in the
- * middle (a leg off the vector on for 1 - d). */
+/* Leg duties realise "active state (cmd->vector) for d, a zero state for the rest" with centred
+ * pulses, each three-phase set with its zero state 000 or 111 (ctl_pulse.h): a leg high for d
+ * in the middle, for 1 - d in the middle, or all period at the zero state. A zero command
+ * (duty 0) is a zero state: each set at 000 or 111, every leg at it. */
 static void check_command(const ctl_cmd_t *cmd)
 {
-    int16_t leg;
-    const bool zero = cmd->vector == 0 || cmd->vector == 077;
-    const bool high_zero = !zero && cmd->leg_duty[first_leg_off(cmd->vector)] != CTL_Q(0.0);
+    int16_t set;
     assert_true(cmd->enable);
     assert_in_range(cmd->vector, 0, 63);
     assert_true(cmd->duty >= CTL_Q(0.0) && cmd->duty <= CTL_Q(1.0));
-    for (leg = 0; leg < 6; leg++) {
-        const ctl_q d = cmd->leg_duty[leg];
-        const bool on = ctl_vector_leg(cmd->vector, leg) != 0;
-        assert_true(d >= CTL_Q(0.0) && d <= CTL_Q(1.0));
-        if (zero) {
-            assert_int_equal(d, on ? CTL_Q(1.0) : CTL_Q(0.0));
-        } else if (high_zero) {
-            assert_true(on ? d == CTL_Q(1.0) : d == ctl_sub(CTL_Q(1.0), cmd->duty));
-        } else {
-            assert_true(on ? d == cmd->duty : d == CTL_Q(0.0));
+    for (set = 0; set < 2; set++) {
+        const int16_t bits = (int16_t)((cmd->vector >> (3 - 3 * set)) & 07);
+        bool matched = false;
+        int16_t zero;
+        if (cmd->duty == CTL_Q(0.0)) {
+            assert_true(bits == 0 || bits == 07);
         }
+        for (zero = 0; zero < 2 && !matched; zero++) {
+            const bool z = (cmd->duty == CTL_Q(0.0)) ? bits != 0 : zero != 0;
+            int16_t leg;
+            matched = true;
+            for (leg = (int16_t)(3 * set); leg < 3 * set + 3; leg++) {
+                const ctl_q d = cmd->leg_duty[leg];
+                assert_true(d >= CTL_Q(0.0) && d <= CTL_Q(1.0));
+                matched =
+                    matched && d == leg_duty(ctl_vector_leg(cmd->vector, leg) != 0, z, cmd->duty);
+            }
+        }
+        assert_true(matched);
     }
 }
 
 /* Whatever the measurements (saturated currents, zero or negative DC link, any angle and
- * speed), every controller returns a valid command. */
+ * speed), every controller returns a valid command, whatever the pulse pattern. */
 static void test_command_invariants_for_any_input(void **state)
 {
     static const ctl_controller_t controllers[3] = {CTL_CONTROLLER_DDC, CTL_CONTROLLER_MPTC49,
                                                     CTL_CONTROLLER_MPTC13};
     int16_t which;
     (void)state;
-    for (which = 0; which < 3; which++) {
+    for (which = 0; which < 9; which++) { /* every controller with every pulse pattern */
         ctl_params_t p;
         ctl_t c;
         int32_t n;
         ctl_params_default(&p);
-        p.controller = controllers[which];
+        p.controller = controllers[which % 3];
+        p.pulse_pattern = (ctl_pulse_pattern_t)(which / 3);
         assert_true(ctl_init(&c, &p));
         ctl_set_speed_ref(&c, CTL_Q(0.5));
         for (n = 0; n < 3000; n++) {

@@ -60,21 +60,42 @@ static float take_float(stream_t *s)
     return f;
 }
 
-/* A leg the vector leaves off (the vector is neither u00 nor u77). */
-static int16_t first_leg_off(int16_t vector)
+/* The expected duty of a leg at 1 or 0 in the active state and in the zero state. */
+static ctl_q leg_duty(bool active, bool zero, ctl_q d)
 {
-    int16_t leg = 0;
-    while (leg < CTL_PHASES - 1 && ctl_vector_leg(vector, leg) != 0) {
-        leg++;
+    if (active == zero) {
+        return zero ? CTL_Q(1.0) : CTL_Q(0.0);
     }
-    return leg;
+    return active ? d : ctl_sub(CTL_Q(1.0), d);
+}
+
+/* One three-phase set realises "active state for d, its zero state 000 or 111 for the rest"
+ * (ctl_pulse.h); a zero command (duty 0) holds a zero state. */
+static bool set_realised(const ctl_cmd_t *cmd, int16_t set)
+{
+    const int16_t bits = (int16_t)((cmd->vector >> (3 - 3 * set)) & 07);
+    int16_t zero;
+    if (cmd->duty == CTL_Q(0.0) && bits != 0 && bits != 07) {
+        return false;
+    }
+    for (zero = 0; zero < 2; zero++) {
+        const bool z = (cmd->duty == CTL_Q(0.0)) ? bits != 0 : zero != 0;
+        bool matched = true;
+        int16_t leg;
+        for (leg = (int16_t)(3 * set); leg < 3 * set + 3; leg++) {
+            matched = matched && cmd->leg_duty[leg] ==
+                                     leg_duty(ctl_vector_leg(cmd->vector, leg) != 0, z, cmd->duty);
+        }
+        if (matched) {
+            return true;
+        }
+    }
+    return false;
 }
 
 static void check_command(const ctl_cmd_t *cmd)
 {
     int16_t leg;
-    bool zero;
-    bool high_zero;
     if (!cmd->enable) {
         for (leg = 0; leg < CTL_PHASES; leg++) {
             if (cmd->leg_duty[leg] != CTL_Q(0.0)) {
@@ -89,26 +110,13 @@ static void check_command(const ctl_cmd_t *cmd)
     if (!(cmd->duty >= CTL_Q(0.0) && cmd->duty <= CTL_Q(1.0))) {
         abort();
     }
-    zero = cmd->vector == 0 || cmd->vector == 077;
-    /* one arrangement for every leg: u00 at the edges (on: d) or u77 in the middle (off: 1 - d) */
-    high_zero = !zero && cmd->leg_duty[first_leg_off(cmd->vector)] != CTL_Q(0.0);
     for (leg = 0; leg < CTL_PHASES; leg++) {
-        const ctl_q d = cmd->leg_duty[leg];
-        const bool on = ctl_vector_leg(cmd->vector, leg) != 0;
-        ctl_q expected;
-        if (!(d >= CTL_Q(0.0) && d <= CTL_Q(1.0))) {
+        if (!(cmd->leg_duty[leg] >= CTL_Q(0.0) && cmd->leg_duty[leg] <= CTL_Q(1.0))) {
             abort();
         }
-        if (zero) {
-            expected = on ? CTL_Q(1.0) : CTL_Q(0.0);
-        } else if (high_zero) {
-            expected = on ? CTL_Q(1.0) : ctl_sub(CTL_Q(1.0), cmd->duty);
-        } else {
-            expected = on ? cmd->duty : CTL_Q(0.0);
-        }
-        if (d != expected) {
-            abort();
-        }
+    }
+    if (!set_realised(cmd, 0) || !set_realised(cmd, 1)) {
+        abort();
     }
 }
 
@@ -139,6 +147,7 @@ int LLVMFuzzerTestOneInput(const unsigned char *data, size_t size)
             q.torque_limit_nm = take_float(&s);
             q.speed_kp_nm_per_rad_s = take_float(&s);
             q.lq_h = take_float(&s);
+            q.pulse_pattern = (ctl_pulse_pattern_t)(take32(&s) % 4u); /* 3: refused */
             (void)ctl_request_params(&c, &q);
         } else if (tag == 1u) {
             ctl_set_loop_mode(&c, (take32(&s) & 1u) ? CTL_LOOP_TORQUE : CTL_LOOP_SPEED);

@@ -35,12 +35,12 @@ F_NORMAL = F_PROTECT | F_ENC_OK | F_RUNNING | F_CALIBRATED
 
 def params(controller=DDC, direction=FLUX_ERROR, guard=True, flux_mode=MTPA, levels=6,
            lam=100.0, tlim=7.0, kp=1.5, ki=60.0, flux_wb=0.26, ts=1e-4, oc=15.0, os_rpm=2000.0,
-           ov=720.0, mid=False, fewest=True, tie=True):
+           ov=720.0, mid=False, fewest=True, tie=True, per_set=True):
     """The improvement flags in one byte: bit 0 torque guard, 1 mid-period angle, 2 fewest
-    transitions, 3 flux tie band off (guard=False alone is the paper's DDC only with
-    fewest=False and tie=False too)."""
+    transitions, 3 flux tie band off, 4 each three-phase set's zero state on its own (with
+    bit 2; guard=False alone is the paper's DDC only with fewest=False and tie=False too)."""
     flags = ((1 if guard else 0) | (2 if mid else 0) | (4 if fewest else 0) |
-             (0 if tie else 8))
+             (0 if tie else 8) | (16 if fewest and per_set else 0))
     return (struct.pack("<BBBBh", controller, direction, flags, flux_mode, levels) +
             struct.pack("<9f", lam, tlim, kp, ki, flux_wb, ts, oc, os_rpm, ov))
 
@@ -188,7 +188,7 @@ def build(sim, work, scale):
 
     # D: MPTC-13, speed loop over a reversal; mid-run a switch to DDC and back.
     rows = record(sim, work, "mptc13", "reversal", ["--no-protect"])
-    s.init(controller=MPTC13, lam=100.0)
+    s.init(controller=MPTC13, lam=100.0, per_set=False)  # u00 or u77 only
     s.mode(SPEED)
     s.reset()
     nd = min(len(rows), n(5000))

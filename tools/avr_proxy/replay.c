@@ -148,10 +148,13 @@ static void read_params(ctl_params_t *p)
     p->controller = (ctl_controller_t)port_read();
     p->ddc_direction = (ctl_ddc_direction_t)port_read();
     {
-        const uint16_t flags = port_read(); /* bit 0 guard, 1 mid, 2 fewest, 3 tie band off */
+        /* bit 0 guard, 1 mid, 2 fewest transitions, 3 tie band off, 4 per set (with bit 2) */
+        const uint16_t flags = port_read();
         p->ddc_torque_guard = (flags & 1u) != 0u;
         p->mid_period_angle = (flags & 2u) != 0u;
-        p->fewest_transitions = (flags & 4u) != 0u;
+        p->pulse_pattern = ((flags & 4u) == 0u)    ? CTL_PULSE_BY_ONES
+                           : ((flags & 16u) != 0u) ? CTL_PULSE_FEWEST_PER_SET
+                                                   : CTL_PULSE_FEWEST_TRANSITIONS;
         if ((flags & 8u) != 0u) {
             p->ddc_flux_tie_band = 0.0f;
         }
