@@ -123,22 +123,8 @@ static int cmd_plot(int argc, char **argv)
     return (sim_plot(SIM_PLOT_RUN, argv[0]) == 0) ? 0 : 1;
 }
 
-#include <stdlib.h>
-extern int ctl_proto_tie;
-extern int ctl_proto_pen;
-extern int ctl_proto_edge_levels;
 int main(int argc, char **argv)
 {
-    /* PROTOTYPE switches (fixed-point core only) */
-    if (getenv("PROTO_TIE") != NULL) {
-        ctl_proto_tie = atoi(getenv("PROTO_TIE"));
-    }
-    if (getenv("PROTO_PEN") != NULL) {
-        ctl_proto_pen = atoi(getenv("PROTO_PEN"));
-    }
-    if (getenv("PROTO_EDGE") != NULL) {
-        ctl_proto_edge_levels = atoi(getenv("PROTO_EDGE"));
-    }
     static const struct {
         const char *name;
         int (*fn)(int argc, char **argv);

@@ -94,9 +94,6 @@ static inline int16_t ctl_pulse_set_difference(ctl_pulse_kind_t kind, bool per_s
                      4 * ctl_vector_ones(v));
 }
 
-extern int ctl_proto_tie;
-extern int ctl_proto_pen;
-
 /* The command's active and zero states under a pattern: of the candidate zero states (u00 or
  * u77 by ones, the other of the two, then per set u07 and u70) the first with the fewest
  * transitions, a held set at its zero state all period. */
@@ -126,51 +123,6 @@ static inline void ctl_pulse_arrange(ctl_pulse_pattern_t pattern, ctl_pulse_kind
         }
         if (per_set && abc < best) {
             z = CTL_PULSE_LEGS_ABC;
-        }
-        if (per_set && ctl_proto_tie != 0) {
-            /* PROTOTYPE: 1 ties to u00 first; 2 each set on its own, ties by ones in the set;
-             * 3 ties to u07 / u70 first; PROTO_PEN: an interleaved state counts this much more */
-            const int16_t cost[4] = {0, both, (int16_t)(def + ctl_proto_pen),
-                                     (int16_t)(abc + ctl_proto_pen)};
-            static const int16_t zs[4] = {0, 077, 007, 070};
-            static const int16_t order1[4] = {0, 1, 2, 3};
-            static const int16_t order3[4] = {2, 3, 0, 1};
-            const int16_t *order = (ctl_proto_tie == 3) ? order3 : order1;
-            int16_t i;
-            best = 0x7fff;
-            if (ctl_proto_tie == 3 && ctl_vector_ones(zero ? vector_in_force : vector) > 3) {
-                static const int16_t order3h[4] = {2, 3, 1, 0};
-                order = order3h;
-            }
-            if (ctl_proto_tie == 2) {
-                const int16_t ka = ctl_vector_ones((int16_t)(vector & 070));
-                const int16_t kb = ctl_vector_ones((int16_t)(vector & 007));
-                z = (int16_t)(((abc < 0 || (abc == 0 && ka >= 2)) ? 070 : 0) |
-                              ((def < 0 || (def == 0 && kb >= 2)) ? 007 : 0));
-            } else {
-                for (i = 0; i < 4; i++) {
-                    if (cost[order[i]] < best) {
-                        best = cost[order[i]];
-                        z = zs[order[i]];
-                    }
-                }
-            }
-        } else if (per_set && ctl_proto_pen != 0) {
-            const int16_t d0 = (int16_t)(def + ctl_proto_pen);
-            const int16_t a0 = (int16_t)(abc + ctl_proto_pen);
-            z = (ctl_vector_ones(zero ? vector_in_force : vector) > 3) ? 077 : 0;
-            best = (z != 0) ? both : 0;
-            if (((z != 0) ? 0 : both) < best) {
-                z = (int16_t)(z ^ 077);
-                best = (int16_t)(both - best);
-            }
-            if (d0 < best) {
-                z = CTL_PULSE_LEGS_DEF;
-                best = d0;
-            }
-            if (a0 < best) {
-                z = CTL_PULSE_LEGS_ABC;
-            }
         }
     }
     p->zero = z;

@@ -9,10 +9,6 @@
 #include "ctl_vectors.h"
 #include "ctl_vsd.h"
 
-int ctl_proto_tie = 0; /* PROTOTYPE switches, set by the simulator from the environment */
-int ctl_proto_pen = 0;
-int ctl_proto_edge_levels = 0;
-
 void ctl_reset(ctl_t *c)
 {
     ctl_speed_pi_reset(&c->speed_pi);

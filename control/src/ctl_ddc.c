@@ -82,19 +82,6 @@ static void duty_search(const ctl_horizon_t *h, const ctl_ddc_config_t *cfg, int
         if (torque_err[k] > bound) {
             continue;
         }
-        {
-            /* PROTOTYPE: a competing level without transitions inside the period (d = 0 or 1)
-             * wins over the other competitors */
-            extern int ctl_proto_edge_levels;
-            if (ctl_proto_edge_levels && bound != CTL_Q_MAX && last > first &&
-                (k == 0 || k == cfg->n_levels - 1)) {
-                out->cost = CTL_Q(0.0);
-                out->duty = cfg->levels[k];
-                out->torque = torque[k];
-                out->flux = ctl_flux_magnitude(psi_d[k], psi_q[k]);
-                break;
-            }
-        }
         flux = ctl_flux_magnitude(psi_d[k], psi_q[k]);
         cost = ctl_add(torque_err[k], ctl_mul(h->lambda, ctl_abs(ctl_sub(flux, h->flux_ref))));
         if (cost < out->cost) {
