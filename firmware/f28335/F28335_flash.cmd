@@ -87,9 +87,10 @@ SECTIONS
                    /* control/src/ctl.c */
                    *(.text:_advance_angle) *(.text:_command_from_choice) *(.text:_command_off)
                    *(.text:_ctl_config) *(.text:_ctl_config_take) *(.text:_ctl_diag_flux_est)
-                   *(.text:_ctl_reset) *(.text:_ctl_step) *(.text:_mid_period_angles)
-                   *(.text:_predict) *(.text:_record_diag) *(.text:_select_ddc)
-                   *(.text:_use_config)
+                   *(.text:_ctl_pulse_arrange) *(.text:_ctl_pulse_set_difference)
+                   *(.text:_ctl_reset) *(.text:_ctl_step)
+                   *(.text:_mid_period_angles) *(.text:_predict) *(.text:_record_diag)
+                   *(.text:_select_ddc) *(.text:_use_config)
                    /* control/src/ctl_ddc.c */
                    *(.text:_competing_levels) *(.text:_ctl_ddc_select) *(.text:_duty_search)
                    /* control/src/ctl_flux_ref.c */
