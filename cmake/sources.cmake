@@ -20,6 +20,8 @@ set(SIXPHASE_CTL_SOURCES
     control/src/ctl_protect.c
     control/src/ctl_params.c
     control/src/ctl_config.c
+    control/src/ctl_postfault_config.c
+    control/src/ctl_postfault.c
     control/src/ctl.c)
 
 # Drive application: control ISR body, state machine, stage profiler.

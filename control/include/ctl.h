@@ -104,7 +104,10 @@ typedef struct {
     volatile int16_t config_active; /* buffer in force: written by ctl_init and the ISR only */
     volatile int16_t config_ready;  /* 1: the other buffer is published and waits for the ISR */
     bool initialised;               /* false: no valid set was ever in force, commands all-off */
-    uint16_t params_rejected;       /* sets refused by ctl_request_params (background) */
+    /* a valid set without an open phase is in force: the healthy step runs; else
+     * ctl_postfault.h's step, or all-off while none was ever valid (in initialised's padding) */
+    bool healthy_step;
+    uint16_t params_rejected;            /* sets refused by ctl_request_params (background) */
     ctl_param_error_t params_last_error; /* reason of the last refusal */
     ctl_speed_pi_t speed_pi;             /* gains copied from the configuration in force */
     ctl_loop_mode_t loop_mode;
@@ -115,6 +118,9 @@ typedef struct {
     int16_t applied_edges; /* its legs' states at the period boundary (S_A = bit 5) */
     ctl_diag_t diag;
     ctl_stage_hook_t stage_hook; /* 0: none */
+    /* the open-phase part of each configuration (ctl_postfault_config.h), built and taken with
+     * it; a separate array keeps the healthy configuration's layout as it was */
+    ctl_postfault_config_t postfault[2];
 } ctl_t;
 
 /* Builds the first configuration from p (background, before the ISR runs). Returns false,
@@ -138,6 +144,9 @@ bool ctl_config_take(ctl_t *c);
 /* The configuration in force (ISR side), and its parameter set. */
 const ctl_config_t *ctl_config(const ctl_t *c);
 const ctl_params_t *ctl_params(const ctl_t *c);
+
+/* The open-phase configuration in force (open_leg CTL_POSTFAULT_NO_LEG: all six phases healthy). */
+const ctl_postfault_config_t *ctl_postfault_config(const ctl_t *c);
 
 /* A published set waits for the ISR. */
 bool ctl_config_pending(const ctl_t *c);

@@ -25,8 +25,8 @@ typedef struct {
     ctl_params_t params; /* the SI set this was built from */
     ctl_model_t model;
     ctl_flux_ref_t flux_ref;
-    ctl_q lambda; /* per unit torque per per-unit flux */
-    ctl_q torque_limit;
+    ctl_q lambda;       /* per unit torque per per-unit flux */
+    ctl_q torque_limit; /* with an open phase divided by ctl_postfault_peak_ratio */
     ctl_q speed_kp;
     ctl_q speed_ki_ts;
     ctl_ddc_config_t ddc; /* the DDC search's settings and duty levels */

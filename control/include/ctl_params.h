@@ -14,6 +14,7 @@
 #include <stdint.h>
 
 #include "ctl_flux_ref.h"
+#include "ctl_postfault_config.h"
 #include "ctl_protect.h"
 
 #define CTL_DUTY_LEVELS_MAX 11 /* = CTL_DDC_LEVELS_MAX */
@@ -49,12 +50,17 @@ typedef struct {
     float l_xy_h; /* x-y (leakage) inductance */
     float pm_flux_wb;
     int16_t pole_pairs;
+    int16_t open_phase;  /* open-phase operation (docs/design.md): the phase (0..5, A..F) that
+                          * carries no current, -1 when all six do; the drive sets it when it
+                          * isolates a leg (firmware/app/drive.h). (Beside pole_pairs: the two
+                          * 16-bit fields keep the set's size and the healthy step's code.) */
     float inertia_kg_m2; /* used by the protection's stopped-encoder check */
     /* control */
     float sample_time_s;
     ctl_controller_t controller;
-    float lambda_nm_per_wb; /* flux weight of the cost */
-    int16_t duty_levels;    /* DDC: levels k/(n-1), k = 0..n-1; paper: 6 */
+    float lambda_nm_per_wb;     /* flux weight of the cost */
+    int16_t duty_levels;        /* DDC: levels k/(n-1), k = 0..n-1; paper: 6 */
+    int16_t postfault_strategy; /* ctl_postfault_strategy_t, with an open phase */
     ctl_ddc_direction_t ddc_direction;
     /* improvements over the paper (docs/improvements.md); false = the paper */
     bool ddc_torque_guard; /* (default on) flux weighting moves the duty at most one level
@@ -99,7 +105,8 @@ typedef struct {
     X(CTL_PARAM_TORQUE_LIMIT, "torque limit outside 1 mN*m..500 N*m")                              \
     X(CTL_PARAM_PROTECTION, "a protection threshold is out of range")                              \
     X(CTL_PARAM_FLUX_TIE_BAND, "DDC flux tie band outside 0..1 duty level")                        \
-    X(CTL_PARAM_PULSE_PATTERN, "unknown pulse pattern")
+    X(CTL_PARAM_PULSE_PATTERN, "unknown pulse pattern")                                            \
+    X(CTL_PARAM_OPEN_PHASE, "open phase outside -1..5 or unknown post-fault strategy")
 
 #define CTL_PARAM_ERROR_ENUM(code, text) code,
 typedef enum { CTL_PARAM_ERRORS(CTL_PARAM_ERROR_ENUM) CTL_PARAM_ERROR_COUNT } ctl_param_error_t;

@@ -155,6 +155,10 @@ typedef struct {
     ctl_q open_sum[6];  /* sum of |i| / 64 per phase over the window */
     int16_t open_count; /* periods in the window */
     ctl_q open_turns;   /* electrical turns the window spans */
+    uint16_t quiet;     /* bit k: phase k carries no current by design (an isolated leg, open-phase
+                         * operation): the open-phase check judges the others (ctl_protect_quiet) */
+    ctl_q inv_judged;   /* 1 / the number of phases judged */
+    int16_t open_phase; /* the phase the last OPEN_PHASE found (0..5), -1 if several were */
     /* log */
     ctl_fault_record_t log[CTL_PROTECT_LOG_SIZE];
     volatile uint16_t log_write;   /* records appended (ISR side), modulo 2^16 */
@@ -180,6 +184,20 @@ void ctl_protect_init(ctl_protect_t *p);
 uint16_t ctl_protect_check(ctl_protect_t *p, const ctl_protect_limits_t *l,
                            const ctl_protect_input_t *in, ctl_q torque_ref, int16_t vector,
                            ctl_q duty);
+
+/* The phases in quiet (bit k: phase k, A = bit 0) carry no current by design, as with an isolated
+ * leg: from now on the open-phase check judges the other phases only (0: all six, the default).
+ * The window in progress starts again when the set changes. */
+void ctl_protect_quiet(ctl_protect_t *p, uint16_t quiet);
+
+/* The phase (0..5) the last OPEN_PHASE detection found below the others, or -1 when more than
+ * one was (then no phase can be named and the drive cannot ride through). */
+int16_t ctl_protect_open_phase(const ctl_protect_t *p);
+
+/* The caller handled these faults without stopping (open-phase ride-through): they are no longer
+ * latched, their record stays in the log, and a new occurrence is a new root cause with a record
+ * of its own. */
+void ctl_protect_accept(ctl_protect_t *p, uint16_t faults);
 
 /* Latch a fault found outside the periodic check (calibration, parameters). */
 void ctl_protect_raise(ctl_protect_t *p, uint16_t faults, const ctl_protect_input_t *in);

@@ -4,6 +4,7 @@
 #include "ctl_constants.h"
 #include "ctl_ddc.h"
 #include "ctl_mptc.h"
+#include "ctl_postfault.h"
 #include "ctl_pulse.h"
 #include "ctl_search.h"
 #include "ctl_vectors.h"
@@ -26,12 +27,22 @@ static void use_config(ctl_t *c, const ctl_config_t *cfg)
     c->speed_pi.limit = cfg->torque_limit;
     c->speed_pi.integ = ctl_clamp(c->speed_pi.integ, -cfg->torque_limit, cfg->torque_limit);
     c->initialised = true;
+    c->healthy_step = c->postfault[c->config_active].open_leg == CTL_POSTFAULT_NO_LEG;
+}
+
+/* The open-phase part of a configuration (ctl_postfault_config.h), beside it. */
+static void build_postfault(ctl_t *c, int16_t buffer, const ctl_params_t *p)
+{
+    ctl_postfault_config_build(&c->postfault[buffer], p->open_phase,
+                               (ctl_postfault_strategy_t)p->postfault_strategy, p->ld_h, p->lq_h,
+                               p->l_xy_h);
 }
 
 bool ctl_init(ctl_t *c, const ctl_params_t *p)
 {
     ctl_diag_t zero_diag = {0};
     c->initialised = false;
+    c->healthy_step = false;
     c->config_active = 0;
     c->config_ready = 0;
     c->params_rejected = 0u;
@@ -46,6 +57,7 @@ bool ctl_init(ctl_t *c, const ctl_params_t *p)
     if (c->params_last_error != CTL_PARAM_OK) {
         return false;
     }
+    build_postfault(c, 0, p);
     use_config(c, &c->config[0]);
     return true;
 }
@@ -64,6 +76,7 @@ ctl_param_error_t ctl_request_params(ctl_t *c, const ctl_params_t *p)
         c->params_last_error = e;
         return e;
     }
+    build_postfault(c, (int16_t)(1 - c->config_active), p);
     CTL_COMPILER_BARRIER(); /* the whole buffer is written before it is published */
     c->config_ready = 1;
     return CTL_PARAM_OK;
@@ -84,6 +97,10 @@ bool ctl_config_take(ctl_t *c)
 
 const ctl_config_t *ctl_config(const ctl_t *c) { return &c->config[c->config_active]; }
 const ctl_params_t *ctl_params(const ctl_t *c) { return &ctl_config(c)->params; }
+const ctl_postfault_config_t *ctl_postfault_config(const ctl_t *c)
+{
+    return &c->postfault[c->config_active];
+}
 bool ctl_config_pending(const ctl_t *c) { return c->config_ready != 0; }
 
 void ctl_set_loop_mode(ctl_t *c, ctl_loop_mode_t mode) { c->loop_mode = mode; }
@@ -95,17 +112,6 @@ ctl_q ctl_diag_flux_est(const ctl_diag_t *d)
     return ctl_flux_magnitude(d->psi_d_est, d->psi_q_est);
 }
 void ctl_set_stage_hook(ctl_t *c, ctl_stage_hook_t hook) { c->stage_hook = hook; }
-
-static void command_off(ctl_cmd_t *cmd)
-{
-    int16_t leg;
-    for (leg = 0; leg < CTL_PHASES; leg++) {
-        cmd->leg_duty[leg] = CTL_Q(0.0);
-    }
-    cmd->vector = 0;
-    cmd->duty = CTL_Q(0.0);
-    cmd->enable = false;
-}
 
 /* Leg duties of the choice, the zero vector arranged as ctl_pulse.h says, and the legs'
  * states at the period boundary. */
@@ -258,8 +264,8 @@ void ctl_step(ctl_t *c, const ctl_meas_t *m, ctl_cmd_t *cmd)
     ctl_q iy1;
 
     (void)ctl_config_take(c);
-    if (!c->initialised) {
-        command_off(cmd);
+    if (!c->healthy_step) { /* one test on the healthy path, as before open phases */
+        ctl_postfault_step(c, m, cmd);
         return;
     }
     cfg = &c->config[c->config_active];

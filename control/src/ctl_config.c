@@ -1,5 +1,6 @@
 #include "ctl_config.h"
 
+#include "ctl_postfault_config.h"
 #include "ctl_pu.h"
 
 ctl_param_error_t ctl_config_build(ctl_config_t *cfg, const ctl_params_t *p)
@@ -15,7 +16,12 @@ ctl_param_error_t ctl_config_build(ctl_config_t *cfg, const ctl_params_t *p)
     ctl_flux_ref_init(&cfg->flux_ref, p->flux_ref_mode, p->flux_ref_wb, p->ld_h, p->lq_h,
                       p->pm_flux_wb, p->pole_pairs, p->torque_limit_nm);
     cfg->lambda = ctl_from_float(p->lambda_nm_per_wb * (CTL_BASE_FLUX_WB_F / CTL_BASE_TORQUE_NM_F));
-    cfg->torque_limit = ctl_from_float(p->torque_limit_nm / CTL_BASE_TORQUE_NM_F);
+    /* With an open phase the same alpha-beta current drives the healthy phases to peak_ratio
+     * times the healthy peak (1.80 with minimum loss): the limit shrinks by that ratio, so they
+     * stay within the current the healthy limit allows. */
+    cfg->torque_limit = ctl_from_float(
+        p->torque_limit_nm / CTL_BASE_TORQUE_NM_F /
+        ctl_postfault_peak_ratio(p->open_phase, (ctl_postfault_strategy_t)p->postfault_strategy));
     cfg->speed_kp = ctl_from_float(ctl_speed_gain_pu(p->speed_kp_nm_per_rad_s, p->pole_pairs));
     /* integrator gain per step: ki in N*m per mechanical rad, so ki * Ts per (rad/s) */
     cfg->speed_ki_ts =

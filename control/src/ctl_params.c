@@ -28,6 +28,8 @@ void ctl_params_default(ctl_params_t *p)
     p->speed_ki_nm_per_rad = 60.0f;
     p->torque_limit_nm = 7.0f;
     ctl_protect_settings_default(&p->protect);
+    p->open_phase = CTL_POSTFAULT_NO_LEG; /* all six phases healthy */
+    p->postfault_strategy = (int16_t)CTL_POSTFAULT_MIN_LOSS;
 }
 
 float ctl_speed_gain_pu(float gain_si, int16_t pole_pairs)
@@ -120,6 +122,11 @@ ctl_param_error_t ctl_params_check(const ctl_params_t *p)
     }
     if (e == CTL_PARAM_OK && !ctl_protect_settings_valid(&p->protect)) {
         e = CTL_PARAM_PROTECTION;
+    }
+    if (e == CTL_PARAM_OK && (p->open_phase < CTL_POSTFAULT_NO_LEG || p->open_phase > 5 ||
+                              !(p->postfault_strategy == CTL_POSTFAULT_MIN_LOSS ||
+                                p->postfault_strategy == CTL_POSTFAULT_MAX_TORQUE))) {
+        e = CTL_PARAM_OPEN_PHASE;
     }
     return e;
 }

@@ -119,6 +119,9 @@ void ctl_protect_init(ctl_protect_t *p)
     p->log_read = 0u;
     p->log_dropped = 0u;
     p->episode_recorded = false;
+    p->quiet = 0u;
+    p->inv_judged = CTL_K_ONE_SIXTH;
+    p->open_phase = -1;
     for (k = 0; k < 6; k++) {
         p->word_age[k] = 0;
     }
@@ -236,6 +239,31 @@ static uint16_t check_adc(ctl_protect_t *p, const ctl_protect_limits_t *l,
     return f;
 }
 
+/* The window's verdict: the mean |i| of the judged phases, and every judged phase below the
+ * ratio of it is open; the one found is remembered (-1 for several). Starts the next window. */
+static uint16_t open_phase_verdict(ctl_protect_t *p, const ctl_protect_limits_t *l)
+{
+    ctl_q mean = CTL_Q(0.0);
+    int16_t found = 0;
+    int16_t k;
+    for (k = 0; k < 6; k++) {
+        if ((((unsigned)p->quiet >> k) & 1u) == 0u) {
+            mean = ctl_add(mean, ctl_mul(p->open_sum[k], p->inv_judged));
+        }
+    }
+    if (mean > ctl_mul_int(ctl_mul(l->open_phase_min_mean, CTL_Q(0.015625)), p->open_count)) {
+        const ctl_q floor = ctl_mul(mean, l->open_phase_ratio);
+        for (k = 0; k < 6; k++) {
+            if ((((unsigned)p->quiet >> k) & 1u) == 0u && p->open_sum[k] < floor) {
+                p->open_phase = (found == 0) ? k : -1;
+                found++;
+            }
+        }
+    }
+    open_phase_restart(p);
+    return (found > 0) ? CTL_FAULT_OPEN_PHASE : 0u;
+}
+
 static void open_phase_restart(ctl_protect_t *p)
 {
     int16_t k;
@@ -250,12 +278,11 @@ static void open_phase_restart(ctl_protect_t *p)
  * spans one electrical turn: a healthy phase then carries current for part of it whatever the
  * current vector's angle, while near standstill (a reversal's zero crossing) one phase may
  * rightly carry none for a long time. A window that reaches 4 times its length without a turn
- * (below about 125 r/min at 10 kHz, 3 pole pairs) is dropped unjudged. */
+ * (below about 125 r/min at 10 kHz, 3 pole pairs) is dropped unjudged. Phases that carry no
+ * current by design (ctl_protect_quiet: an isolated leg) are neither judged nor in the mean. */
 static uint16_t check_open_phase(ctl_protect_t *p, const ctl_protect_limits_t *l,
                                  const ctl_protect_input_t *in)
 {
-    ctl_q mean = CTL_Q(0.0);
-    uint16_t f = 0u;
     int16_t k;
     if (!in->running) {
         open_phase_restart(p);
@@ -272,19 +299,7 @@ static uint16_t check_open_phase(ctl_protect_t *p, const ctl_protect_limits_t *l
         }
         return 0u;
     }
-    for (k = 0; k < 6; k++) {
-        mean = ctl_add(mean, ctl_mul(p->open_sum[k], CTL_K_ONE_SIXTH));
-    }
-    if (mean > ctl_mul_int(ctl_mul(l->open_phase_min_mean, CTL_Q(0.015625)), p->open_count)) {
-        const ctl_q floor = ctl_mul(mean, l->open_phase_ratio);
-        for (k = 0; k < 6; k++) {
-            if (p->open_sum[k] < floor) {
-                f |= CTL_FAULT_OPEN_PHASE;
-            }
-        }
-    }
-    open_phase_restart(p);
-    return f;
+    return open_phase_verdict(p, l);
 }
 
 static void drop_one(ctl_protect_t *p)
@@ -397,6 +412,33 @@ void ctl_protect_raise(ctl_protect_t *p, uint16_t faults, const ctl_protect_inpu
         record(p, faults, in, CTL_Q(0.0), 0, CTL_Q(0.0));
     }
     p->latched |= faults;
+}
+
+void ctl_protect_quiet(ctl_protect_t *p, uint16_t quiet)
+{
+    int16_t judged = 0;
+    int16_t k;
+    quiet &= 0x3Fu;
+    if (quiet == p->quiet) {
+        return;
+    }
+    for (k = 0; k < 6; k++) {
+        judged = (int16_t)(judged + (((((unsigned)quiet >> k) & 1u) == 0u) ? 1 : 0));
+    }
+    p->quiet = quiet;
+    /* no phase judged: the mean stays 0 and nothing is ever below it */
+    p->inv_judged = (judged == 6)  ? CTL_K_ONE_SIXTH
+                    : (judged > 0) ? ctl_div(CTL_Q(1.0), ctl_mul_int(CTL_Q(1.0), judged))
+                                   : CTL_Q(0.0);
+    open_phase_restart(p);
+}
+
+int16_t ctl_protect_open_phase(const ctl_protect_t *p) { return p->open_phase; }
+
+void ctl_protect_accept(ctl_protect_t *p, uint16_t faults)
+{
+    p->latched &= (uint16_t)~faults;
+    p->episode_recorded = false;
 }
 
 bool ctl_protect_clear(ctl_protect_t *p)

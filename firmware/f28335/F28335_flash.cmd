@@ -14,7 +14,9 @@
  *                firmware/f28335/CMakeLists.txt) leaves the MPTC-49/13 search in flash: it
  *                would not fit L0..L3 beside the rest (docs/porting.md section 7)
  *   ramconsts    loaded to FLASHA, run from L4..L7 (copied likewise): the constant
- *                tables of that path. Nothing else of a control period waits on flash.
+ *                tables of that path. Nothing of a healthy control period waits on flash.
+ *                The open-phase control step (ctl_postfault.c, only after a leg is
+ *                isolated) stays in flash: L0..L3 cannot hold it too (docs/porting.md 7).
  *   .text        FLASHC, FLASHB (start-up, background loop, parameter builds)
  *   constants    FLASHA: .cinit, .pinit, .econst, .switch of everything else
  *   .stack       M0 + M1, 0x700 words (tools/check_target_memory.sh sizes it: background

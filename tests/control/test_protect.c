@@ -210,6 +210,86 @@ static void test_open_phase(void **state)
     assert_in_range(n, 1, 2 * CTL_PROTECT_OPEN_PHASE_WINDOW);
 }
 
+/* The detection names the open phase (the drive isolates that leg to ride through). */
+static void test_open_phase_names_the_phase(void **state)
+{
+    (void)state;
+    assert_in_range(periods_to_detect(open_phase, CTL_FAULT_OPEN_PHASE, 2000), 1,
+                    2 * CTL_PROTECT_OPEN_PHASE_WINDOW);
+    assert_int_equal(ctl_protect_open_phase(&prot), 3);
+}
+
+/* Phase A isolated, minimum-loss currents: 3 A alpha-beta current, the x-y currents' forced part
+ * only, so the healthy phases carry 0.61 to 1.27 times as much as a healthy phase would. A second
+ * open phase (D: E and F then carry equal and opposite currents) is set by second_open. */
+static int32_t second_open = -1;
+static void postfault_currents(ctl_protect_input_t *in, int32_t n)
+{
+    static const double deg[6] = {0.0, 120.0, 240.0, 30.0, 150.0, 270.0};
+    const double theta = 1500.0 * TEST_PI / 30.0 * 3.0 * 1.0e-4 * (double)(500 + n);
+    const double ia = 3.0 * cos(theta);
+    const double ib = 3.0 * sin(theta);
+    double i[6];
+    int k;
+    for (k = 0; k < 6; k++) {
+        const double th = deg[k] * TEST_PI / 180.0;
+        /* i_x = -i_alpha, i_y = 0 (phase A's c_xy is (1, 0)) */
+        i[k] = ia * cos(th) + ib * sin(th) - ia * cos(5.0 * th);
+    }
+    if (second_open >= 0 && n >= second_open) {
+        i[4] += 0.5 * i[3];
+        i[5] = -i[4];
+        i[3] = 0.0;
+    }
+    for (k = 0; k < 6; k++) {
+        in->i_phase[k] = amps(i[k]);
+    }
+}
+
+/* With phase A isolated the check judges the other five against their own mean: the unequal
+ * post-fault currents pass, a second open phase is found and named. */
+static void test_isolated_phase_is_not_judged(void **state)
+{
+    int32_t n;
+    (void)state;
+    ctl_protect_quiet(&prot, 0x01u);
+    second_open = -1;
+    assert_int_equal(periods_to_detect(postfault_currents, CTL_FAULT_OPEN_PHASE,
+                                       10 * CTL_PROTECT_OPEN_PHASE_WINDOW),
+                     -1);
+    setup(NULL);
+    ctl_protect_quiet(&prot, 0x01u);
+    second_open = 3 * CTL_PROTECT_OPEN_PHASE_WINDOW;
+    n = periods_to_detect(postfault_currents, CTL_FAULT_OPEN_PHASE,
+                          10 * CTL_PROTECT_OPEN_PHASE_WINDOW);
+    assert_in_range(n, second_open + 1, second_open + 2 * CTL_PROTECT_OPEN_PHASE_WINDOW);
+    assert_int_equal(ctl_protect_open_phase(&prot), 3);
+    /* without the isolated phase ignored, A would have been found at once */
+    setup(NULL);
+    second_open = -1;
+    assert_in_range(periods_to_detect(postfault_currents, CTL_FAULT_OPEN_PHASE, 2000), 1,
+                    2 * CTL_PROTECT_OPEN_PHASE_WINDOW);
+    assert_int_equal(ctl_protect_open_phase(&prot), 0);
+}
+
+/* A fault the drive rode through is unlatched; the next one is a new root cause with a record of
+ * its own (the first one's record stays). */
+static void test_accepted_fault_records_again(void **state)
+{
+    ctl_fault_record_t r;
+    (void)state;
+    assert_true(periods_to_detect(open_phase, CTL_FAULT_OPEN_PHASE, 2000) > 0);
+    assert_int_equal(ctl_protect_log_pending(&prot), 1);
+    ctl_protect_accept(&prot, CTL_FAULT_OPEN_PHASE);
+    assert_int_equal(prot.latched, 0u);
+    assert_true(periods_to_detect(open_phase, CTL_FAULT_OPEN_PHASE, 2000) > 0);
+    assert_int_equal(ctl_protect_log_pending(&prot), 2);
+    assert_true(ctl_protect_read_record(&prot, &r));
+    assert_int_equal(r.faults, CTL_FAULT_OPEN_PHASE);
+    assert_true(ctl_protect_read_record(&prot, &r));
+    assert_int_equal(r.faults, CTL_FAULT_OPEN_PHASE);
+}
+
 /* Near standstill under torque (a reversal crossing zero speed: 5 r/min, 7 A at right angles to
  * phase A's axis) phase A carries almost nothing and the current vector barely turns: no phase is
  * judged open until the window spans an electrical turn; a window that never does is dropped. */
@@ -374,6 +454,9 @@ int main(void)
         cmocka_unit_test_setup(test_stopped_encoder_under_torque, setup),
         cmocka_unit_test_setup(test_open_phase, setup),
         cmocka_unit_test_setup(test_open_phase_not_judged_without_a_turn, setup),
+        cmocka_unit_test_setup(test_open_phase_names_the_phase, setup),
+        cmocka_unit_test_setup(test_isolated_phase_is_not_judged, setup),
+        cmocka_unit_test_setup(test_accepted_fault_records_again, setup),
         cmocka_unit_test_setup(test_no_false_trip, setup),
         cmocka_unit_test_setup(test_records_and_latch, setup),
         cmocka_unit_test_setup(test_full_log_keeps_a_new_root_cause, setup),
