@@ -206,6 +206,7 @@ static uint16_t check_encoder(ctl_protect_t *p, const ctl_protect_limits_t *l,
 static uint16_t check_adc(ctl_protect_t *p, const ctl_protect_limits_t *l,
                           const ctl_protect_input_t *in)
 {
+    uint16_t judged;
     uint16_t f = 0u;
     bool rail = false;
     bool flowing = false;
@@ -222,10 +223,12 @@ static uint16_t check_adc(ctl_protect_t *p, const ctl_protect_limits_t *l,
         f |= CTL_FAULT_ADC_RAIL;
     }
     /* Phase currents ripple every period while the inverter switches: a frozen word is a
-     * dead converter or multiplexer. */
+     * dead converter or multiplexer. Not so a phase that carries no current by design (an
+     * isolated leg): a quiet sensor may read one word for good. */
+    judged = (in->running && flowing) ? (uint16_t)~p->quiet : 0u;
     for (k = 0; k < 6; k++) {
         const bool unchanged = in->raw_phase[k] == p->last_raw[k];
-        const bool same = in->running && flowing && unchanged;
+        const bool same = unchanged && (((unsigned)judged >> k) & 1u) != 0u;
         if (filtered(same, &p->n_stuck[k], l->adc_stuck_periods)) {
             f |= CTL_FAULT_ADC_STUCK;
         }
@@ -474,7 +477,7 @@ bool ctl_protect_converter_alive(const ctl_protect_t *p)
 {
     int16_t k;
     for (k = 0; k < 6; k++) {
-        if (p->word_age[k] >= CTL_PROTECT_ALIVE_PERIODS) {
+        if ((((unsigned)p->quiet >> k) & 1u) == 0u && p->word_age[k] >= CTL_PROTECT_ALIVE_PERIODS) {
             return false;
         }
     }

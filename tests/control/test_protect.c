@@ -272,6 +272,33 @@ static void test_isolated_phase_is_not_judged(void **state)
     assert_int_equal(ctl_protect_open_phase(&prot), 0);
 }
 
+/* An isolated phase's sensor may read one word for good (no current, little noise): that is
+ * neither a stuck converter nor, for the clear, a dead one. Healthy sensors still are judged. */
+static void test_isolated_phase_word_may_rest(void **state)
+{
+    int32_t n;
+    (void)state;
+    ctl_protect_quiet(&prot, 0x01u);
+    second_open = -1;
+    for (n = 0; n < 2000; n++) {
+        ctl_protect_input_t in = healthy(500 + n);
+        postfault_currents(&in, n);
+        in.raw_phase[0] = 2048; /* phase A's word at rest */
+        assert_int_equal(ctl_protect_check(&prot, &limits, &in, CTL_Q(0.3), 044, CTL_Q(0.6)), 0);
+    }
+    assert_true(ctl_protect_converter_alive(&prot));
+    for (n = 0; n < 60; n++) {
+        ctl_protect_input_t in = healthy(2500 + n);
+        postfault_currents(&in, n);
+        in.raw_phase[0] = 2048;
+        in.raw_phase[3] = 2500; /* a healthy phase's word frozen: stuck */
+        if (ctl_protect_check(&prot, &limits, &in, CTL_Q(0.3), 044, CTL_Q(0.6)) != 0u) {
+            break;
+        }
+    }
+    assert_int_equal(prot.latched, CTL_FAULT_ADC_STUCK);
+}
+
 /* A fault the drive rode through is unlatched; the next one is a new root cause with a record of
  * its own (the first one's record stays). */
 static void test_accepted_fault_records_again(void **state)
@@ -457,6 +484,7 @@ int main(void)
         cmocka_unit_test_setup(test_open_phase_names_the_phase, setup),
         cmocka_unit_test_setup(test_isolated_phase_is_not_judged, setup),
         cmocka_unit_test_setup(test_accepted_fault_records_again, setup),
+        cmocka_unit_test_setup(test_isolated_phase_word_may_rest, setup),
         cmocka_unit_test_setup(test_no_false_trip, setup),
         cmocka_unit_test_setup(test_records_and_latch, setup),
         cmocka_unit_test_setup(test_full_log_keeps_a_new_root_cause, setup),
