@@ -34,4 +34,16 @@ bool hal_pwm_is_off(void);
 /* True if the hardware trip input (over-current comparator) has fired. */
 bool hal_pwm_hw_trip_seen(void);
 
+/* Both switches of leg `leg` (0..5, A..F) off for good: through hal_pwm_write and hal_pwm_enable,
+ * until hal_pwm_restore_legs (running on five legs after an open phase). False, and nothing
+ * done, for a leg out of range. hal_pwm_is_off judges the other legs. */
+bool hal_pwm_isolate_leg(int16_t leg);
+
+/* Isolated legs, bit k for leg k (A = bit 0). */
+uint16_t hal_pwm_isolated_legs(void);
+
+/* Ends every isolation: the legs follow hal_pwm_force_off and hal_pwm_enable again (they stay
+ * off until the next enable). */
+void hal_pwm_restore_legs(void);
+
 #endif /* HAL_PWM_H */

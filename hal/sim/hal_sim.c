@@ -44,6 +44,7 @@ bool hal_pwm_init(uint32_t carrier_hz, uint32_t dead_time_ns)
     hal_sim_bus.writes = 0u;
     hal_sim_bus.forced_off = true;
     hal_sim_bus.hw_trip = false;
+    hal_sim_bus.isolated = 0u;
     hal_sim_bus.pwm_initialised = true;
     return true;
 }
@@ -69,6 +70,19 @@ void hal_pwm_enable(void)
 bool hal_pwm_is_off(void) { return hal_sim_bus.forced_off; }
 
 bool hal_pwm_hw_trip_seen(void) { return hal_sim_bus.hw_trip; }
+
+bool hal_pwm_isolate_leg(int16_t leg)
+{
+    if (leg < 0 || leg >= HAL_PWM_LEGS) {
+        return false;
+    }
+    hal_sim_bus.isolated |= (uint16_t)(1u << leg);
+    return true;
+}
+
+uint16_t hal_pwm_isolated_legs(void) { return hal_sim_bus.isolated; }
+
+void hal_pwm_restore_legs(void) { hal_sim_bus.isolated = 0u; }
 
 /* ---- hal_adc.h ---- */
 

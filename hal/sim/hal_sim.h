@@ -26,6 +26,7 @@ typedef struct {
     uint16_t duty[HAL_PWM_LEGS]; /* shadow registers: loaded at the next period start */
     uint32_t writes;             /* hal_pwm_write calls since init */
     bool forced_off;             /* latched by force_off / trip, cleared by enable */
+    uint16_t isolated;           /* bit k: leg k's switches off for good (hal_pwm_isolate_leg) */
     bool hw_trip;                /* simulated trip-zone input */
     bool pwm_initialised;
     /* ADC, written by the plant at each period start */
@@ -102,10 +103,11 @@ void hal_sim_post_encoder(const hal_encoder_sample_t *s);
 /* The shaft passed the encoder's index: the homing is back (the eQEP's first-index flag). */
 void hal_sim_post_encoder_index(void);
 
-/* Duty of one leg as a fraction of the period, from the shadow registers. */
+/* Duty of one leg as a fraction of the period, from the shadow registers (an isolated leg's
+ * is 0: its switches are off, the plant treats its phase as open). */
 static inline double hal_sim_duty_fraction(int leg)
 {
-    if (leg < 0 || leg >= HAL_PWM_LEGS) {
+    if (leg < 0 || leg >= HAL_PWM_LEGS || (((unsigned)hal_sim_bus.isolated >> leg) & 1u) != 0u) {
         return 0.0;
     }
     return (double)hal_sim_bus.duty[leg] / (double)HAL_PWM_DUTY_ONE;

@@ -211,6 +211,54 @@ static void test_force_off_enable_and_trips(void **state)
     assert_false(hal_pwm_hw_trip_seen());
 }
 
+/* An isolated leg: its module alone one-shot tripped, left tripped by enable, its compare at 0 %;
+ * is_off and the hardware-trip judgement look at the other legs; restore gives it back. */
+static void test_isolated_leg(void **state)
+{
+    const uint16_t duty[6] = {16384u, 16384u, 32768u, 16384u, 16384u, 16384u};
+    int i;
+    (void)state;
+    assert_true(hal_pwm_init(10000u, 2000u));
+    hal_pwm_enable();
+    for (i = 0; i < 6; i++) {
+        R.epwm[i].TZFRC = 0u;
+        R.epwm[i].TZCLR = 0u;
+        R.epwm[i].TZFLG = 0u;
+    }
+    assert_false(hal_pwm_isolate_leg(-1));
+    assert_false(hal_pwm_isolate_leg(6));
+    assert_int_equal(hal_pwm_isolated_legs(), 0u);
+    f28335_host_eallow_watch_start();
+    assert_true(hal_pwm_isolate_leg(2));
+    assert_int_equal(f28335_host_eallow_violations(), 0u);
+    assert_int_equal(hal_pwm_isolated_legs(), 1u << 2);
+    for (i = 0; i < 6; i++) { /* ePWM3 alone */
+        assert_int_equal(R.epwm[i].TZFRC & EPWM_TZ_OST, (i == 2) ? EPWM_TZ_OST : 0u);
+    }
+    R.epwm[2].TZFLG = EPWM_TZ_OST;
+    assert_false(hal_pwm_is_off());       /* the others run */
+    assert_false(hal_pwm_hw_trip_seen()); /* software isolated it */
+    hal_pwm_write(duty);
+    assert_int_equal(R.epwm[2].CMPA, 7501); /* 0 % */
+    assert_int_equal(R.epwm[2].AQCSFRC, 0u);
+    assert_int_equal(R.epwm[1].CMPA, 3750);
+    /* a force-off and enable cycle (stop, run) leaves the leg tripped */
+    hal_pwm_force_off();
+    hal_pwm_enable();
+    for (i = 0; i < 6; i++) {
+        assert_int_equal(R.epwm[i].TZCLR & EPWM_TZ_OST, (i == 2) ? 0u : EPWM_TZ_OST);
+    }
+    hal_pwm_restore_legs();
+    assert_int_equal(hal_pwm_isolated_legs(), 0u);
+    assert_true(hal_pwm_is_off()); /* its latch stands until the next enable */
+    hal_pwm_enable();
+    assert_int_equal(R.epwm[2].TZCLR & EPWM_TZ_OST, EPWM_TZ_OST);
+    /* a new init forgets the isolation */
+    assert_true(hal_pwm_isolate_leg(4));
+    assert_true(hal_pwm_init(10000u, 2000u));
+    assert_int_equal(hal_pwm_isolated_legs(), 0u);
+}
+
 /* ---- Action-qualifier model of one module (up-down count, EPWMxA before the dead band) ----
  * Counts 0, 1, .., TBPRD, TBPRD - 1, .., 1 make one period of 2 TBPRD counts; the output of a
  * count is the level after that count's events. Shadowed CMPA, CMPB and AQCSFRC load at
@@ -451,6 +499,7 @@ int main(void)
         cmocka_unit_test_setup(test_cmpa_for_duties, setup),
         cmocka_unit_test_setup(test_write_duty_is_centred_pulse, setup),
         cmocka_unit_test_setup(test_force_off_enable_and_trips, setup),
+        cmocka_unit_test_setup(test_isolated_leg, setup),
         cmocka_unit_test_setup(test_aq_full_and_zero_sequences, setup),
         cmocka_unit_test_setup(test_aq_smallest_and_largest_duties, setup),
         cmocka_unit_test_setup(test_aq_duty_sweep, setup),

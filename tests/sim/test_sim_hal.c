@@ -70,6 +70,25 @@ static void test_pwm_shadow_and_force_off(void **state)
     assert_true(hal_pwm_is_off());
 }
 
+/* An isolated leg reads 0 % (its switches are off) through writes and enables until restored. */
+static void test_pwm_isolated_leg(void **state)
+{
+    const uint16_t d[HAL_PWM_LEGS] = {16384u, 16384u, 16384u, 16384u, 16384u, 16384u};
+    (void)state;
+    hal_sim_reset();
+    assert_true(hal_pwm_init(10000u, 2000u));
+    assert_false(hal_pwm_isolate_leg(6));
+    assert_true(hal_pwm_isolate_leg(3));
+    hal_pwm_write(d);
+    hal_pwm_enable();
+    assert_false(hal_pwm_is_off());
+    assert_int_equal(hal_pwm_isolated_legs(), 1u << 3);
+    assert_true(hal_sim_duty_fraction(3) == 0.0);
+    assert_true(hal_sim_duty_fraction(2) == 0.5);
+    hal_pwm_restore_legs();
+    assert_true(hal_sim_duty_fraction(3) == 0.5);
+}
+
 static void test_encoder_and_cycles(void **state)
 {
     hal_encoder_sample_t e = {0x40000000u, 65536, true}, out;
@@ -111,9 +130,8 @@ static void test_encoder_and_cycles(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_adc_scaling_and_clamping),
-        cmocka_unit_test(test_adc_fresh_flag),
-        cmocka_unit_test(test_pwm_shadow_and_force_off),
+        cmocka_unit_test(test_adc_scaling_and_clamping), cmocka_unit_test(test_adc_fresh_flag),
+        cmocka_unit_test(test_pwm_shadow_and_force_off), cmocka_unit_test(test_pwm_isolated_leg),
         cmocka_unit_test(test_encoder_and_cycles),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -23,7 +23,8 @@
  *   dead band   EPWMxA as source of both edges, full mode, active high
  *               complementary: xA = upper switch, xB = lower switch
  *   trip zone   TZ1 (GPIO12, active low) one-shot trips every module, both
- *               outputs forced low; software force-off = TZFRC.OST
+ *               outputs forced low; software force-off = TZFRC.OST; an isolated leg is
+ *               its module's one-shot trip alone, which hal_pwm_enable leaves set
  *   ADC start   ePWM1 SOCA at CTR = 0: the period boundary, the symmetry
  *               point of the centred pulses; a leg is low there unless its
  *               duty is 100 % (not always all legs low)
@@ -36,6 +37,7 @@
 
 static uint16_t pwm_prd;
 static bool pwm_sw_forced = true;
+static uint16_t pwm_isolated; /* bit k: ePWM k+1 tripped for good (hal_pwm_isolate_leg) */
 
 uint16_t f28335_pwm_period_for(uint32_t carrier_hz)
 {
@@ -167,6 +169,7 @@ bool hal_pwm_init(uint32_t carrier_hz, uint32_t dead_time_ns)
     }
     pwm_prd = prd;
     pwm_sw_forced = true;
+    pwm_isolated = 0u;
 
     /* Stop all time bases while configuring; clocks of ePWM1..6 on. */
     F28335_EALLOW();
@@ -190,15 +193,17 @@ void hal_pwm_write(const uint16_t duty[HAL_PWM_LEGS])
     int16_t i;
     for (i = 0; i < HAL_PWM_LEGS; i++) {
         volatile f28335_epwm_t *p = F28335_EPWM(i);
-        const uint16_t force = f28335_pwm_force_for(duty[i], pwm_prd);
+        /* an isolated leg's module is tripped; its compare gets 0 % all the same */
+        const uint16_t d = (((unsigned)pwm_isolated >> i) & 1u) != 0u ? 0u : duty[i];
+        const uint16_t force = f28335_pwm_force_for(d, pwm_prd);
         /* Into 100 % the force first, out of it the compare first: if the period's shadow load
          * falls between the two writes, the leg keeps its previous duty for one more period
          * instead of getting a period at 0 %. */
         if (force != 0u) {
             p->AQCSFRC = force;
-            p->CMPA = f28335_pwm_cmpa_for(duty[i], pwm_prd);
+            p->CMPA = f28335_pwm_cmpa_for(d, pwm_prd);
         } else {
-            p->CMPA = f28335_pwm_cmpa_for(duty[i], pwm_prd);
+            p->CMPA = f28335_pwm_cmpa_for(d, pwm_prd);
             p->AQCSFRC = force;
         }
     }
@@ -217,7 +222,9 @@ void hal_pwm_enable(void)
     pwm_sw_forced = false;
     F28335_EALLOW();
     for (i = 0; i < F28335_EPWM_COUNT; i++) {
-        F28335_EPWM(i)->TZCLR = (uint16_t)(EPWM_TZ_OST | EPWM_TZ_INT);
+        if ((((unsigned)pwm_isolated >> i) & 1u) == 0u) {
+            F28335_EPWM(i)->TZCLR = (uint16_t)(EPWM_TZ_OST | EPWM_TZ_INT);
+        }
     }
     F28335_EDIS();
 }
@@ -226,12 +233,29 @@ bool hal_pwm_is_off(void)
 {
     int16_t i;
     for (i = 0; i < F28335_EPWM_COUNT; i++) {
-        if ((F28335_EPWM(i)->TZFLG & EPWM_TZ_OST) != 0u) {
+        if ((((unsigned)pwm_isolated >> i) & 1u) == 0u &&
+            (F28335_EPWM(i)->TZFLG & EPWM_TZ_OST) != 0u) {
             return true;
         }
     }
     return false;
 }
+
+bool hal_pwm_isolate_leg(int16_t leg)
+{
+    if (leg < 0 || leg >= F28335_EPWM_COUNT) {
+        return false;
+    }
+    pwm_isolated |= (uint16_t)(1u << leg);
+    F28335_EALLOW();
+    F28335_EPWM(leg)->TZFRC = EPWM_TZ_OST; /* this module only: the other legs run on */
+    F28335_EDIS();
+    return true;
+}
+
+uint16_t hal_pwm_isolated_legs(void) { return pwm_isolated; }
+
+void hal_pwm_restore_legs(void) { pwm_isolated = 0u; }
 
 bool hal_pwm_hw_trip_seen(void)
 {
