@@ -27,6 +27,8 @@ set(SIXPHASE_CTL_SOURCES
 # Drive application: control ISR body, state machine, stage profiler.
 set(SIXPHASE_DRIVE_SOURCES
     firmware/app/drive.c
+    firmware/app/drive_open_phase.c
+    firmware/app/drive_background.c
     firmware/app/drive_capture.c
     firmware/app/capture.c
     firmware/app/profile.c)

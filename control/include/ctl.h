@@ -131,6 +131,9 @@ bool ctl_init(ctl_t *c, const ctl_params_t *p);
 /* Clears integrators and the remembered command (call before enabling PWM). */
 void ctl_reset(ctl_t *c);
 
+/* Clears the remembered command only (the outputs were off): the speed loop keeps its state. */
+void ctl_reset_command(ctl_t *c);
+
 /* Background: check p, build its configuration into the standby buffer and publish it; the
  * ISR takes it at the start of its next period. CTL_PARAM_BUSY while an earlier set still
  * waits (try again after a period); any other refusal is counted, and the set in force

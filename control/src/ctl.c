@@ -13,6 +13,11 @@
 void ctl_reset(ctl_t *c)
 {
     ctl_speed_pi_reset(&c->speed_pi);
+    ctl_reset_command(c);
+}
+
+void ctl_reset_command(ctl_t *c)
+{
     c->applied_vector = 0;
     c->applied_duty = CTL_Q(0.0);
     c->applied_edges = 0;

@@ -303,15 +303,13 @@ static void pf_select_ddc(const ctl_t *c, const ctl_config_t *cfg, const pf_hori
 }
 
 /* Every candidate held for the whole period (the zero state is placed by pf_command's rule). */
-static void pf_select_mptc(const ctl_t *c, const ctl_config_t *cfg, const pf_horizon_t *p,
-                           ctl_choice_t *out)
+static void pf_select_mptc(const ctl_config_t *cfg, const pf_horizon_t *p, ctl_choice_t *out)
 {
     const ctl_postfault_config_t *pf = p->pf;
     const bool all = cfg->params.controller == CTL_CONTROLLER_MPTC49;
     const int16_t *candidates = all ? pf->mptc_all : pf->mptc_large;
     const int16_t count = all ? pf->mptc_all_count : pf->mptc_large_count;
     int16_t i;
-    CTL_STAGE_MARK(c->stage_hook, CTL_STAGE_TABLE);
     out->cost = CTL_Q_MAX;
     out->vector = 0;
     out->torque = CTL_Q(0.0);
@@ -489,7 +487,8 @@ void ctl_postfault_step(ctl_t *c, const ctl_meas_t *m, ctl_cmd_t *cmd)
     if (cfg->params.controller == CTL_CONTROLLER_DDC) {
         pf_select_ddc(c, cfg, &p, &choice);
     } else {
-        pf_select_mptc(c, cfg, &p, &choice);
+        CTL_STAGE_MARK(c->stage_hook, CTL_STAGE_TABLE);
+        pf_select_mptc(cfg, &p, &choice);
     }
     pf_command(c, cfg, p.pf, &choice, cmd);
     pf_record_diag(c, cfg, &i0, &p, &choice);

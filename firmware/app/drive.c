@@ -2,6 +2,7 @@
 
 #include "ctl_pu.h"
 #include "drive_capture.h"
+#include "drive_open_phase.h"
 #include "hal_board.h"
 #include "hal_cycles.h"
 #include "hal_pwm.h"
@@ -98,6 +99,20 @@ static void drive_init_protection(drive_t *d)
     d->protect_in.currents_calibrated = false;
 }
 
+/* No leg isolated, the build's open-phase option. */
+static void drive_init_open_phase(drive_t *d, const ctl_params_t *p)
+{
+    d->open_phase_action = (int16_t)DRIVE_OPEN_PHASE_DEFAULT;
+    d->postfault_strategy = p->postfault_strategy;
+    d->isolated_leg = -1;
+    d->isolation_cause = (int16_t)DRIVE_ISOLATION_NONE;
+    d->isolation_period = 0u;
+    d->isolate_request = -1;
+    d->restore_request = false;
+    d->open_phase_paused = false;
+    d->params_bg.open_phase = -1; /* the drive owns it: no leg is isolated at start */
+}
+
 void drive_init(drive_t *d, const ctl_params_t *p)
 {
     int16_t i;
@@ -113,6 +128,7 @@ void drive_init(drive_t *d, const ctl_params_t *p)
     d->run_refusal = DRIVE_RUN_ACCEPTED;
     d->clear_blocked = 0u;
     d->params_bg = *p;
+    drive_init_open_phase(d, p);
     d->speed_ref_rpm = 0.0f;
     d->torque_ref_nm = 0.0f;
     d->isr_cycles_last = 0u;
@@ -131,7 +147,7 @@ void drive_init(drive_t *d, const ctl_params_t *p)
               hal_cycles_per_second());
     hal_pwm_force_off();
     drive_init_protection(d);
-    if (!ctl_init(&d->ctl, p)) {
+    if (!ctl_init(&d->ctl, &d->params_bg)) {
         drive_enter_fault(d, DRIVE_FAULT_PARAMS);
         return;
     }
@@ -214,6 +230,9 @@ static void drive_run_step(drive_t *d)
     uint16_t duty[HAL_PWM_LEGS];
     int16_t i;
     prof_mark(PROF_ADC);
+    if (!drive_open_phase_gate(d)) {
+        return; /* outputs off until the set in force fits the isolated legs */
+    }
     ctl_step(&d->ctl, &d->meas, &d->cmd);
     if (!d->cmd.enable) {
         hal_pwm_force_off();
@@ -369,9 +388,13 @@ static void drive_control_step(drive_t *d)
     (void)ctl_config_take(&d->ctl);
     drive_scale_measurements(d);
 
+    drive_open_phase_period(d);
     if (fresh) {
         /* stale words would fake a stuck converter: check fresh conversions only */
         faults = drive_protect(d, d->state == DRIVE_STATE_RUN);
+        if (faults != 0u) { /* an open phase may be ridden through (drive_open_phase.h) */
+            faults = drive_open_phase_faults(d, faults);
+        }
     } else {
         /* The ADC converts every period whatever the state (ePWM1 starts it with the outputs
          * off too): a period without a conversion is a fault in READY and FAULT as well, and
@@ -424,10 +447,15 @@ void drive_request_run(drive_t *d) { d->run_requested = true; }
 
 ctl_param_error_t drive_request_params(drive_t *d, const ctl_params_t *p)
 {
-    const ctl_param_error_t e = ctl_request_params(&d->ctl, p);
+    ctl_params_t q = *p;
+    ctl_param_error_t e;
+    /* the open phase is the drive's: the leg it isolated (drive_open_phase.h) */
+    q.open_phase = d->isolated_leg;
+    q.postfault_strategy = d->postfault_strategy;
+    e = ctl_request_params(&d->ctl, &q);
     if (e == CTL_PARAM_OK) {
-        const bool rescale = p->pole_pairs != d->params_bg.pole_pairs;
-        d->params_bg = *p;
+        const bool rescale = q.pole_pairs != d->params_bg.pole_pairs;
+        d->params_bg = q;
         if (rescale && d->ctl.loop_mode == CTL_LOOP_SPEED) {
             drive_set_speed_ref_rpm(d, d->speed_ref_rpm); /* electrical reference follows Pn */
         }

@@ -66,6 +66,24 @@ typedef enum {
 
 #define DRIVE_RUN_REFUSAL_COUNT 4
 
+/* What the drive does on OPEN_PHASE (drive_open_phase.h); DRIVE_OPEN_PHASE_DEFAULT is the
+ * build default, drive_set_open_phase_action changes it at run time. */
+typedef enum {
+    DRIVE_OPEN_PHASE_STOP = 0,        /* a fault like any other */
+    DRIVE_OPEN_PHASE_RIDE_THROUGH = 1 /* isolate the open phase's leg and run on five */
+} drive_open_phase_action_t;
+
+#ifndef DRIVE_OPEN_PHASE_DEFAULT
+#define DRIVE_OPEN_PHASE_DEFAULT DRIVE_OPEN_PHASE_STOP
+#endif
+
+/* Why a leg is isolated. */
+typedef enum {
+    DRIVE_ISOLATION_NONE = 0,
+    DRIVE_ISOLATION_FAULT = 1,  /* an OPEN_PHASE ridden through */
+    DRIVE_ISOLATION_COMMAND = 2 /* an isolate command */
+} drive_isolation_cause_t;
+
 typedef struct {
     ctl_t ctl;
     ctl_protect_t protect;
@@ -108,6 +126,15 @@ typedef struct {
     uint32_t isr_latency_cycles;
     /* the capture buffer (oscilloscope): recorded by the ISR, armed and read over the link */
     capture_t capture;
+    /* open-phase operation (drive_open_phase.h) */
+    int16_t open_phase_action;        /* drive_open_phase_action_t (background) */
+    int16_t postfault_strategy;       /* ctl_postfault_strategy_t of post-fault sets (background) */
+    volatile int16_t isolated_leg;    /* 0..5 (A..F) off for good, -1 none (ISR) */
+    volatile int16_t isolation_cause; /* drive_isolation_cause_t (ISR) */
+    uint32_t isolation_period;        /* isr_count at the isolation (ISR) */
+    volatile int16_t isolate_request; /* leg to isolate by command, -1 none (background -> ISR) */
+    volatile bool restore_request;    /* end the isolation (background -> ISR) */
+    bool open_phase_paused; /* RUN with the outputs off until the set in force fits the legs */
 } drive_t;
 
 /* Configure the controller; HAL peripherals must be initialised already. */
@@ -150,6 +177,23 @@ void drive_set_torque_ref_nm(drive_t *d, float torque_nm);
  * its next period, in every state. CTL_PARAM_OK when queued; CTL_PARAM_BUSY while the
  * previous set waits for that period; else the reason, and the set in force stays. */
 ctl_param_error_t drive_request_params(drive_t *d, const ctl_params_t *p);
+
+/* The background loop's share of the drive, called once per pass (the firmware's background
+ * loop; the simulator once per control period after the ISR): asks for the parameter set the
+ * isolated legs need (drive_open_phase.h) until the ISR has one. */
+void drive_background(drive_t *d);
+
+/* Background: what OPEN_PHASE does (drive_open_phase_action_t) and the post-fault strategy
+ * (ctl_postfault_strategy_t) for the next post-fault set; false, nothing changed, for an
+ * unknown value. */
+bool drive_set_open_phase_action(drive_t *d, int16_t action, int16_t strategy);
+
+/* Background: isolate leg 0..5 by command (tests of open-phase operation on a healthy machine),
+ * in READY or RUN with no leg isolated; false if refused. The ISR acts in its next period. */
+bool drive_request_isolate_leg(drive_t *d, int16_t leg);
+
+/* Background: end the isolation, in READY only; false if refused (not READY, none isolated). */
+bool drive_request_restore_legs(drive_t *d);
 
 /* Oldest unread fault record; false when none. Background side (lock-free with the ISR). */
 bool drive_read_fault_record(drive_t *d, ctl_fault_record_t *r);

@@ -73,7 +73,7 @@ SECTIONS
                    *(.text:_ctl_pulse_edges) *(.text:_ctl_pulse_high_zero)
                    *(.text:_ctl_pulse_legs_switching)
                    /* control/include/ctl_q.h */
-                   *(.text:_ctl_abs) *(.text:_ctl_add) *(.text:_ctl_clamp)
+                   *(.text:_ctl_abs) *(.text:_ctl_add) *(.text:_ctl_clamp) *(.text:_ctl_div)
                    *(.text:_ctl_from_turn_u32) *(.text:_ctl_max) *(.text:_ctl_min)
                    *(.text:_ctl_mul) *(.text:_ctl_mul_acc) *(.text:_ctl_mul_add)
                    *(.text:_ctl_mul_dec) *(.text:_ctl_mul_int) *(.text:_ctl_mul_q16)
@@ -87,12 +87,13 @@ SECTIONS
                    /* control/include/ctl_vsd.h */
                    *(.text:_ctl_park) *(.text:_ctl_park_inverse)
                    /* control/src/ctl.c */
-                   *(.text:_advance_angle) *(.text:_command_from_choice) *(.text:_command_off)
+                   *(.text:_advance_angle) *(.text:_command_from_choice)
                    *(.text:_ctl_config) *(.text:_ctl_config_take) *(.text:_ctl_diag_flux_est)
-                   *(.text:_ctl_pulse_arrange) *(.text:_ctl_pulse_set_difference)
-                   *(.text:_ctl_reset) *(.text:_ctl_step)
-                   *(.text:_mid_period_angles) *(.text:_predict) *(.text:_record_diag)
-                   *(.text:_select_ddc) *(.text:_use_config)
+                   *(.text:_ctl_postfault_config) *(.text:_ctl_pulse_arrange)
+                   *(.text:_ctl_pulse_set_difference) *(.text:_ctl_reset)
+                   *(.text:_ctl_reset_command) *(.text:_ctl_step) *(.text:_mid_period_angles)
+                   *(.text:_predict) *(.text:_record_diag) *(.text:_select_ddc)
+                   *(.text:_use_config)
                    /* control/src/ctl_ddc.c */
                    *(.text:_competing_levels) *(.text:_ctl_ddc_select) *(.text:_duty_search)
                    /* control/src/ctl_flux_ref.c */
@@ -101,12 +102,16 @@ SECTIONS
                    /* control/src/ctl_mptc.c */
                    *(.text:_ctl_mptc_select)
 #endif
+                   /* control/src/ctl_postfault.c: the open-phase step (ctl_postfault_step and
+                    * its helpers) runs from flash in both images: L0..L3 would be 91 % full */
                    /* control/src/ctl_protect.c */
                    *(.text:_any_nan) *(.text:_check_adc) *(.text:_check_encoder)
                    *(.text:_check_open_phase) *(.text:_ctl_protect_check)
                    *(.text:_ctl_protect_clear) *(.text:_ctl_protect_converter_alive)
+                   *(.text:_ctl_protect_quiet)
                    *(.text:_ctl_protect_raise) *(.text:_drop_one) *(.text:_fill_record)
-                   *(.text:_filtered) *(.text:_open_phase_restart) *(.text:_record)
+                   *(.text:_filtered) *(.text:_open_phase_restart) *(.text:_open_phase_verdict)
+                   *(.text:_record)
                    *(.text:_reset_filters) *(.text:_turn_difference)
                    /* control/src/ctl_q.c */
                    *(.text:_ctl_cos_pu) *(.text:_ctl_sector24) *(.text:_ctl_sin_pu)
@@ -130,6 +135,10 @@ SECTIONS
                    *(.text:_drive_report_overrun) *(.text:_drive_run_check)
                    *(.text:_drive_run_step) *(.text:_drive_scale_measurements)
                    *(.text:_drive_start_calibration) *(.text:_drive_trip)
+                   /* firmware/app/drive_open_phase.c */
+                   *(.text:_drive_open_phase_gate) *(.text:_drive_open_phase_gate_update)
+                   *(.text:_drive_open_phase_in_force) *(.text:_drive_open_phase_period)
+                   *(.text:_drive_open_phase_update)
                    /* firmware/app/drive_capture.c */
                    *(.text:_capture_pu) *(.text:_capture_scale) *(.text:_drive_capture_period)
                    *(.text:_drive_capture_value)

@@ -1,6 +1,6 @@
 /*
- * Background loop: services the watchdog and the serial link (firmware/app/link_service.c,
- * the same service the virtual board runs).
+ * Background loop: services the watchdog, the serial link (firmware/app/link_service.c,
+ * the same service the virtual board runs) and the drive's background share (drive_background).
  */
 #include "fw.h"
 
@@ -8,4 +8,5 @@ void fw_background_step(void)
 {
     f28335_watchdog_service();
     link_service_step(&fw_state.link, &fw_drive);
+    drive_background(&fw_drive); /* the post-fault set after an isolated leg */
 }

@@ -102,6 +102,17 @@ void hal_pwm_enable(void)
 bool hal_pwm_is_off(void) { return mock_rec.pwm_off; }
 bool hal_pwm_hw_trip_seen(void) { return mock_rec.hw_trip; }
 
+bool hal_pwm_isolate_leg(int16_t leg)
+{
+    if (leg < 0 || leg >= HAL_PWM_LEGS) {
+        return false;
+    }
+    mock_rec.isolated |= (uint16_t)(1u << leg);
+    return true;
+}
+uint16_t hal_pwm_isolated_legs(void) { return mock_rec.isolated; }
+void hal_pwm_restore_legs(void) { mock_rec.isolated = 0u; }
+
 /* ---- control core ---- */
 /* Parameter sets and their configurations are real (ctl_params.c, ctl_config.c); the hand-off
  * follows the real protocol; only the step itself is mocked. */
@@ -113,6 +124,9 @@ bool ctl_init(ctl_t *c, const ctl_params_t *p)
         return false;
     }
     (void)ctl_config_build(&c->config[0], p);
+    ctl_postfault_config_build(&c->postfault[0], p->open_phase,
+                               (ctl_postfault_strategy_t)p->postfault_strategy, p->ld_h, p->lq_h,
+                               p->l_xy_h);
     c->initialised = true;
     return true;
 }
@@ -121,6 +135,12 @@ void ctl_reset(ctl_t *c)
 {
     (void)c;
     mock_rec.ctl_reset++;
+}
+
+void ctl_reset_command(ctl_t *c)
+{
+    (void)c;
+    mock_rec.ctl_reset_command++;
 }
 
 ctl_param_error_t ctl_request_params(ctl_t *c, const ctl_params_t *p)
@@ -134,6 +154,9 @@ ctl_param_error_t ctl_request_params(ctl_t *c, const ctl_params_t *p)
         return CTL_PARAM_BUSY;
     }
     (void)ctl_config_build(&c->config[1 - c->config_active], p);
+    ctl_postfault_config_build(&c->postfault[1 - c->config_active], p->open_phase,
+                               (ctl_postfault_strategy_t)p->postfault_strategy, p->ld_h, p->lq_h,
+                               p->l_xy_h);
     c->config_ready = 1;
     return CTL_PARAM_OK;
 }
@@ -153,6 +176,10 @@ bool ctl_config_take(ctl_t *c)
 const ctl_config_t *ctl_config(const ctl_t *c) { return &c->config[c->config_active]; }
 const ctl_params_t *ctl_params(const ctl_t *c) { return &ctl_config(c)->params; }
 bool ctl_config_pending(const ctl_t *c) { return c->config_ready != 0; }
+const ctl_postfault_config_t *ctl_postfault_config(const ctl_t *c)
+{
+    return &c->postfault[c->config_active];
+}
 
 void ctl_set_loop_mode(ctl_t *c, ctl_loop_mode_t mode)
 {

@@ -25,10 +25,12 @@ typedef struct {
     uint32_t enable;
     uint32_t write;
     uint16_t duty[HAL_PWM_LEGS];
-    bool pwm_off;    /* returned by hal_pwm_is_off */
-    bool hw_trip;    /* returned by hal_pwm_hw_trip_seen */
-    uint32_t rehome; /* hal_encoder_rehome calls */
+    bool pwm_off;      /* returned by hal_pwm_is_off */
+    bool hw_trip;      /* returned by hal_pwm_hw_trip_seen */
+    uint32_t rehome;   /* hal_encoder_rehome calls */
+    uint16_t isolated; /* hal_pwm_isolate_leg's legs */
     uint32_t ctl_reset;
+    uint32_t ctl_reset_command;
     uint32_t ctl_step;
     uint32_t request_params;
     uint32_t config_take;

@@ -8,6 +8,7 @@
 
 #include "ctl_pu.h"
 #include "drive.h"
+#include "drive_open_phase.h"
 #include "mock_hal_ctl.h"
 #include "test_support.h"
 
@@ -581,6 +582,191 @@ static void test_dc_overvoltage_faults_when_idle(void **state)
     assert_int_equal(mock_rec.enable, 0u);
 }
 
+/* ---- open-phase operation (drive_open_phase.h) ---- */
+
+static double op_theta; /* electrical angle of the test currents, rad */
+
+/* n periods at 1500 r/min with 3 A balanced currents, the phases in `open` carrying none (their
+ * words move by a count, as a live sensor's do) and the encoder turning with them. */
+static void run_rotating(int n, unsigned open)
+{
+    static const double deg[6] = {0.0, 120.0, 240.0, 30.0, 150.0, 270.0};
+    const double step = 2.0 * TEST_PI * 75.0 * 1.0e-4;
+    int i;
+    int k;
+    mock_encoder.mech_speed_q16 = 25 * 65536;
+    for (i = 0; i < n; i++) {
+        double amps[6];
+        for (k = 0; k < 6; k++) {
+            amps[k] = 3.0 * cos(op_theta - deg[k] * TEST_PI / 180.0);
+        }
+        for (k = 0; k < 6; k++) { /* the set's other two carry equal and opposite currents */
+            if ((open >> k) & 1u) {
+                const int s = (k < 3) ? 0 : 3;
+                const int a = s + (k - s + 1) % 3;
+                const int b = s + (k - s + 2) % 3;
+                const double half = 0.5 * (amps[a] - amps[b]);
+                amps[a] = ((open >> a) & 1u) ? 0.0 : half;
+                amps[b] = ((open >> b) & 1u) ? 0.0 : -half;
+                amps[k] = 0.0;
+            }
+        }
+        for (k = 0; k < 6; k++) {
+            mock_adc.phase[k] = (uint16_t)(2048.5 + amps[k] / (40.0 / 4096.0) + (double)(i & 1));
+        }
+        mock_encoder.elec_angle = (uint32_t)(fmod(op_theta / (2.0 * TEST_PI), 1.0) * 4294967296.0);
+        will_return(hal_adc_read, true);
+        drive_control_isr(&d);
+        op_theta += step;
+    }
+}
+
+static void start_rotating(void)
+{
+    calibrate();
+    mock_cmd.enable = true;
+    drive_request_run(&d);
+    run_rotating(450, 0u);
+    assert_int_equal(d.state, DRIVE_STATE_RUN);
+}
+
+/* Ride-through: OPEN_PHASE isolates the phase's leg, logs the record, keeps RUN with the outputs
+ * off until the background's post-fault set is in force, then runs on five legs. */
+static void test_open_phase_ride_through(void **state)
+{
+    uint32_t steps;
+    ctl_fault_record_t r;
+    (void)state;
+    assert_false(drive_set_open_phase_action(&d, 2, 0));
+    assert_false(drive_set_open_phase_action(&d, 1, 2));
+    assert_true(drive_set_open_phase_action(&d, DRIVE_OPEN_PHASE_RIDE_THROUGH,
+                                            (int16_t)CTL_POSTFAULT_MIN_LOSS));
+    start_rotating();
+    run_rotating(2 * CTL_PROTECT_OPEN_PHASE_WINDOW, 1u << 2);
+    assert_int_equal(d.state, DRIVE_STATE_RUN);
+    assert_int_equal(d.fault, DRIVE_FAULT_NONE);
+    assert_int_equal(d.isolated_leg, 2);
+    assert_int_equal(d.isolation_cause, DRIVE_ISOLATION_FAULT);
+    assert_int_equal(mock_rec.isolated, 1u << 2);
+    assert_int_equal(drive_faults_latched(&d), 0u);
+    assert_true(drive_read_fault_record(&d, &r));
+    assert_int_equal(r.faults, CTL_FAULT_OPEN_PHASE);
+    /* outputs off and no control step until the set of the isolated leg is in force */
+    assert_true(mock_rec.pwm_off);
+    steps = mock_rec.ctl_step;
+    run_rotating(3, 1u << 2);
+    assert_int_equal(mock_rec.ctl_step, steps);
+    drive_background(&d);
+    assert_int_equal(mock_rec.requested.open_phase, 2);
+    drive_background(&d); /* waiting for the ISR: nothing asked twice */
+    assert_int_equal(mock_rec.request_params, 1u);
+    run_rotating(1, 1u << 2);
+    assert_int_equal(ctl_postfault_config(&d.ctl)->open_leg, 2);
+    assert_int_equal(mock_rec.ctl_step, steps + 1u);
+    assert_int_equal(mock_rec.ctl_reset_command, 1u);
+    assert_false(mock_rec.pwm_off);
+    /* five-leg currents do not trip the check that ignores the isolated phase */
+    run_rotating(3 * CTL_PROTECT_OPEN_PHASE_WINDOW, 1u << 2);
+    assert_int_equal(d.state, DRIVE_STATE_RUN);
+}
+
+/* A second open phase stops the drive, both records in the log; FAULT -> READY -> RUN keeps the
+ * leg isolated and runs on five legs again. */
+static void test_second_open_phase_stops(void **state)
+{
+    ctl_fault_record_t r;
+    (void)state;
+    (void)drive_set_open_phase_action(&d, DRIVE_OPEN_PHASE_RIDE_THROUGH, 0);
+    start_rotating();
+    run_rotating(2 * CTL_PROTECT_OPEN_PHASE_WINDOW, 1u << 5);
+    drive_background(&d);
+    run_rotating(CTL_PROTECT_OPEN_PHASE_WINDOW, 1u << 5);
+    assert_int_equal(d.isolated_leg, 5);
+    run_rotating(2 * CTL_PROTECT_OPEN_PHASE_WINDOW, (1u << 5) | (1u << 1));
+    assert_int_equal(d.state, DRIVE_STATE_FAULT);
+    assert_int_equal(d.fault, DRIVE_FAULT_OPEN_PHASE);
+    assert_true(mock_rec.pwm_off);
+    assert_int_equal(ctl_protect_log_pending(&d.protect), 2u);
+    assert_true(drive_read_fault_record(&d, &r));
+    assert_true(drive_read_fault_record(&d, &r));
+    assert_int_equal(r.faults, CTL_FAULT_OPEN_PHASE);
+    assert_int_equal(ctl_protect_open_phase(&d.protect), 1);
+    drive_request_clear_fault(&d);
+    run_rotating(1, 0u);
+    assert_int_equal(d.state, DRIVE_STATE_READY);
+    assert_int_equal(d.isolated_leg, 5);
+    assert_int_equal(mock_rec.isolated, 1u << 5);
+    drive_request_run(&d);
+    run_rotating(2, 1u << 5);
+    assert_int_equal(d.state, DRIVE_STATE_RUN);
+    assert_false(mock_rec.pwm_off); /* the five-leg set is still in force: no pause */
+}
+
+/* The build default stops on OPEN_PHASE like on any fault; so does OPEN_PHASE with another
+ * fault in the same period. */
+static void test_open_phase_stops_by_default(void **state)
+{
+    (void)state;
+    assert_int_equal(d.open_phase_action, DRIVE_OPEN_PHASE_STOP);
+    start_rotating();
+    run_rotating(2 * CTL_PROTECT_OPEN_PHASE_WINDOW, 1u << 3);
+    assert_int_equal(d.state, DRIVE_STATE_FAULT);
+    assert_int_equal(d.fault, DRIVE_FAULT_OPEN_PHASE);
+    assert_int_equal(d.isolated_leg, -1);
+    assert_int_equal(mock_rec.isolated, 0u);
+}
+
+/* An isolation command (READY or RUN), refused when a leg is isolated already or for a bad leg;
+ * a restore command in READY only; after it the healthy set comes back before the outputs do. */
+static void test_isolate_and_restore_commands(void **state)
+{
+    (void)state;
+    calibrate();
+    assert_false(drive_request_isolate_leg(&d, 6));
+    assert_false(drive_request_restore_legs(&d)); /* none isolated */
+    assert_true(drive_request_isolate_leg(&d, 4));
+    run_isr(1);
+    assert_int_equal(d.isolated_leg, 4);
+    assert_int_equal(d.isolation_cause, DRIVE_ISOLATION_COMMAND);
+    assert_false(drive_request_isolate_leg(&d, 1)); /* one at a time */
+    drive_background(&d);
+    run_isr(1);
+    assert_int_equal(ctl_postfault_config(&d.ctl)->open_leg, 4);
+    mock_cmd.enable = true;
+    drive_request_run(&d);
+    run_rotating(5, 1u << 4);
+    assert_int_equal(d.state, DRIVE_STATE_RUN);
+    assert_false(mock_rec.pwm_off);
+    assert_false(drive_request_restore_legs(&d)); /* not in RUN */
+    drive_request_stop(&d);
+    run_isr(1);
+    assert_true(drive_request_restore_legs(&d));
+    run_isr(1);
+    assert_int_equal(d.isolated_leg, -1);
+    assert_int_equal(mock_rec.isolated, 0u);
+    /* RUN before the healthy set arrives: outputs held off */
+    drive_request_run(&d);
+    run_rotating(2, 0u);
+    assert_true(mock_rec.pwm_off);
+    drive_background(&d);
+    assert_int_equal(mock_rec.requested.open_phase, -1);
+    run_rotating(2, 0u);
+    assert_false(mock_rec.pwm_off);
+}
+
+/* Whatever set a caller hands over, the open phase in it is the drive's isolated leg. */
+static void test_requested_set_carries_the_isolated_leg(void **state)
+{
+    ctl_params_t p = d.params_bg;
+    (void)state;
+    calibrate();
+    p.open_phase = 3;
+    assert_int_equal(drive_request_params(&d, &p), CTL_PARAM_OK);
+    assert_int_equal(mock_rec.requested.open_phase, -1);
+    run_isr(1);
+    assert_int_equal(ctl_postfault_config(&d.ctl)->open_leg, CTL_POSTFAULT_NO_LEG);
+}
+
 static void test_fault_mask_mapping_round_trips(void **state)
 {
     int16_t code;
@@ -621,6 +807,11 @@ int main(void)
         cmocka_unit_test_setup(test_simultaneous_faults_one_record_all_bits, setup),
         cmocka_unit_test_setup(test_dc_overvoltage_faults_when_idle, setup),
         cmocka_unit_test_setup(test_fault_mask_mapping_round_trips, setup),
+        cmocka_unit_test_setup(test_open_phase_ride_through, setup),
+        cmocka_unit_test_setup(test_second_open_phase_stops, setup),
+        cmocka_unit_test_setup(test_open_phase_stops_by_default, setup),
+        cmocka_unit_test_setup(test_isolate_and_restore_commands, setup),
+        cmocka_unit_test_setup(test_requested_set_carries_the_isolated_leg, setup),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
