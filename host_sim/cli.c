@@ -37,6 +37,10 @@ void sim_cli_usage(FILE *f)
         "[--no-protect]\n"
         "                   [--plot] [--quiet]\n"
         "                   [--fault-time S]\n"
+        "                   [--ride-through] [--postfault {min-loss,max-torque}] "
+        "[--open-phase {A..F}] [--open-model {resistor,open}]\n"
+        "                   [--second-fault {A..F}] [--second-fault-time S] "
+        "[--isolate-leg {A..F}] [--isolate-time S]\n"
         "  sixphase-sim reproduce --out DIR [--jobs N] [--no-plots] [--quiet]\n"
         "  sixphase-sim sweep --out DIR [--jobs N] [--force] [--no-plots] [--quiet] run options,\n"
         "                   numbers and choices as lists (a,b,c) or ranges (start:stop:step);\n"
@@ -96,6 +100,9 @@ static const char *const delay_angles[] = {"period-start", "mid-period", NULL};
 /* ctl_pulse_pattern_t order */
 static const char *const pulse_patterns[] = {"by-ones", "fewest-transitions", "fewest-per-set",
                                              NULL};
+static const char *const phases[] = {"A", "B", "C", "D", "E", "F", NULL};
+static const char *const postfault_strategies[] = {"min-loss", "max-torque", NULL};
+static const char *const open_models[] = {"resistor", "open", NULL};
 
 #define F(member) offsetof(sim_cli_t, member)
 #define FLAG(n, k, m, g, v)                                                                        \
@@ -150,6 +157,14 @@ enum {
     G_PACING,
     G_RUN_PLOT,
     G_BAUD,
+    G_RIDE_THROUGH,
+    G_POSTFAULT,
+    G_OPEN_PHASE,
+    G_OPEN_MODEL,
+    G_SECOND_FAULT,
+    G_SECOND_FAULT_TIME,
+    G_ISOLATE_LEG,
+    G_ISOLATE_TIME,
     G_IDEAL
 };
 
@@ -203,6 +218,14 @@ static const opt_t options[] = {
     FLAG("--no-adc-noise", OPT_SET_BOOL, cfg.plant.adc_noise_on, G_IDEAL + 5, 0),
     FLAG("--no-encoder-quant", OPT_SET_BOOL, cfg.plant.encoder_quant_on, G_IDEAL + 6, 0),
     {"--ideal", OPT_IDEAL, OPT_RUN, 0u, G_IDEAL, 0.0, 0.0, 0, NULL},
+    FLAG("--ride-through", OPT_SET_INT, cfg.open_phase_action, G_RIDE_THROUGH, 1),
+    CHOICE("--postfault", cfg.postfault_strategy, G_POSTFAULT, postfault_strategies),
+    CHOICE("--open-phase", cfg.fault_phase, G_OPEN_PHASE, phases),
+    CHOICE("--open-model", cfg.open_model, G_OPEN_MODEL, open_models),
+    CHOICE("--second-fault", cfg.second_fault_phase, G_SECOND_FAULT, phases),
+    NUM("--second-fault-time", cfg.second_fault_s, G_SECOND_FAULT_TIME, 0.001, 100.0),
+    CHOICE("--isolate-leg", cfg.isolate_leg, G_ISOLATE_LEG, phases),
+    NUM("--isolate-time", cfg.isolate_s, G_ISOLATE_TIME, 0.001, 100.0),
 };
 
 #define OPTION_COUNT ((int)(sizeof options / sizeof options[0]))
@@ -421,6 +444,36 @@ static int check_serve(const sim_cli_t *o, unsigned where, char *err, size_t len
     return 0;
 }
 
+/* The open-phase options: each belongs to its scenario or to another option. */
+static int check_open_phase_options(const sim_config_t *c, const int *seen, char *err, size_t len)
+{
+    const bool open_fault = c->fault == SIM_FAULT_OPEN_PHASE;
+    const int first = (c->fault_phase >= 0) ? c->fault_phase : 2;
+    if ((seen[G_OPEN_PHASE] || seen[G_SECOND_FAULT] || seen[G_OPEN_MODEL]) && !open_fault) {
+        return cli_fail(err, len, "%s needs --scenario fault-open-phase%s",
+                        seen[G_OPEN_PHASE]   ? "--open-phase"
+                        : seen[G_OPEN_MODEL] ? "--open-model"
+                                             : "--second-fault",
+                        "");
+    }
+    if (seen[G_SECOND_FAULT_TIME] && !seen[G_SECOND_FAULT]) {
+        return cli_fail(err, len, "%s needs --second-fault%s", "--second-fault-time", "");
+    }
+    if (seen[G_SECOND_FAULT] && c->second_fault_phase == first) {
+        return cli_fail(err, len, "%s names the phase that is already open%s", "--second-fault",
+                        "");
+    }
+    if (seen[G_ISOLATE_TIME] && !seen[G_ISOLATE_LEG]) {
+        return cli_fail(err, len, "%s needs --isolate-leg%s", "--isolate-time", "");
+    }
+    if (seen[G_ISOLATE_LEG] && c->fault != SIM_FAULT_NONE) {
+        return cli_fail(err, len,
+                        "%s runs on a healthy machine, not with a fault-<name> scenario%s",
+                        "--isolate-leg", "");
+    }
+    return 0;
+}
+
 /* --fault-time inside the run: up to its duration (serve: 10 h unless --duration). */
 static int check_fault_time(const sim_config_t *c, unsigned where, char *err, size_t len)
 {
@@ -476,6 +529,9 @@ static int check_combination(const sim_cli_t *o, const int *seen, unsigned where
         return -1;
     }
     if (seen[G_FAULT_TIME] && check_fault_time(c, where, err, len) != 0) {
+        return -1;
+    }
+    if (check_open_phase_options(c, seen, err, len) != 0) {
         return -1;
     }
     /* Both switches of a leg are off for the dead time at every edge: it must leave room for

@@ -15,6 +15,8 @@
 #define FAULT_OPEN_R_OHM 2000.0      /* phase C connection open: 2 kohm in series */
 #define FAULT_OPEN_STEP_S 2e-6       /* RK4 sub-step that keeps the 2 kohm phase stable */
 
+static void sim_fault_active_plant(const sim_fault_state_t *s, plant_params_t *p);
+
 static const sim_fault_info_t fault_table[SIM_FAULT_COUNT] = {
     {NULL, NULL, DRIVE_FAULT_NONE, 0.0},
     {"overcurrent",
@@ -69,10 +71,39 @@ void sim_fault_begin(sim_fault_state_t *s, sim_fault_t kind, double t_inject)
     s->kind = kind;
     s->t_inject = t_inject;
     s->active = (kind != SIM_FAULT_NONE) && sim_fault_at_power_up(kind);
+    s->open_phase = 2;
+    s->second_phase = -1;
+}
+
+void sim_fault_open_phases(sim_fault_state_t *s, int phase, int second_phase, double t_second,
+                           bool exact)
+{
+    s->open_phase = phase;
+    s->second_phase = second_phase;
+    s->t_second = t_second;
+    s->open_exact = exact;
+}
+
+/* A phase connection opens: 2 kohm in series (RK4 steps short enough for the stiff circuit), or
+ * an open circuit. */
+static void sim_fault_open_connection(const sim_fault_state_t *s, int phase, plant_params_t *p)
+{
+    if (s->open_exact) {
+        p->phase_open[phase] = true;
+        return;
+    }
+    p->phase_extra_r_ohm[phase] = FAULT_OPEN_R_OHM;
+    if (p->max_step_s > FAULT_OPEN_STEP_S) {
+        p->max_step_s = FAULT_OPEN_STEP_S;
+    }
 }
 
 bool sim_fault_update(sim_fault_state_t *s, double t)
 {
+    if (s->active && s->second_phase >= 0 && !s->second_active && t >= s->t_second) {
+        s->second_active = true;
+        return true;
+    }
     if (s->active || s->kind == SIM_FAULT_NONE || t < s->t_inject) {
         return false;
     }
@@ -80,12 +111,46 @@ bool sim_fault_update(sim_fault_state_t *s, double t)
     return true;
 }
 
-void sim_fault_plant(const sim_fault_state_t *s, const plant_params_t *healthy, plant_params_t *p)
+/* Legs switched off for good: where the fault broke the connection the phase is open (its
+ * resistance then carries nothing; without one left the stiff small step is not needed); the
+ * others float on their diodes (returned). */
+static uint16_t sim_fault_isolated(const plant_params_t *healthy, uint16_t isolated,
+                                   plant_params_t *p)
+{
+    uint16_t floating = 0u;
+    bool extra = false;
+    int k;
+    for (k = 0; k < PLANT_PHASES; k++) {
+        if ((((unsigned)isolated >> k) & 1u) != 0u &&
+            (p->phase_extra_r_ohm[k] != 0.0 || p->phase_open[k])) {
+            p->phase_open[k] = true;
+            p->phase_extra_r_ohm[k] = 0.0;
+        } else if ((((unsigned)isolated >> k) & 1u) != 0u) {
+            floating |= (uint16_t)(1u << k);
+        }
+        extra = extra || p->phase_extra_r_ohm[k] != 0.0;
+    }
+    if (!extra) {
+        p->max_step_s = healthy->max_step_s;
+    }
+    if (floating != 0u) {
+        p->integrator = PLANT_INTEGRATOR_RK4;
+    }
+    return floating;
+}
+
+uint16_t sim_fault_plant(const sim_fault_state_t *s, const plant_params_t *healthy,
+                         uint16_t isolated, plant_params_t *p)
 {
     *p = *healthy;
-    if (!s->active) {
-        return;
+    if (s->active) {
+        sim_fault_active_plant(s, p);
     }
+    return (isolated != 0u) ? sim_fault_isolated(healthy, isolated, p) : 0u;
+}
+
+static void sim_fault_active_plant(const sim_fault_state_t *s, plant_params_t *p)
+{
     switch (s->kind) {
     case SIM_FAULT_DC_OVERVOLTAGE:
         p->vdc_v = FAULT_OVERVOLTAGE_V;
@@ -94,9 +159,9 @@ void sim_fault_plant(const sim_fault_state_t *s, const plant_params_t *healthy, 
         p->vdc_v = FAULT_UNDERVOLTAGE_V;
         break;
     case SIM_FAULT_OPEN_PHASE:
-        p->phase_extra_r_ohm[2] = FAULT_OPEN_R_OHM;
-        if (p->max_step_s > FAULT_OPEN_STEP_S) {
-            p->max_step_s = FAULT_OPEN_STEP_S;
+        sim_fault_open_connection(s, s->open_phase, p);
+        if (s->second_active) {
+            sim_fault_open_connection(s, s->second_phase, p);
         }
         break;
     default:

@@ -63,6 +63,12 @@ typedef struct {
     sim_fault_t kind;
     double t_inject; /* s, scenario clock */
     bool active;
+    int open_phase;   /* SIM_FAULT_OPEN_PHASE: the phase that opens (default 2, C) */
+    bool open_exact;  /* the connection opens for good (plant_params_t.phase_open) instead of
+                       * the 2 kohm series resistance (with its small RK4 step) */
+    int second_phase; /* a second phase that opens later, -1: none */
+    double t_second;  /* s, scenario clock */
+    bool second_active;
     /* state the injections keep */
     hal_adc_sample_t frozen_adc;
     bool adc_frozen;
@@ -73,13 +79,23 @@ typedef struct {
 
 void sim_fault_begin(sim_fault_state_t *s, sim_fault_t kind, double t_inject);
 
+/* SIM_FAULT_OPEN_PHASE: which phase opens (0..5), and a second one (-1: none) at t_second;
+ * exact: as an open circuit rather than 2 kohm. */
+void sim_fault_open_phases(sim_fault_state_t *s, int phase, int second_phase, double t_second,
+                           bool exact);
+
 /* Activate at the injection time (or at once for power-up faults); true in the period the
- * fault becomes active. */
+ * fault (or a second open phase) becomes active. */
 bool sim_fault_update(sim_fault_state_t *s, double t);
 
 /* The plant as the fault leaves it: DC link, phase connections, integration step (constant
- * once active: call when sim_fault_update reports the activation). */
-void sim_fault_plant(const sim_fault_state_t *s, const plant_params_t *healthy, plant_params_t *p);
+ * once active: call when sim_fault_update reports the activation), with the legs the drive
+ * isolated (bit k: leg k) switched off. An isolated leg whose connection the fault broke is an
+ * open phase (plant_params_t.phase_open; the 2 kohm then carry nothing); the others float on
+ * their diodes (inverter_set_floating): returned, bit k for leg k, and the plant is integrated
+ * with RK4 for them. */
+uint16_t sim_fault_plant(const sim_fault_state_t *s, const plant_params_t *healthy,
+                         uint16_t isolated, plant_params_t *p);
 
 /* Load torque on the shaft (N*m) with the fault. */
 double sim_fault_load(const sim_fault_state_t *s, double load_nm);

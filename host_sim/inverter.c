@@ -37,6 +37,17 @@ void inverter_init(inverter_t *inv, const plant_params_t *p, double ts)
     inv->u_vdc_of = -1.0; /* no DC link voltage is negative: inv_voltages builds u_vdc */
     memset(&inv->cache, 0, sizeof inv->cache);
     plant_stepper_init(&inv->stepper);
+    inverter_set_floating(inv, 0u);
+    inv->float_conduct_s = 0.0;
+}
+
+void inverter_set_floating(inverter_t *inv, unsigned legs)
+{
+    int k;
+    inv->floating = legs & 077u;
+    for (k = 0; k < PLANT_PHASES; k++) {
+        inv->float_state[k] = 0;
+    }
 }
 
 void inverter_free(inverter_t *inv) { inv_cache_free(&inv->cache); }
@@ -128,6 +139,85 @@ static const double (*inv_voltages(inverter_t *inv, const plant_params_t *p))[4]
     return (const double(*)[4])inv->u_vdc;
 }
 
+/* A floating leg's state for the next step: a conducting diode stays while its current has its
+ * sign; otherwise the terminal voltage that holds the phase open decides (0 open, 1 lower
+ * diode, 2 upper diode). */
+static int inv_float_decide(const inverter_t *inv, const plant_params_t *p, const plant_state_t *s,
+                            const double (*u)[4], unsigned eff, int k)
+{
+    const double i_alpha = s->i_d * s->cos_e - s->i_q * s->sin_e;
+    const double i_beta = s->i_d * s->sin_e + s->i_q * s->cos_e;
+    const double i_k = inv_phase_current(s, k, i_alpha, i_beta);
+    double v;
+    if ((inv->float_state[k] == 1 && i_k > 0.0) || (inv->float_state[k] == 2 && i_k < 0.0)) {
+        return inv->float_state[k];
+    }
+    v = plant_open_terminal_voltage(p, s, k, u[eff & ~INV_LEG_BIT(k)]);
+    return (v < 0.0) ? 1 : ((v > p->vdc_v) ? 2 : 0);
+}
+
+/* A conducting diode whose current reached zero or reversed within the last step. */
+static bool inv_float_blocked(const inverter_t *inv, const plant_state_t *s, int k)
+{
+    const double i_k = inv_phase_current(s, k, s->i_d * s->cos_e - s->i_q * s->sin_e,
+                                         s->i_d * s->sin_e + s->i_q * s->cos_e);
+    return (inv->float_state[k] == 1 && i_k <= 0.0) || (inv->float_state[k] == 2 && i_k >= 0.0);
+}
+
+/* One interval with floating legs (RK4: sim_fault_plant sets it), in steps of at most
+ * INV_FLOAT_STEP_S: each step the legs' states are decided, the open ones' phases opened, the
+ * conducting ones' legs set; a diode whose current reversed within a step blocks: the current is
+ * commutated to zero. */
+static double inv_float_interval(inverter_t *inv, const plant_params_t *p, plant_state_t *s,
+                                 const double (*u)[4], unsigned eff, double t_load, double h)
+{
+    const int n = (int)ceil(h / INV_FLOAT_STEP_S - 1e-9);
+    const double hs = h / (double)((n < 1) ? 1 : n);
+    plant_exact_span_t sp;
+    double te = 0.0;
+    int i;
+    plant_stepper_span(&inv->stepper, hs, &sp);
+    for (i = 0; i < ((n < 1) ? 1 : n); i++) {
+        plant_params_t pf = *p;
+        unsigned e = eff;
+        bool conducting = false;
+        int k;
+        for (k = 0; k < PLANT_PHASES; k++) {
+            if (((inv->floating >> k) & 1u) != 0u) {
+                inv->float_state[k] = inv_float_decide(inv, p, s, u, eff, k);
+                pf.phase_open[k] = inv->float_state[k] == 0;
+                e = (inv->float_state[k] == 2) ? (e | INV_LEG_BIT(k)) : (e & ~INV_LEG_BIT(k));
+                conducting = conducting || inv->float_state[k] != 0;
+            }
+        }
+        te += plant_stepper_step(&inv->stepper, &pf, s, u[e], t_load, hs, &sp);
+        if (conducting && inv->counting) {
+            inv->float_conduct_s += hs;
+        }
+        for (k = 0; k < PLANT_PHASES; k++) {
+            if (((inv->floating >> k) & 1u) != 0u && inv_float_blocked(inv, s, k)) {
+                pf.phase_open[k] = true; /* the current crossed zero: the diode blocks */
+                plant_open_commutate(&pf, s);
+                inv->float_state[k] = 0;
+            }
+        }
+    }
+    return te;
+}
+
+/* Leg mask A = bit 0 to the inverter's S_A = bit 5. */
+static unsigned inv_float_bits(unsigned legs)
+{
+    unsigned bits = 0u;
+    int k;
+    for (k = 0; k < PLANT_PHASES; k++) {
+        if (((legs >> k) & 1u) != 0u) {
+            bits |= INV_LEG_BIT(k);
+        }
+    }
+    return bits;
+}
+
 /* The leg states in force: the commanded ones, and for each leg in a dead interval the state
  * its current's sign imposes through the diodes (sign taken at the interval's start). */
 static unsigned inv_effective_legs(unsigned nominal, unsigned dead, const plant_state_t *s)
@@ -153,12 +243,10 @@ static unsigned inv_effective_legs(unsigned nominal, unsigned dead, const plant_
     return eff;
 }
 
-/* One interval: the effective legs, the transition count, the caller's sample, the plant;
- * returns the torque integral. */
-static INV_INLINE double inv_run_interval(inverter_t *inv, const plant_params_t *p,
-                                          plant_state_t *s, const double (*u)[4],
-                                          const inv_interval_t *iv, double t_load,
-                                          const inv_samples_t *smp)
+/* An interval's start: the effective legs (returned), the transition count, the caller's
+ * sample. */
+static INV_INLINE unsigned inv_interval_start(inverter_t *inv, plant_state_t *s,
+                                              const inv_interval_t *iv, const inv_samples_t *smp)
 {
     const unsigned eff =
         (iv->dead != 0u) ? inv_effective_legs(iv->nominal, iv->dead, s) : iv->nominal;
@@ -169,6 +257,16 @@ static INV_INLINE double inv_run_interval(inverter_t *inv, const plant_params_t 
     if (iv->sample && smp->cb != 0) {
         smp->cb(smp->ctx, iv->t, s, eff);
     }
+    return eff;
+}
+
+/* One interval: its start, then the plant; returns the torque integral. */
+static INV_INLINE double inv_run_interval(inverter_t *inv, const plant_params_t *p,
+                                          plant_state_t *s, const double (*u)[4],
+                                          const inv_interval_t *iv, double t_load,
+                                          const inv_samples_t *smp)
+{
+    const unsigned eff = inv_interval_start(inv, s, iv, smp);
     return plant_stepper_step(&inv->stepper, p, s, u[eff], t_load, iv->h, &iv->sp);
 }
 
@@ -215,6 +313,29 @@ static double inv_run_built(inverter_t *inv, const plant_params_t *p, plant_stat
     return te_int;
 }
 
+/* A period with floating legs (their switches off, their phases connected): built as it runs,
+ * each interval in the diode-deciding steps of inv_float_interval. */
+static double inv_run_floating(inverter_t *inv, const plant_params_t *p, plant_state_t *s,
+                               const double duty[PLANT_PHASES], double t_load,
+                               const inv_samples_t *smp)
+{
+    const double(*u)[4] = inv_voltages(inv, p);
+    const unsigned off = inv_float_bits(inv->floating);
+    inv_builder_t b;
+    inv_interval_t iv;
+    double te_int = 0.0;
+    int n = 0;
+    inv_builder_start(&b, &inv->legs, duty, inv->ts, inv->td, &smp->times);
+    while (inv_builder_next(&b, &iv)) {
+        const unsigned eff = inv_interval_start(inv, s, &iv, smp);
+        te_int += inv_float_interval(inv, p, s, u, eff & ~off, t_load, iv.h);
+        n++;
+    }
+    inv->intervals = n;
+    inv_builder_finish(&b, &inv->legs);
+    return te_int;
+}
+
 double inverter_run_period(inverter_t *inv, const plant_params_t *p, plant_state_t *s,
                            const double duty[PLANT_PHASES], bool forced_off, double t_load,
                            bool lock_mech, const double *sample_t, int n_samples,
@@ -231,11 +352,12 @@ double inverter_run_period(inverter_t *inv, const plant_params_t *p, plant_state
     }
     inv->off = false;
     plant_stepper_begin(&inv->stepper, p, s, lock_mech);
-    pr = inv_cache_program(&inv->cache, &inv->legs, duty, inv->ts, inv->td, &smp.times);
-    if (pr) {
-        te_int = inv_run_program(inv, p, s, pr, t_load, &smp);
+    if (inv->floating != 0u) { /* rare: never cached */
+        te_int = inv_run_floating(inv, p, s, duty, t_load, &smp);
     } else {
-        te_int = inv_run_built(inv, p, s, duty, t_load, &smp);
+        pr = inv_cache_program(&inv->cache, &inv->legs, duty, inv->ts, inv->td, &smp.times);
+        te_int = pr ? inv_run_program(inv, p, s, pr, t_load, &smp)
+                    : inv_run_built(inv, p, s, duty, t_load, &smp);
     }
     plant_stepper_end(&inv->stepper, p, s, t_load, te_int, inv->ts);
     return te_int / inv->ts;

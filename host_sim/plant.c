@@ -42,6 +42,7 @@ void plant_params_default(plant_params_t *p)
     p->dead_time_s = 2e-6;
     for (int k = 0; k < PLANT_PHASES; k++) {
         p->phase_extra_r_ohm[k] = 0.0;
+        p->phase_open[k] = false;
     }
     p->integrator = PLANT_INTEGRATOR_EXACT;
     p->max_step_s = 50e-6;
@@ -226,6 +227,9 @@ typedef struct {
     double r_extra_3[PLANT_PHASES]; /* phase_extra_r_ohm / 3 (VSD projection scale) */
     bool harm;
     bool extra_r; /* any phase_extra_r_ohm non-zero; keeps the normal path unchanged */
+    int n_open;   /* phases with phase_open, listed in open[] */
+    int open[PLANT_PHASES];
+    bool fault; /* extra_r or n_open: the fault instantiation of the integrator */
 } plant_coef_t;
 
 static void plant_coef(const plant_params_t *p, plant_coef_t *k)
@@ -251,6 +255,113 @@ static void plant_coef(const plant_params_t *p, plant_coef_t *k)
     if (k->extra_r) { /* normal runs skip this per-interval work */
         for (int n = 0; n < PLANT_PHASES; n++) {
             k->r_extra_3[n] = p->phase_extra_r_ohm[n] / 3.0;
+        }
+    }
+    k->n_open = 0;
+    for (int n = 0; n < PLANT_PHASES; n++) {
+        if (p->phase_open[n]) {
+            k->open[k->n_open++] = n;
+        }
+    }
+    k->fault = k->extra_r || k->n_open > 0;
+}
+
+/* Solves g x = r for the n <= 6 open-phase multipliers by elimination with partial pivoting; a
+ * pivot below 1e-9 of the largest diagonal entry marks a constraint that the others already
+ * imply (all three phases of one set open), whose multiplier is left at 0. */
+static void plant_open_solve(int n, double g[PLANT_PHASES][PLANT_PHASES], double r[PLANT_PHASES],
+                             double x[PLANT_PHASES])
+{
+    double tol = 0.0;
+    bool used[PLANT_PHASES] = {false, false, false, false, false, false};
+    int col;
+    for (col = 0; col < n; col++) {
+        tol = fmax(tol, fabs(g[col][col]) * 1e-9);
+        x[col] = 0.0;
+    }
+    for (col = 0; col < n; col++) {
+        int piv = -1;
+        for (int i = 0; i < n; i++) {
+            if (!used[i] && (piv < 0 || fabs(g[i][col]) > fabs(g[piv][col]))) {
+                piv = i;
+            }
+        }
+        if (piv < 0 || fabs(g[piv][col]) <= tol) {
+            continue; /* dependent: this multiplier stays 0 */
+        }
+        used[piv] = true;
+        for (int i = 0; i < n; i++) {
+            if (i != piv) {
+                const double f = g[i][col] / g[piv][col];
+                for (int j = 0; j < n; j++) {
+                    g[i][j] -= f * g[piv][j];
+                }
+                r[i] -= f * r[piv];
+            }
+        }
+        x[col] = r[piv] / g[piv][col];
+    }
+}
+
+/* The open phases' rows in the rotor frame (c_d, c_q turn with the rotor), their response
+ * M^-1 c and their Gram matrix c_j . M^-1 c_l. */
+typedef struct {
+    double a[PLANT_PHASES][4];
+    double b[PLANT_PHASES][4];
+    double g[PLANT_PHASES][PLANT_PHASES];
+} plant_open_rows_t;
+
+static void plant_open_rows(const plant_coef_t *p, double c, double s, plant_open_rows_t *o)
+{
+    for (int j = 0; j < p->n_open; j++) {
+        const int k = p->open[j];
+        /* cos(th_k - th) and sin(th_k - th) from the stationary row */
+        o->a[j][0] = plant_vsd_row[0][k] * c + plant_vsd_row[1][k] * s;
+        o->a[j][1] = plant_vsd_row[1][k] * c - plant_vsd_row[0][k] * s;
+        o->a[j][2] = plant_vsd_row[2][k];
+        o->a[j][3] = plant_vsd_row[3][k];
+        o->b[j][0] = o->a[j][0] * p->inv_ld;
+        o->b[j][1] = o->a[j][1] * p->inv_lq;
+        o->b[j][2] = o->a[j][2] * p->inv_lxy;
+        o->b[j][3] = o->a[j][3] * p->inv_lxy;
+    }
+    for (int j = 0; j < p->n_open; j++) {
+        for (int l = 0; l < p->n_open; l++) {
+            o->g[j][l] = o->a[j][0] * o->b[l][0] + o->a[j][1] * o->b[l][1] +
+                         o->a[j][2] * o->b[l][2] + o->a[j][3] * o->b[l][3];
+        }
+    }
+}
+
+/* The open terminals' voltages (multipliers along c_k, volts in the VSD scale) that keep
+ * d/dt (c_k . i) = 0 for the derivative dy of the state y at electrical speed we. */
+static void plant_open_multipliers(const plant_coef_t *p, plant_open_rows_t *o, const double y[5],
+                                   const double dy[4], double we, double lambda[PLANT_PHASES])
+{
+    double r[PLANT_PHASES];
+    for (int j = 0; j < p->n_open; j++) {
+        /* d/dt c_j = we (c_q, -c_d, 0, 0) */
+        const double drift = we * (o->a[j][1] * y[0] - o->a[j][0] * y[1]);
+        r[j] = -(o->a[j][0] * dy[0] + o->a[j][1] * dy[1] + o->a[j][2] * dy[2] + o->a[j][3] * dy[3] +
+                 drift);
+    }
+    plant_open_solve(p->n_open, o->g, r, lambda);
+}
+
+/* Moves the currents along M^-1 c_k until every open phase carries none at this angle. */
+static void plant_open_project(const plant_coef_t *p, double c, double s, double i[4])
+{
+    plant_open_rows_t o;
+    double r[PLANT_PHASES];
+    double mu[PLANT_PHASES];
+    plant_open_rows(p, c, s, &o);
+    for (int j = 0; j < p->n_open; j++) {
+        r[j] = o.a[j][0] * i[0] + o.a[j][1] * i[1] + o.a[j][2] * i[2] + o.a[j][3] * i[3];
+    }
+    plant_open_solve(p->n_open, o.g, r, mu);
+    for (int j = 0; j < p->n_open; j++) {
+        for (int m = 0; m < 4; m++) {
+            i[m] -= mu[j] * o.b[j][m];
         }
     }
 }
@@ -295,7 +406,7 @@ static PLANT_FORCE_INLINE void plant_deriv(const plant_coef_t *p, const double y
     double uq = -u[0] * s + u[1] * c;
     double ux = u[2], uy = u[3];
     double ex = 0.0, ey = 0.0;
-    if (extra) {
+    if (extra && p->extra_r) {
         plant_extra_drop(p, y, c, s, &ud, &uq, &ux, &uy);
     }
     k->did = (ud - p->r * y[0] + we * p->lq * y[1]) * p->inv_ld;
@@ -315,6 +426,19 @@ static PLANT_FORCE_INLINE void plant_deriv(const plant_coef_t *p, const double y
     k->dix = (ux - p->r * y[2] - ex) * p->inv_lxy;
     k->diy = (uy - p->r * y[3] - ey) * p->inv_lxy;
     k->dw = lock_mech ? 0.0 : (k->te - t_load - p->b * y[4]) * p->inv_j;
+    if (extra && p->n_open > 0) {
+        plant_open_rows_t o;
+        double dy[4] = {k->did, k->diq, k->dix, k->diy};
+        double lambda[PLANT_PHASES];
+        plant_open_rows(p, c, s, &o);
+        plant_open_multipliers(p, &o, y, dy, we, lambda);
+        for (int j = 0; j < p->n_open; j++) {
+            k->did += lambda[j] * o.b[j][0];
+            k->diq += lambda[j] * o.b[j][1];
+            k->dix += lambda[j] * o.b[j][2];
+            k->diy += lambda[j] * o.b[j][3];
+        }
+    }
 }
 
 static PLANT_FORCE_INLINE double plant_rk4_gen(const plant_coef_t *kc, plant_state_t *s,
@@ -376,6 +500,14 @@ static PLANT_FORCE_INLINE double plant_rk4_gen(const plant_coef_t *kc, plant_sta
         s->cos_e = c0 * cr - s0 * sr;
         s->sin_e = s0 * cr + c0 * sr;
     }
+    if (extra && kc->n_open > 0) { /* the step's truncation error off the constraint */
+        double i[4] = {s->i_d, s->i_q, s->i_x, s->i_y};
+        plant_open_project(kc, s->cos_e, s->sin_e, i);
+        s->i_d = i[0];
+        s->i_q = i[1];
+        s->i_x = i[2];
+        s->i_y = i[3];
+    }
     return h / 6.0 * (k1.te + 2.0 * k2.te + 2.0 * k3.te + k4.te);
 }
 
@@ -399,7 +531,7 @@ double plant_rk4_step(const plant_params_t *p, plant_state_t *s, const double u[
 {
     plant_coef_t kc;
     plant_coef(p, &kc);
-    if (kc.extra_r) {
+    if (kc.fault) {
         return plant_rk4_fault(&kc, s, u, t_load, lock_mech, h);
     }
     return plant_rk4_plain(&kc, s, u, t_load, lock_mech, h);
@@ -425,7 +557,7 @@ double plant_integrate_nosync(const plant_params_t *p, plant_state_t *s, const d
     steps = (n < 1.0) ? 1L : (long)n;
     hs = h / (double)steps;
     plant_coef(p, &kc);
-    if (kc.extra_r) { /* flag tested once per interval */
+    if (kc.fault) { /* flag tested once per interval */
         for (i = 0; i < steps; i++) {
             te_int += plant_rk4_fault(&kc, s, u, t_load, lock_mech, hs);
         }
@@ -435,4 +567,45 @@ double plant_integrate_nosync(const plant_params_t *p, plant_state_t *s, const d
         }
     }
     return te_int;
+}
+
+void plant_open_commutate(const plant_params_t *p, plant_state_t *s)
+{
+    plant_coef_t kc;
+    double i[4] = {s->i_d, s->i_q, s->i_x, s->i_y};
+    plant_coef(p, &kc);
+    if (kc.n_open == 0) {
+        return;
+    }
+    plant_open_project(&kc, s->cos_e, s->sin_e, i);
+    s->i_d = i[0];
+    s->i_q = i[1];
+    s->i_x = i[2];
+    s->i_y = i[3];
+}
+
+double plant_open_terminal_voltage(const plant_params_t *p, const plant_state_t *s, int phase,
+                                   const double u[4])
+{
+    plant_params_t free = *p;
+    plant_coef_t kc;
+    plant_deriv_t k;
+    plant_open_rows_t o;
+    const double y[5] = {s->i_d, s->i_q, s->i_x, s->i_y, s->omega_m};
+    double lambda[PLANT_PHASES];
+    double dy[4];
+    for (int n = 0; n < PLANT_PHASES; n++) {
+        free.phase_open[n] = false;
+    }
+    plant_coef(&free, &kc);
+    plant_deriv(&kc, y, s->cos_e, s->sin_e, u, 0.0, true, kc.extra_r, &k);
+    kc.n_open = 1;
+    kc.open[0] = phase;
+    dy[0] = k.did;
+    dy[1] = k.diq;
+    dy[2] = k.dix;
+    dy[3] = k.diy;
+    plant_open_rows(&kc, s->cos_e, s->sin_e, &o);
+    plant_open_multipliers(&kc, &o, y, dy, kc.pn * s->omega_m, lambda);
+    return 3.0 * lambda[0];
 }

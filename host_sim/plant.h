@@ -20,6 +20,13 @@
  * (the default 50 us step does at 2 kohm). Callers injecting an open phase
  * must therefore reduce max_step_s themselves, e.g. to 2e-6 s for 2 kohm with
  * L_xy = 10 mH; the plant does not change it.
+ *
+ * Open phase: phase_open[k] makes phase k carry no current at all (a broken connection, or a
+ * leg whose switches are off for good while its terminal stays within the rails). The open
+ * terminal's voltage is whatever holds i_k = c_k . i at zero: a Lagrange multiplier along c_k
+ * (c_k the phase's VSD row), solved with the derivative, so the currents evolve on the
+ * constraint (plus a projection after each RK4 step against drift). Not stiff: RK4 with the
+ * ordinary step. plant_open_commutate puts a state onto the constraint at once.
  */
 #ifndef SIM_PLANT_H
 #define SIM_PLANT_H
@@ -52,6 +59,7 @@ typedef struct {
     /* faults: series resistance added to one phase (a loose terminal; ~2 kohm =
      * open circuit); 0 in normal runs. See the stiffness note above. */
     double phase_extra_r_ohm[PLANT_PHASES];
+    bool phase_open[PLANT_PHASES]; /* the phase carries no current (see above) */
     /* numerics */
     plant_integrator_t integrator;
     double max_step_s; /* longest RK4 sub-step inside a constant-voltage interval */
@@ -130,6 +138,18 @@ double plant_integrate(const plant_params_t *p, plant_state_t *s, const double u
 /* As plant_integrate, without the angle re-synchronisation (inner loops). */
 double plant_integrate_nosync(const plant_params_t *p, plant_state_t *s, const double u[4],
                               double t_load, bool lock_mech, double h);
+
+/* With the phases of p->phase_open open: removes their currents from s at once, along the
+ * directions their terminals' voltages act in (M^-1 c_k), as a commutation through the
+ * freewheeling diodes would, in zero time. Uses cos_e / sin_e. */
+void plant_open_commutate(const plant_params_t *p, plant_state_t *s);
+
+/* The terminal voltage (V, against the negative DC rail) that holds an open phase at zero
+ * current while the legs apply the stationary-frame voltage u computed with the open leg's
+ * switch state 0 (plant_vector_voltage): 3 times the multiplier along c_k. Single open phase
+ * only (the drive runs with one); the state must lie on the constraint. */
+double plant_open_terminal_voltage(const plant_params_t *p, const plant_state_t *s, int phase,
+                                   const double u[4]);
 
 /* One RK4 step exactly (no sub-stepping, no re-synchronisation). */
 double plant_rk4_step(const plant_params_t *p, plant_state_t *s, const double u[4], double t_load,

@@ -21,7 +21,7 @@ bool plant_exact_applies(const plant_params_t *p)
         return false;
     }
     for (k = 0; k < PLANT_PHASES; k++) {
-        if (p->phase_extra_r_ohm[k] != 0.0) {
+        if (p->phase_extra_r_ohm[k] != 0.0 || p->phase_open[k]) {
             return false;
         }
     }

@@ -20,14 +20,15 @@ void plant_stepper_mark_period(plant_stepper_t *st, const plant_state_t *s)
 }
 
 /* Whether p holds the values the coefficients were made of (the fields they depend on, compared
- * by value: a byte comparison would read the structure's padding). */
+ * by value: a byte comparison would read the structure's padding; the array of bools has none). */
 static bool stepper_params_same(const plant_params_t *seen, const plant_params_t *p)
 {
     int n;
     if (seen->r_ohm != p->r_ohm || seen->ld_h != p->ld_h || seen->lq_h != p->lq_h ||
         seen->lxy_h != p->lxy_h || seen->psi_f_wb != p->psi_f_wb || seen->psi5_wb != p->psi5_wb ||
         seen->psi7_wb != p->psi7_wb || seen->pole_pairs != p->pole_pairs ||
-        seen->harmonics_on != p->harmonics_on || seen->integrator != p->integrator) {
+        seen->harmonics_on != p->harmonics_on || seen->integrator != p->integrator ||
+        memcmp(seen->phase_open, p->phase_open, sizeof p->phase_open) != 0) {
         return false;
     }
     for (n = 0; n < PLANT_PHASES; n++) {

@@ -10,7 +10,7 @@
  *   rebuilt when the parameters change (fault injection) and when the speed does (per period).
  * rk4: classical RK4 with free mechanics in every interval (plant_integrate_nosync), as before
  *   the exact solution existed; also where the exact solution does not apply
- *   (plant_exact_applies: no resistance, or an extra phase resistance).
+ *   (plant_exact_applies: no resistance, an extra phase resistance, or an open phase).
  */
 #ifndef SIM_PLANT_STEPPER_H
 #define SIM_PLANT_STEPPER_H

@@ -4,6 +4,8 @@
 #include <math.h>
 #include <string.h>
 
+#include "sim_open_phase.h"
+
 #define SIM_FINE_RATE_HZ 100000.0
 
 const char *sim_controller_name(int controller)
@@ -58,6 +60,14 @@ void sim_config_default(sim_config_t *c)
     c->protect = true;
     c->fault = SIM_FAULT_NONE;
     c->fault_time_s = 0.0;
+    c->open_phase_action = -1;
+    c->postfault_strategy = -1;
+    c->fault_phase = -1;
+    c->open_model = 0;
+    c->second_fault_phase = -1;
+    c->second_fault_s = 0.0;
+    c->isolate_leg = -1;
+    c->isolate_s = 0.0;
     plant_params_default(&c->plant);
     c->out_dir = NULL;
     c->write_trace = true;
@@ -114,6 +124,9 @@ void sim_plan(const sim_config_t *c, sim_plan_t *pl)
     sim_plan_scenario(c, pl);
     if (c->fault != SIM_FAULT_NONE) {
         pl->duration = SIM_FAULT_DURATION_S; /* rated operation, injection, aftermath */
+    }
+    if ((c->fault == SIM_FAULT_OPEN_PHASE && c->open_phase_action == 1) || c->isolate_leg >= 0) {
+        pl->duration = SIM_OPEN_PHASE_DURATION_S; /* and five-leg operation after it */
     }
     if (c->duration_s > 0.0) {
         pl->duration = c->duration_s;

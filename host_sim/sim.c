@@ -38,6 +38,11 @@ static void sim_result_clear(sim_result_t *r)
     memset(r, 0, sizeof *r);
     r->fault_inject_s = -1.0;
     r->fault_detect_ms = -1.0;
+    r->open_phase_event_s = -1.0;
+    r->isolated_leg = -1;
+    r->isolation_ms = -1.0;
+    r->postfault_start_ms = -1.0;
+    r->recover_ms = -1.0;
 }
 
 /* The files that are written once the run is over: close the CSVs, write metrics.json. */

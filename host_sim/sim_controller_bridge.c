@@ -99,10 +99,18 @@ static int bridge_init(const sim_ctl_config_t *cfg)
     if (!cfg->protect) {
         bridge_protect_out_of_reach(&p.protect);
     }
+    if (cfg->postfault_strategy >= 0) {
+        p.postfault_strategy = (int16_t)cfg->postfault_strategy;
+    }
     if (!ctl_params_valid(&p)) {
         return 1;
     }
     drive_init(&bridge_drive, &p);
+    if (cfg->open_phase_action >= 0 &&
+        !drive_set_open_phase_action(&bridge_drive, (int16_t)cfg->open_phase_action,
+                                     p.postfault_strategy)) {
+        return 1;
+    }
     if (!drive_set_current_span(&bridge_drive, (float)cfg->current_full_span_a)) {
         return 1;
     }
@@ -172,6 +180,12 @@ static void bridge_period_status(sim_ctl_status_t *st)
     st->vector = (int)bridge_drive.cmd.vector;
     st->duty = q2d(bridge_drive.cmd.duty);
     st->enable = bridge_drive.cmd.enable ? 1 : 0;
+    st->isolated_leg = (int)bridge_drive.isolated_leg;
+    st->postfault_in_force =
+        (bridge_drive.isolated_leg >= 0 &&
+         ctl_postfault_config(&bridge_drive.ctl)->open_leg == bridge_drive.isolated_leg)
+            ? 1
+            : 0;
 }
 
 static void bridge_status(sim_ctl_status_t *st)
@@ -200,6 +214,7 @@ static void bridge_status(sim_ctl_status_t *st)
     st->fault_records = (int)ctl_protect_log_pending(&bridge_drive.protect);
     st->run_refusal = (int)bridge_drive.run_refusal;
     st->run_refused = (unsigned)bridge_drive.run_refused;
+    st->torque_limit_nm = q2d(ctl_config(c)->torque_limit) * CTL_BASE_TORQUE_NM;
 }
 
 /* The virtual board's own command (a board answers it "unknown"): SXL_CMD_SIM_SHUTDOWN is
@@ -232,9 +247,15 @@ static int bridge_link_shutdown(void)
 {
     return (bridge_shutdown && link_service_sent(&bridge_link)) ? 1 : 0;
 }
+static void bridge_background(void) { drive_background(&bridge_drive); }
+static int bridge_isolate_leg(int leg)
+{
+    return drive_request_isolate_leg(&bridge_drive, (int16_t)leg) ? 1 : 0;
+}
 
 const sim_ctl_ops_t SIM_BRIDGE_OPS = {
-    SIM_BRIDGE_ARITH,         bridge_init,          bridge_isr,          bridge_request_run,
-    bridge_set_speed_rpm,     bridge_set_torque_nm, bridge_status,       bridge_report_overrun,
-    bridge_read_fault_record, bridge_link_init,     bridge_link_step,    bridge_link_frames,
-    bridge_link_shutdown,     bridge_period_status, bridge_request_clear};
+    SIM_BRIDGE_ARITH,         bridge_init,          bridge_isr,           bridge_request_run,
+    bridge_set_speed_rpm,     bridge_set_torque_nm, bridge_status,        bridge_report_overrun,
+    bridge_read_fault_record, bridge_link_init,     bridge_link_step,     bridge_link_frames,
+    bridge_link_shutdown,     bridge_period_status, bridge_request_clear, bridge_background,
+    bridge_isolate_leg};

@@ -30,6 +30,8 @@ typedef struct {
     double speed_kp, speed_ki, torque_limit_nm;
     int protect;                /* 1: ctl_protect_default limits; 0: every threshold out of reach */
     double current_full_span_a; /* the board's phase-current sensors, -span/2 .. +span/2 A */
+    int open_phase_action;      /* < 0: the drive's build default; 0 stop, 1 ride through */
+    int postfault_strategy;     /* < 0: core default (minimum loss); 1 maximum torque */
 } sim_ctl_config_t;
 
 typedef struct {
@@ -55,6 +57,9 @@ typedef struct {
     int fault_records;       /* unread records in the drive's fault log */
     int run_refusal;         /* drive_run_refusal_t of the last refused run request */
     unsigned run_refused;    /* run requests refused since init */
+    int isolated_leg;        /* leg off for good (open-phase operation), -1: none */
+    int postfault_in_force;  /* the parameter set of the isolated leg is in force */
+    double torque_limit_nm;  /* the speed loop's limit in force (derated with an open phase) */
 } sim_ctl_status_t;
 
 /* One record of the drive's fault log, in SI units. */
@@ -91,10 +96,15 @@ typedef struct {
     /* 1 once the host asked the virtual board to stop (SXL_CMD_SIM_SHUTDOWN, answered OK) and
      * the reply has gone to the serial port */
     int (*link_shutdown)(void);
-    /* status's fields the period loop reads (state and flags, fault, references, command),
-     * without the rest's cost (the flux estimate's root, the parameters); others untouched */
+    /* status's fields the period loop reads (state and flags, fault, references, command,
+     * isolated leg and whether its set is in force), without the rest's cost (the flux
+     * estimate's root, the parameters); others untouched */
     void (*period_status)(sim_ctl_status_t *st);
     void (*request_clear)(void); /* a fault clear, acted on by the next ISR */
+    /* the drive's background share (drive_background), once per period after the ISR, as the
+     * board's background loop would run */
+    void (*background)(void);
+    int (*isolate_leg)(int leg); /* drive_request_isolate_leg: 1 accepted, 0 refused */
 } sim_ctl_ops_t;
 
 /* Defined by the two builds of the bridge. The float build's symbols are all

@@ -3,6 +3,7 @@
 #include <stdio.h>
 
 #include "sim.h"
+#include "sim_open_phase.h"
 #include "sxlink.h"
 
 static void json_num(FILE *f, const char *key, double v, bool comma)
@@ -155,6 +156,7 @@ static void sim_print_json(FILE *f, const sim_config_t *c, const sim_result_t *r
     fprintf(f, "  \"seed\": %llu,\n", (unsigned long long)c->seed);
     sim_print_results_json(f, c, r, host_timings);
     sim_print_fault_json(f, c, r);
+    sim_open_phase_json(f, c, r);
     fprintf(f,
             "  \"controller_params\": {\"lambda_nm_per_wb\": %.6g, \"speed_kp_nm_per_rad_s\": "
             "%.6g, \"speed_ki_nm_per_rad\": %.6g, \"torque_limit_nm\": %.6g, "

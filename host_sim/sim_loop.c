@@ -21,7 +21,8 @@ static void loop_events(sim_run_t *rs, long k, double t)
         rs->ops->set_speed_rpm(pl->speed);
     }
     if (sim_fault_update(&rs->fault, t)) {
-        sim_fault_plant(&rs->fault, &rs->cfg->plant, &rs->plant);
+        (void)sim_fault_plant(&rs->fault, &rs->cfg->plant, rs->open_phase.isolated_seen,
+                              &rs->plant);
     }
 }
 
@@ -191,7 +192,16 @@ int sim_loop_period(sim_run_t *rs, sim_result_t *r, long k)
     loop_outputs(rs, in_win, &o);
     loop_hw_trip(rs, r, &o, t);
     loop_control(rs, r, &o, k, t, &st);
+    if (rs->open_phase.t_event < 0.0 && rs->open_phase.isolated_seen == 0u &&
+        hal_sim_bus.isolated == 0u) {
+        rs->ops->background(); /* the usual period: no open-phase event, six legs */
+    } else {
+        sim_open_phase_period(rs, r, t, &st);
+    }
     loop_row_start(rs, &o, t, &st, &row);
+    if (rs->open_phase.t_event >= 0.0) {
+        sim_open_phase_track(rs, t, row.speed_rpm, rs->plan.speed);
+    }
     for (j = 0; j < 6; j++) {
         in.duty[j] = rs->duty[j];
     }

@@ -68,4 +68,5 @@ void sim_result_fill(sim_run_t *rs, sim_result_t *r)
     r->switching_freq_hz =
         (double)rs->inv.transitions / 2.0 / 6.0 / (r->window_end_s - r->window_start_s);
     sim_metrics_finish(&rs->metrics, r);
+    sim_open_phase_finish(rs, r);
 }

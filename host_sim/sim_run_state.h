@@ -20,8 +20,9 @@
 #include "sim_ctl.h"
 #include "sim_encoder.h"
 #include "sim_metrics.h"
+#include "sim_open_phase.h"
 
-typedef struct {
+typedef struct sim_run {
     const sim_config_t *cfg;
     const sim_ctl_ops_t *ops;
     sim_plan_t plan;
@@ -47,6 +48,7 @@ typedef struct {
     double isr_wall_s;  /* host time in the timed drive ISR calls */
     long isr_timed;
     double wall0_s, wall1_s;
+    sim_open_phase_t open_phase; /* open-phase operation (sim_open_phase.h) */
 } sim_run_t;
 
 /* Plan, buffers, output files, HAL and controller; 0 or a one-line message in err. */

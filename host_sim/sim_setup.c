@@ -55,6 +55,8 @@ static void setup_controller_config(const sim_run_t *rs, sim_ctl_config_t *cc)
     cc->torque_limit_nm = rs->plan.torque_limit;
     cc->protect = c->protect ? 1 : 0;
     cc->current_full_span_a = 2.0 * p->current_sensor_span_a;
+    cc->open_phase_action = c->open_phase_action;
+    cc->postfault_strategy = c->postfault_strategy;
 }
 
 /* Periods, window and fine sampling of the run. */
@@ -116,6 +118,9 @@ int sim_setup(sim_run_t *rs, const sim_config_t *c, char *err, size_t err_len)
     sim_plan(c, &rs->plan);
     sim_fault_begin(&rs->fault, c->fault,
                     (c->fault_time_s > 0.0) ? c->fault_time_s : SIM_FAULT_INJECT_S);
+    if (sim_open_phase_begin(rs, err, err_len) != 0) {
+        return -1;
+    }
     if (c->fault != SIM_FAULT_NONE && !sim_fault_at_power_up(c->fault) &&
         !(rs->fault.t_inject < rs->plan.duration)) {
         return setup_fail(err, err_len, "fault injection time must be inside the run");

@@ -77,6 +77,35 @@ static void test_good_arguments(void **state)
     assert_int_equal(o.quiet, 1);
 }
 
+static void test_open_phase_arguments(void **state)
+{
+    static const char *const a[] = {"--controller",
+                                    "ddc",
+                                    "--scenario",
+                                    "fault-open-phase",
+                                    "--ride-through",
+                                    "--postfault",
+                                    "max-torque",
+                                    "--open-phase",
+                                    "E",
+                                    "--open-model",
+                                    "open",
+                                    "--second-fault",
+                                    "A",
+                                    "--second-fault-time",
+                                    "0.6"};
+    sim_cli_t o;
+    char err[256] = "";
+    (void)state;
+    assert_int_equal(parse(a, (int)(sizeof a / sizeof a[0]), &o, err, sizeof err), 0);
+    assert_int_equal(o.cfg.open_phase_action, 1);
+    assert_int_equal(o.cfg.postfault_strategy, 1);
+    assert_int_equal(o.cfg.fault_phase, 4);
+    assert_int_equal(o.cfg.open_model, 1);
+    assert_int_equal(o.cfg.second_fault_phase, 0);
+    assert_true(o.cfg.second_fault_s == 0.6);
+}
+
 typedef struct {
     const char *args[8];
     int n;
@@ -133,6 +162,26 @@ static const bad_case_t bad_cases[] = {
      8,
      "quarter of the 10 us PWM period"},
     {{"--controller", "ddc", "--scenario", "steady", "--out", "--quiet"}, 6, "'--quiet'"},
+    /* open-phase operation: each option belongs to its scenario or to another option */
+    {{"--controller", "ddc", "--scenario", "steady", "--open-phase", "A"}, 6, "fault-open-phase"},
+    {{"--controller", "ddc", "--scenario", "fault-open-phase", "--open-phase", "G"}, 6, "'G'"},
+    {{"--controller", "ddc", "--scenario", "fault-open-phase", "--second-fault", "C"},
+     6,
+     "already open"},
+    {{"--controller", "ddc", "--scenario", "fault-open-phase", "--second-fault-time", "0.5"},
+     6,
+     "needs --second-fault"},
+    {{"--controller", "ddc", "--scenario", "steady", "--open-model", "open"}, 6, "--open-model"},
+    {{"--controller", "ddc", "--scenario", "steady", "--postfault", "best"}, 6, "'best'"},
+    {{"--controller", "ddc", "--scenario", "steady", "--isolate-time", "0.3"},
+     6,
+     "needs --isolate-leg"},
+    {{"--controller", "ddc", "--scenario", "fault-overrun", "--isolate-leg", "B"},
+     6,
+     "healthy machine"},
+    {{"--controller", "ddc", "--scenario", "steady", "--ride-through", "--ride-through"},
+     6,
+     "more than once"},
 };
 
 static void test_bad_arguments_rejected(void **state)
@@ -299,6 +348,7 @@ int main(void)
         cmocka_unit_test(test_good_arguments),
         cmocka_unit_test(test_bad_arguments_rejected),
         cmocka_unit_test(test_serve_and_fault_time_arguments),
+        cmocka_unit_test(test_open_phase_arguments),
         cmocka_unit_test(test_executable_writes_nothing_on_bad_argument),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -377,6 +377,102 @@ static void test_open_phase_c(void **state)
     }
 }
 
+/* Phase C open (phase_open): at standstill it carries nothing at any instant, A and B form one
+ * loop, set 2 is unaffected, and the DC steady state is the resistive network's with phase C's
+ * branch removed. The 2 kohm model of the same fault comes within its leakage current. */
+static void test_open_phase_exact(void **state)
+{
+    const double th = 0.7;
+    const double u[4] = {40.0, -25.0, 6.0, -4.0};
+    plant_params_t p;
+    plant_params_t q;
+    plant_state_t s = {0};
+    plant_state_t t = {0};
+    double iph[6], iq[6], v[6], worst_c = 0.0;
+    int k;
+    (void)state;
+    plant_params_default(&p);
+    p.phase_open[2] = true;
+    q = p;
+    q.phase_open[2] = false;
+    q.phase_extra_r_ohm[2] = 2000.0;
+    q.max_step_s = 2e-6;
+    s.theta_m = th / (double)p.pole_pairs;
+    t.theta_m = s.theta_m;
+    for (k = 0; k < 3000; k++) {
+        (void)plant_integrate(&p, &s, u, 0.0, true, 100e-6);
+        (void)plant_integrate(&q, &t, u, 0.0, true, 100e-6);
+        plant_phase_currents(&p, &s, iph);
+        worst_c = fmax(worst_c, fabs(iph[2]));
+    }
+    plant_phase_currents(&q, &t, iq);
+    phase_voltages(u, v);
+    assert_true(worst_c < 1e-9);
+    {
+        const double scale = fabs(v[0] - v[1]) / p.r_ohm;
+        assert_true(fabs(iph[0] - (v[0] - v[1]) / (2.0 * p.r_ohm)) < 1e-4 * scale);
+        assert_true(fabs(iph[1] + iph[0]) < 1e-9);
+        for (k = 3; k < 6; k++) {
+            assert_true(fabs(iph[k] - v[k] / p.r_ohm) < 1e-4 * scale);
+        }
+        for (k = 0; k < 6; k++) { /* 2 kohm: within its own leakage of the open phase */
+            assert_true(fabs(iq[k] - iph[k]) < 2.0 * fabs(iq[2]) + 1e-6);
+        }
+        print_message("open phase C exact vs 2 kohm: i_A %.5g / %.5g A, i_C 0 / %.3g A\n", iph[0],
+                      iq[0], iq[2]);
+    }
+}
+
+/* The open terminal's voltage: A open, B and C at Vdc, nothing else: A floats to Vdc (no
+ * current, no speed). D on as well: set 2's x-y voltage reaches A through the small x-y
+ * inductance, V_dc (1 - (cos 30 / L_d + cos 150 / L_xy) / (1 / L_d + 1 / L_xy)) at angle 0. */
+static void test_open_terminal_voltage(void **state)
+{
+    plant_params_t p;
+    plant_state_t s = {0};
+    double u[4];
+    const double c30 = cos(PI / 6.0);
+    (void)state;
+    plant_params_default(&p);
+    p.phase_open[0] = true;
+    plant_sync_angle(&p, &s);
+    plant_vector_voltage(030u, p.vdc_v, u);
+    assert_true(fabs(plant_open_terminal_voltage(&p, &s, 0, u) - p.vdc_v) < 1e-9);
+    plant_vector_voltage(034u, p.vdc_v, u);
+    assert_true(fabs(plant_open_terminal_voltage(&p, &s, 0, u) -
+                     p.vdc_v * (1.0 - (c30 / p.ld_h - c30 / p.lxy_h) /
+                                          (1.0 / p.ld_h + 1.0 / p.lxy_h))) < 1e-9);
+}
+
+/* A rotating machine with phase E open: the constraint holds through the RK4 steps and a
+ * commutation puts any state onto it. */
+static void test_open_phase_rotating(void **state)
+{
+    plant_params_t p;
+    plant_state_t s = {0};
+    double iph[6], worst = 0.0;
+    int k;
+    (void)state;
+    plant_params_default(&p);
+    p.integrator = PLANT_INTEGRATOR_RK4;
+    s.i_d = 1.0;
+    s.i_q = 3.0;
+    s.i_x = 0.5;
+    s.omega_m = 150.0;
+    plant_sync_angle(&p, &s);
+    p.phase_open[4] = true;
+    plant_open_commutate(&p, &s);
+    for (k = 0; k < 400; k++) {
+        double u[4];
+        plant_vector_voltage(((unsigned)k * 37u) & 077u, p.vdc_v, u);
+        (void)plant_integrate(&p, &s, u, 2.0, false, 25e-6);
+        plant_phase_currents(&p, &s, iph);
+        worst = fmax(worst, fabs(iph[4]));
+    }
+    assert_true(worst < 1e-9);
+    assert_true(fabs(iph[3] + iph[5]) < 1e-9);
+}
+
 /* The same extra resistance in all six phases is a larger stator resistance:
  * checks the 1/3 scaling of the VSD projection and the d-q rotation. */
 static void test_extra_r_all_phases_is_stator_r(void **state)
@@ -434,6 +530,9 @@ int main(void)
         cmocka_unit_test(test_open_phase_c),
         cmocka_unit_test(test_extra_r_all_phases_is_stator_r),
         cmocka_unit_test(test_extra_r_check),
+        cmocka_unit_test(test_open_phase_exact),
+        cmocka_unit_test(test_open_terminal_voltage),
+        cmocka_unit_test(test_open_phase_rotating),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -1,0 +1,56 @@
+/*
+ * Open-phase operation in a run (docs/faults.md, docs/simulator.md): the drive's background
+ * share once per period after its ISR (as the board's background loop would run it), an
+ * isolation command at a set time, the plant following the legs the drive isolated (their phases
+ * open, plant_params_t.phase_open, the currents commutated at once as the all-off model does),
+ * and the metrics of the transition and of five-leg operation. Internal to host_sim.
+ */
+#ifndef SIM_OPEN_PHASE_H
+#define SIM_OPEN_PHASE_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+
+#include "metrics.h"
+#include "sim.h"
+#include "sim_ctl.h"
+
+struct sim_run;
+
+/* Default of the ride-through fault runs: injection, detection, the hand-off, the recovery and
+ * a 0.2 s analysis window of five-leg operation. */
+#define SIM_OPEN_PHASE_DURATION_S 0.8
+/* The band the speed must stay in to count as recovered (brief §7's transient band). */
+#define SIM_OPEN_PHASE_BAND 0.02
+
+typedef struct {
+    uint16_t isolated_seen; /* legs the plant treats as switched off */
+    bool command_sent;
+    double t_event; /* the fault's injection or the isolation command, scenario clock; < 0 none */
+    double min_speed_rpm;
+    metrics_settle_t settle;
+} sim_open_phase_t;
+
+/* At set-up, after the plan and the fault: when the event comes (a fault-open-phase injection or
+ * an isolation command) and the second open phase. 0, or -1 with a one-line message in err when
+ * a time lies outside the run (or the second fault before the first). */
+int sim_open_phase_begin(struct sim_run *rs, char *err, size_t err_len);
+
+/* After the ISR of period k at time t: the isolation command, the background, the plant's legs,
+ * the first isolation and the first period on five legs. */
+void sim_open_phase_period(struct sim_run *rs, sim_result_t *r, double t,
+                           const sim_ctl_status_t *st);
+
+/* Speed dip and recovery, one control period at a time. */
+void sim_open_phase_track(struct sim_run *rs, double t, double speed_rpm, double speed_ref_rpm);
+
+/* The results into r: dip, recovery, the phases' rms and peak over the analysis window against
+ * the current the healthy limit allows, the torque limit in force. */
+void sim_open_phase_finish(const struct sim_run *rs, sim_result_t *r);
+
+/* metrics.json's "open_phase" block (nothing when the run had no such event). */
+void sim_open_phase_json(FILE *f, const sim_config_t *c, const sim_result_t *r);
+
+#endif /* SIM_OPEN_PHASE_H */

@@ -1,0 +1,184 @@
+/*
+ * Open-phase operation in closed loop (the firmware's drive through the simulator): each of the
+ * six phases opens at 1500 r/min under a load the derated drive can carry, and the drive rides
+ * through (isolates the leg, takes the post-fault set, holds the speed within the band, keeps the
+ * healthy phases within the current the healthy limit allows); both arithmetics, DDC and the
+ * MPTC-13 baseline, both strategies; a second open phase stops it with both records; at rated
+ * load the derated torque cannot hold the speed; an isolation command on a machine whose phase
+ * is still connected leaves that leg's diodes conducting.
+ */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include <cmocka.h>
+
+#include "sim.h"
+
+#define RIDE_LOAD_NM 3.5 /* within the minimum-loss limit of 8.4 / 1.803 = 4.66 N m */
+
+static void run(sim_config_t *c, sim_result_t *r)
+{
+    char err[200] = "";
+    c->out_dir = NULL;
+    if (sim_run(c, r, err, sizeof err) != 0) {
+        print_error("sim_run failed: %s\n", err);
+        fail();
+    }
+}
+
+static void ride_config(sim_config_t *c, int phase)
+{
+    sim_config_default(c);
+    c->fault = SIM_FAULT_OPEN_PHASE;
+    c->open_phase_action = 1;
+    c->fault_phase = phase;
+    c->load_nm = RIDE_LOAD_NM;
+}
+
+static double max_peak(const sim_result_t *r)
+{
+    double m = 0.0;
+    int k;
+    for (k = 0; k < 6; k++) {
+        m = fmax(m, r->phase_peak_a[k]);
+    }
+    return m;
+}
+
+static void check_ride_through(const sim_config_t *c, const sim_result_t *r, int phase)
+{
+    print_message("open %c %-6s %-5s: isolated %d after %.1f ms, five legs from %.1f ms, dip "
+                  "%.2f r/min, recovered %.1f ms, ripple %.3f N m, peak %.2f A (limit %.2f A), "
+                  "limit %.2f N m, state %d\n",
+                  'A' + phase, r->controller, r->arith, r->isolated_leg, r->isolation_ms,
+                  r->postfault_start_ms, r->speed_dip_rpm, r->recover_ms, r->torque_ripple_nm,
+                  max_peak(r), r->phase_limit_peak_a, r->torque_limit_end_nm, r->final_state);
+    assert_int_equal(r->final_state, 3); /* RUN */
+    assert_int_equal(r->isolated_leg, phase);
+    assert_true(r->isolation_ms >= 0.0 && r->isolation_ms <= 100.0);
+    assert_true(r->postfault_start_ms >= r->isolation_ms &&
+                r->postfault_start_ms <= r->isolation_ms + 1.0);
+    assert_true(r->recover_ms >= 0.0 && r->recover_ms < 200.0);
+    assert_true(r->speed_dip_rpm < 30.0);
+    assert_true(fabs(r->speed_mean_rpm - 1500.0) < 15.0);
+    assert_true(r->phase_rms_a[phase] < 0.01);
+    /* MPTC leaves the x-y currents to themselves (healthy MPTC-13 at this load already peaks at
+     * 4.4 A): its peak is only bounded */
+    assert_true(max_peak(r) < ((c->controller == 0) ? 1.0 : 2.0) * r->phase_limit_peak_a);
+    assert_true(r->torque_ripple_nm < ((c->controller == 0) ? 0.4 : 1.0));
+    assert_int_equal(r->fault_records, 1); /* the OPEN_PHASE it rode through */
+    assert_true(r->have_first_record);
+    assert_int_equal(r->first_record.faults, 0x0400u);
+}
+
+static void test_each_phase_rides_through(void **state)
+{
+    int phase;
+    (void)state;
+    for (phase = 0; phase < 6; phase++) {
+        sim_config_t c;
+        sim_result_t r;
+        ride_config(&c, phase);
+        run(&c, &r);
+        check_ride_through(&c, &r, phase);
+        assert_true(fabs(r.torque_limit_end_nm - 8.4 / (sqrt(13.0) / 2.0)) < 0.01);
+    }
+}
+
+/* The float build, the MPTC-13 baseline, maximum torque (its zero phase carries nothing). */
+static void test_variants_ride_through(void **state)
+{
+    sim_config_t c;
+    sim_result_t r;
+    (void)state;
+    ride_config(&c, 0);
+    c.arith = 1;
+    run(&c, &r);
+    check_ride_through(&c, &r, 0);
+    ride_config(&c, 3);
+    c.controller = 2;
+    run(&c, &r);
+    check_ride_through(&c, &r, 3);
+    ride_config(&c, 1);
+    c.postfault_strategy = 1;
+    run(&c, &r);
+    check_ride_through(&c, &r, 1);
+    assert_true(fabs(r.torque_limit_end_nm - 8.4 / sqrt(3.0)) < 0.01);
+    assert_true(r.phase_rms_a[3] < 0.25 * r.phase_rms_a[0]); /* B open: MT holds D near zero */
+}
+
+/* A second phase opening while one is isolated stops the drive: FAULT, both records. */
+static void test_second_open_phase_stops(void **state)
+{
+    sim_config_t c;
+    sim_result_t r;
+    (void)state;
+    ride_config(&c, 2);
+    c.second_fault_phase = 4;
+    c.second_fault_s = 0.5;
+    run(&c, &r);
+    print_message("second fault: state %d fault %d at %.1f ms, records %d, outputs off %d\n",
+                  r.final_state, r.fault, 1e3 * r.fault_time_s, r.fault_records,
+                  r.outputs_off ? 1 : 0);
+    assert_int_equal(r.final_state, 4); /* FAULT */
+    assert_int_equal(r.fault, 15);      /* OPEN_PHASE */
+    assert_true(r.fault_time_s > 0.5 && r.fault_time_s < 0.6);
+    assert_int_equal(r.fault_records, 2);
+    assert_true(r.outputs_off);
+    assert_int_equal(r.isolated_leg, 2);
+}
+
+/* At rated load (7 N m) the derated limit (4.66 N m) cannot hold the speed: the drive runs on at
+ * its limit and the load pulls the speed down. */
+static void test_rated_load_exceeds_the_derated_limit(void **state)
+{
+    sim_config_t c;
+    sim_result_t r;
+    (void)state;
+    ride_config(&c, 2);
+    c.load_nm = 7.0;
+    run(&c, &r);
+    print_message("rated load: state %d, mean speed %.0f r/min, torque %.2f N m, dip %.0f r/min\n",
+                  r.final_state, r.speed_mean_rpm, r.torque_mean_nm, r.speed_dip_rpm);
+    assert_int_equal(r.final_state, 3);
+    assert_true(r.recover_ms < 0.0);
+    assert_true(r.speed_mean_rpm < 1000.0);
+    assert_true(fabs(r.torque_mean_nm - r.torque_limit_end_nm) < 0.6);
+}
+
+/* Isolating a leg by command while its phase stays connected does not open the phase: the other
+ * set's switching drives the floating terminal beyond the rails for much of each period and the
+ * leg's diodes conduct. */
+static void test_isolation_command_on_a_connected_phase(void **state)
+{
+    sim_config_t c;
+    sim_result_t r;
+    (void)state;
+    sim_config_default(&c);
+    c.load_nm = RIDE_LOAD_NM;
+    c.isolate_leg = 2;
+    run(&c, &r);
+    print_message("isolate C, phase connected: diodes conduct %.0f %% of the window, i_C rms %.2f "
+                  "A, peak %.2f A, ripple %.2f N m\n",
+                  100.0 * r.diode_conduction, r.phase_rms_a[2], r.phase_peak_a[2],
+                  r.torque_ripple_nm);
+    assert_int_equal(r.isolated_leg, 2);
+    assert_true(r.isolation_ms >= 0.0 && r.isolation_ms < 1.0);
+    assert_true(r.diode_conduction > 0.3);
+    assert_true(r.phase_rms_a[2] > 1.0);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_each_phase_rides_through),
+        cmocka_unit_test(test_variants_ride_through),
+        cmocka_unit_test(test_second_open_phase_stops),
+        cmocka_unit_test(test_rated_load_exceeds_the_derated_limit),
+        cmocka_unit_test(test_isolation_command_on_a_connected_phase),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
