@@ -2,6 +2,7 @@
 
 #include "ctl_barrier.h"
 #include "ctl_pu.h"
+#include "drive_open_phase.h"
 #include "hal_pwm.h"
 #include "profile.h"
 
@@ -58,6 +59,9 @@ void drive_link_status(const drive_t *d, uint16_t rx_errors, uint16_t *out)
     }
     if (ctl_config_pending(&d->ctl)) {
         flags |= SXL_FLAG_PARAMS_PENDING;
+    }
+    if (d->isolated_leg >= 0) {
+        flags |= SXL_FLAG_LEG_ISOLATED;
     }
     out[SXL_ST_STATE] = (uint16_t)((uint16_t)d->state & 0xFFu);
     out[SXL_ST_FAULT] = (uint16_t)((uint16_t)d->fault & 0xFFu);
@@ -116,6 +120,20 @@ uint16_t drive_link_fault_record(drive_t *d, uint16_t *out)
         sxl_put_u16(&out[SXL_FR_DUTY], drive_duty_to_hal(r.duty));
     }
     return SXL_FR_SIZE;
+}
+
+void drive_link_open_phase(const drive_t *d, uint16_t *out)
+{
+    const int16_t leg = d->isolated_leg;
+    out[SXL_OP_ACTION] = (uint16_t)((uint16_t)d->open_phase_action & 0xFFu);
+    out[SXL_OP_STRATEGY] = (uint16_t)((uint16_t)d->postfault_strategy & 0xFFu);
+    out[SXL_OP_LEG] = (leg >= 0) ? (uint16_t)leg : 0xFFu;
+    out[SXL_OP_CAUSE] = (uint16_t)((uint16_t)d->isolation_cause & 0xFFu);
+    out[SXL_OP_IN_FORCE] = drive_open_phase_in_force(d) ? 1u : 0u;
+    sxl_put_i32(&out[SXL_OP_TORQUE_LIMIT],
+                float_to_i32(ctl_to_float(ctl_config(&d->ctl)->torque_limit) *
+                             CTL_BASE_TORQUE_NM_F * 1000.0f));
+    sxl_put_u32(&out[SXL_OP_PERIOD], d->isolation_period);
 }
 
 void drive_link_profile(uint16_t stage, uint16_t *out)
@@ -360,6 +378,46 @@ static uint16_t on_capture_stop(drive_t *d, const sxl_frame_t *req, sxl_frame_t 
     return SXL_OK;
 }
 
+static uint16_t on_get_open_phase(drive_t *d, const sxl_frame_t *req, sxl_frame_t *reply,
+                                  uint16_t rx_errors)
+{
+    (void)req;
+    (void)rx_errors;
+    drive_link_open_phase(d, &reply->payload[1]);
+    reply->len = (uint16_t)(1u + SXL_OP_SIZE);
+    return SXL_OK;
+}
+
+static uint16_t on_set_open_phase_action(drive_t *d, const sxl_frame_t *req, sxl_frame_t *reply,
+                                         uint16_t rx_errors)
+{
+    (void)reply;
+    (void)rx_errors;
+    return drive_set_open_phase_action(d, (int16_t)req->payload[0], (int16_t)req->payload[1])
+               ? SXL_OK
+               : SXL_ERR_VALUE;
+}
+
+static uint16_t on_isolate_leg(drive_t *d, const sxl_frame_t *req, sxl_frame_t *reply,
+                               uint16_t rx_errors)
+{
+    (void)reply;
+    (void)rx_errors;
+    if (req->payload[0] > 5u) {
+        return SXL_ERR_VALUE;
+    }
+    return drive_request_isolate_leg(d, (int16_t)req->payload[0]) ? SXL_OK : SXL_ERR_REFUSED;
+}
+
+static uint16_t on_restore_legs(drive_t *d, const sxl_frame_t *req, sxl_frame_t *reply,
+                                uint16_t rx_errors)
+{
+    (void)req;
+    (void)reply;
+    (void)rx_errors;
+    return drive_request_restore_legs(d) ? SXL_OK : SXL_ERR_REFUSED;
+}
+
 #define LINK_ANY_LENGTH 0xFFFFu /* the handler checks the length */
 
 /* indirect-call: drive_link_handle -> table link_commands (tools/stack_depth.py) */
@@ -382,6 +440,10 @@ static const struct {
     {SXL_CMD_CAPTURE_STATUS, 0u, on_capture_status},
     {SXL_CMD_CAPTURE_READ, 3u, on_capture_read},
     {SXL_CMD_CAPTURE_STOP, 0u, on_capture_stop},
+    {SXL_CMD_GET_OPEN_PHASE, 0u, on_get_open_phase},
+    {SXL_CMD_SET_OPEN_PHASE_ACTION, 2u, on_set_open_phase_action},
+    {SXL_CMD_ISOLATE_LEG, 1u, on_isolate_leg},
+    {SXL_CMD_RESTORE_LEGS, 0u, on_restore_legs},
 };
 
 void drive_link_handle(drive_t *d, const sxl_frame_t *req, sxl_frame_t *reply, uint16_t rx_errors)

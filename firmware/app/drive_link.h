@@ -27,6 +27,10 @@ void drive_link_profile(uint16_t stage, uint16_t *out);
  * result byte); out must hold SXL_ST_SIZE bytes. */
 void drive_link_status(const drive_t *d, uint16_t rx_errors, uint16_t *out);
 
+/* Open-phase details (SXL_OP_*) as sent in the reply to SXL_CMD_GET_OPEN_PHASE; out must hold
+ * SXL_OP_SIZE bytes. */
+void drive_link_open_phase(const drive_t *d, uint16_t *out);
+
 /* Fault record payload (SXL_FR_*) as sent in the reply to SXL_CMD_GET_FAULT_RECORD: the
  * oldest unread record, removed from the log. out must hold SXL_FR_SIZE bytes; returns the
  * payload length (SXL_FR_HEADER_SIZE when the log is empty). Background side. */

@@ -42,6 +42,14 @@
 #define SXL_CMD_CAPTURE_STATUS 0x21u /* none -> SXL_CS_* */
 #define SXL_CMD_CAPTURE_READ 0x22u   /* uint8 channel, uint16 first sample -> SXL_CR_* */
 #define SXL_CMD_CAPTURE_STOP 0x23u   /* none -> result only; the record is discarded */
+/* Open-phase operation (docs/faults.md): ids 0x50..0x5F. */
+#define SXL_CMD_GET_OPEN_PHASE 0x50u /* none -> SXL_OP_* */
+/* uint8 action 0 stop, 1 ride through; uint8 strategy 0 minimum loss, 1 maximum torque */
+#define SXL_CMD_SET_OPEN_PHASE_ACTION 0x51u
+/* uint8 leg 0..5 (A..F): in READY or RUN with no leg isolated, else SXL_ERR_REFUSED */
+#define SXL_CMD_ISOLATE_LEG 0x52u
+/* none: in READY with a leg isolated, else SXL_ERR_REFUSED */
+#define SXL_CMD_RESTORE_LEGS 0x53u
 /* Virtual board only (sixphase-sim serve): none -> result only, then the simulator stops. A
  * board does not know it: SXL_ERR_UNKNOWN. */
 #define SXL_CMD_SIM_SHUTDOWN 0x7Eu
@@ -146,9 +154,20 @@
 #define SXL_FR_SIZE 43u
 #define SXL_FR_PHASES 6u
 
+/* Open-phase details (reply to SXL_CMD_GET_OPEN_PHASE, after the result byte). */
+#define SXL_OP_ACTION 0u       /* uint8 0 stop, 1 ride through (what OPEN_PHASE does) */
+#define SXL_OP_STRATEGY 1u     /* uint8 0 minimum loss, 1 maximum torque */
+#define SXL_OP_LEG 2u          /* uint8 isolated leg 0..5 (A..F), 0xFF none */
+#define SXL_OP_CAUSE 3u        /* uint8 0 none, 1 an OPEN_PHASE ridden through, 2 a command */
+#define SXL_OP_IN_FORCE 4u     /* uint8 1: the parameter set for the legs as they are is in force */
+#define SXL_OP_TORQUE_LIMIT 5u /* int32 the speed loop's torque limit in force, mN*m */
+#define SXL_OP_PERIOD 9u       /* uint32 control-period count at the isolation */
+#define SXL_OP_SIZE 13u
+
 #define SXL_FLAG_ENCODER_OK 0x01u
 #define SXL_FLAG_PWM_OFF 0x02u
 #define SXL_FLAG_PARAMS_PENDING 0x04u
+#define SXL_FLAG_LEG_ISOLATED 0x08u /* a leg is off for good (SXL_CMD_GET_OPEN_PHASE) */
 
 typedef struct {
     uint16_t cmd;

@@ -30,4 +30,11 @@ const char *result_name(uint16_t result);
 /* capture SIGNALS [options]: firmware/tools/link_capture.c. */
 int cmd_capture(const options_t *o, int argc, char **argv);
 
+/* The open-phase commands' requests (firmware/tools/link_open_phase.c): 0 when built, an exit
+ * status for a usage error, LINK_NOT_OPEN_PHASE when argv[0] is none of them. */
+#define LINK_NOT_OPEN_PHASE (-1)
+int link_open_phase_request(int argc, char **argv, uint16_t *cmd, uint16_t *payload, uint16_t *len);
+/* The reply to SXL_CMD_GET_OPEN_PHASE on one line; 0 or an exit status. */
+int link_open_phase_print(const sxl_frame_t *r);
+
 #endif /* LINK_TOOL_H */

@@ -6,6 +6,8 @@
  *
  * Commands: ping | status | profile | faults | run | stop | clear | speed RPM |
  *           torque NM | controller ddc|mptc49|mptc13 LAMBDA | decode HEXBYTE... |
+ *           open-phase | open-phase-action stop|ride-through [min-loss|max-torque] |
+ *           isolate A..F | restore (link_open_phase.c) |
  *           shutdown (the virtual board only: it answers, then stops)
  * "faults" reads the drive's fault log until it is empty, one line per record.
  * -n prints the request frame in hex instead of sending it. "decode" checks
@@ -66,7 +68,8 @@ static int usage(const char *why)
                 "%s (usage: sixphase-link [-d|--port DEVICE] [-b BAUD] [-t MS] [-n] "
                 "ping|status|profile|faults|run|stop|clear|shutdown|speed RPM|torque NM|controller "
                 "ddc|mptc49|mptc13 "
-                "LAMBDA|capture SIGNALS [...]|decode HEX...)",
+                "LAMBDA|capture SIGNALS [...]|decode HEX...|open-phase|open-phase-action "
+                "ACTION [STRATEGY]|isolate LEG|restore)",
                 why);
 }
 
@@ -250,6 +253,8 @@ static int print_reply(const sxl_frame_t *r)
     switch (r->cmd & 0x7Fu) {
     case SXL_CMD_GET_PROFILE:
         return print_profile_row(r, 1);
+    case SXL_CMD_GET_OPEN_PHASE:
+        return link_open_phase_print(r);
     case SXL_CMD_PING:
         if (r->len < 2u) {
             return fail(EXIT_IO, "short ping reply");
@@ -289,6 +294,7 @@ static int print_reply(const sxl_frame_t *r)
             printf(" last_run_refusal=%s last_clear_blocked_by=%s",
                    sxl_run_refusal_name(st[SXL_ST_RUN_REFUSAL]), blocked);
         }
+        printf(" leg_isolated=%s", (st[SXL_ST_FLAGS] & SXL_FLAG_LEG_ISOLATED) ? "yes" : "no");
         printf("\n");
         return 0;
     default:
@@ -554,7 +560,8 @@ static int build_request(int argc, char **argv, uint16_t *cmd, uint16_t *payload
         *len = 5u;
         return 0;
     } else {
-        return usage("unknown command");
+        const int op = link_open_phase_request(argc, argv, cmd, payload, len);
+        return (op == LINK_NOT_OPEN_PHASE) ? usage("unknown command") : op;
     }
     if (argc != 1) {
         return usage("this command takes no arguments");

@@ -355,6 +355,59 @@ static void test_fault_record_saturates(void **state)
 }
 
 /* The protocol's names agree with the drive's codes and their protection bits. */
+/* The open-phase commands: the option, an isolation and its details, the refusals, the flag. */
+static void test_open_phase_commands(void **state)
+{
+    const uint16_t *op = &rep.payload[1];
+    (void)state;
+    calibrate();
+    assert_int_equal(send(SXL_CMD_GET_OPEN_PHASE), SXL_OK);
+    assert_int_equal(rep.len, 1u + SXL_OP_SIZE);
+    assert_int_equal(op[SXL_OP_ACTION], 0u);
+    assert_int_equal(op[SXL_OP_LEG], 0xFFu);
+    assert_int_equal(op[SXL_OP_IN_FORCE], 1u);
+    assert_int_equal(sxl_get_i32(&op[SXL_OP_TORQUE_LIMIT]), 7000);
+    req.len = 2u;
+    req.payload[0] = 2u; /* no such action */
+    req.payload[1] = 0u;
+    assert_int_equal(send(SXL_CMD_SET_OPEN_PHASE_ACTION), SXL_ERR_VALUE);
+    req.payload[0] = 1u;
+    req.payload[1] = 1u;
+    assert_int_equal(send(SXL_CMD_SET_OPEN_PHASE_ACTION), SXL_OK);
+    assert_int_equal(d.open_phase_action, DRIVE_OPEN_PHASE_RIDE_THROUGH);
+    assert_int_equal(d.postfault_strategy, (int16_t)CTL_POSTFAULT_MAX_TORQUE);
+    req.len = 1u;
+    req.payload[0] = 6u;
+    assert_int_equal(send(SXL_CMD_ISOLATE_LEG), SXL_ERR_VALUE);
+    req.payload[0] = 1u;
+    assert_int_equal(send(SXL_CMD_ISOLATE_LEG), SXL_OK);
+    will_return(hal_adc_read, true);
+    drive_control_isr(&d);
+    assert_int_equal(send(SXL_CMD_ISOLATE_LEG), SXL_ERR_REFUSED); /* one already */
+    drive_background(&d);
+    will_return(hal_adc_read, true);
+    drive_control_isr(&d);
+    req.len = 0u;
+    assert_int_equal(send(SXL_CMD_GET_OPEN_PHASE), SXL_OK);
+    assert_int_equal(op[SXL_OP_ACTION], 1u);
+    assert_int_equal(op[SXL_OP_STRATEGY], 1u);
+    assert_int_equal(op[SXL_OP_LEG], 1u);
+    assert_int_equal(op[SXL_OP_CAUSE], DRIVE_ISOLATION_COMMAND);
+    assert_int_equal(op[SXL_OP_IN_FORCE], 1u);
+    assert_int_equal(sxl_get_i32(&op[SXL_OP_TORQUE_LIMIT]), 4041); /* 7 / sqrt(3) */
+    assert_int_equal(sxl_get_u32(&op[SXL_OP_PERIOD]), d.isolation_period);
+    assert_int_equal(send(SXL_CMD_GET_STATUS), SXL_OK);
+    assert_true((rep.payload[1 + SXL_ST_FLAGS] & SXL_FLAG_LEG_ISOLATED) != 0u);
+    d.state = DRIVE_STATE_RUN;
+    assert_int_equal(send(SXL_CMD_RESTORE_LEGS), SXL_ERR_REFUSED); /* READY only */
+    d.state = DRIVE_STATE_READY;
+    assert_int_equal(send(SXL_CMD_RESTORE_LEGS), SXL_OK);
+    will_return(hal_adc_read, true);
+    drive_control_isr(&d);
+    assert_int_equal(send(SXL_CMD_RESTORE_LEGS), SXL_ERR_REFUSED); /* none isolated */
+    assert_int_equal(d.isolated_leg, -1);
+}
+
 static void test_fault_names_match_masks(void **state)
 {
     uint16_t code;
@@ -388,6 +441,7 @@ int main(void)
         cmocka_unit_test_setup(test_fault_log_order_and_dropped, setup),
         cmocka_unit_test_setup(test_fault_record_saturates, setup),
         cmocka_unit_test_setup(test_fault_names_match_masks, setup),
+        cmocka_unit_test_setup(test_open_phase_commands, setup),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
