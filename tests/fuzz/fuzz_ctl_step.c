@@ -70,12 +70,15 @@ static ctl_q leg_duty(bool active, bool zero, ctl_q d)
 }
 
 /* One three-phase set realises "active state for d, its zero state 000 or 111 for the rest"
- * (ctl_pulse.h); a zero command (duty 0) holds a zero state. */
-static bool set_realised(const ctl_cmd_t *cmd, int16_t set)
+ * (ctl_pulse.h); a zero command (duty 0) holds a zero state. With an open phase in the set its
+ * healthy legs do so (the open leg is checked by the caller). */
+static bool set_realised(const ctl_cmd_t *cmd, int16_t set, int16_t open_leg)
 {
-    const int16_t bits = (int16_t)((cmd->vector >> (3 - 3 * set)) & 07);
+    const int16_t open = (int16_t)(open_leg - 3 * set);
+    const int16_t healthy = (int16_t)((open >= 0 && open < 3) ? (07 & ~(1 << (2 - open))) : 07);
+    const int16_t bits = (int16_t)((cmd->vector >> (3 - 3 * set)) & healthy);
     int16_t zero;
-    if (cmd->duty == CTL_Q(0.0) && bits != 0 && bits != 07) {
+    if (cmd->duty == CTL_Q(0.0) && bits != 0 && bits != healthy) {
         return false;
     }
     for (zero = 0; zero < 2; zero++) {
@@ -83,8 +86,10 @@ static bool set_realised(const ctl_cmd_t *cmd, int16_t set)
         bool matched = true;
         int16_t leg;
         for (leg = (int16_t)(3 * set); leg < 3 * set + 3; leg++) {
-            matched = matched && cmd->leg_duty[leg] ==
-                                     leg_duty(ctl_vector_leg(cmd->vector, leg) != 0, z, cmd->duty);
+            matched =
+                matched && (leg == open_leg ||
+                            cmd->leg_duty[leg] ==
+                                leg_duty(ctl_vector_leg(cmd->vector, leg) != 0, z, cmd->duty));
         }
         if (matched) {
             return true;
@@ -93,8 +98,11 @@ static bool set_realised(const ctl_cmd_t *cmd, int16_t set)
     return false;
 }
 
-static void check_command(const ctl_cmd_t *cmd)
+/* With an open phase (open_leg >= 0) its leg is never on and the vector never names it; the
+ * other legs follow the same arrangement rules. */
+static void check_command(const ctl_cmd_t *cmd, int16_t open_leg)
 {
+    const int16_t mask = (int16_t)((open_leg >= 0) ? (077 & ~(1 << (5 - open_leg))) : 077);
     int16_t leg;
     if (!cmd->enable) {
         for (leg = 0; leg < CTL_PHASES; leg++) {
@@ -115,7 +123,10 @@ static void check_command(const ctl_cmd_t *cmd)
             abort();
         }
     }
-    if (!set_realised(cmd, 0) || !set_realised(cmd, 1)) {
+    if ((cmd->vector & ~mask) != 0 || (open_leg >= 0 && cmd->leg_duty[open_leg] != CTL_Q(0.0))) {
+        abort();
+    }
+    if (!set_realised(cmd, 0, open_leg) || !set_realised(cmd, 1, open_leg)) {
         abort();
     }
 }
@@ -148,6 +159,8 @@ int LLVMFuzzerTestOneInput(const unsigned char *data, size_t size)
             q.speed_kp_nm_per_rad_s = take_float(&s);
             q.lq_h = take_float(&s);
             q.pulse_pattern = (ctl_pulse_pattern_t)(take32(&s) % 4u); /* 3: refused */
+            q.open_phase = (int16_t)((int32_t)(take32(&s) % 9u) - 2); /* -2..6: 2 refused */
+            q.postfault_strategy = (int16_t)(take32(&s) % 3u);        /* 2 refused */
             (void)ctl_request_params(&c, &q);
         } else if (tag == 1u) {
             ctl_set_loop_mode(&c, (take32(&s) & 1u) ? CTL_LOOP_TORQUE : CTL_LOOP_SPEED);
@@ -167,7 +180,7 @@ int LLVMFuzzerTestOneInput(const unsigned char *data, size_t size)
             m.theta_e = take_q(&s);
             m.omega_e = take_q(&s);
             ctl_step(&c, &m, &cmd);
-            check_command(&cmd);
+            check_command(&cmd, ctl_postfault_config(&c)->open_leg);
             in.vdc = m.vdc;
             in.theta_e = m.theta_e;
             in.omega_e = m.omega_e;

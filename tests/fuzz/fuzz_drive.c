@@ -10,7 +10,8 @@
  *   - every reply encodes, and decodes back to itself;
  *   - the fault log holds at most its size, its records come out in order, each with a
  *     fault bit set and a period not in the future;
- *   - the refusal fields name known reasons.
+ *   - the refusal fields name known reasons;
+ *   - an isolated leg stays isolated in the HAL and is never commanded on.
  * A violation aborts (libFuzzer reports it); the sanitizers catch the rest.
  *
  * The first input byte chooses the start: power-up (INIT -> CALIBRATE) or a snapshot taken
@@ -137,12 +138,22 @@ static void serial_noise(stream_t *s)
 
 static void serial_frame(stream_t *s)
 {
-    static const uint16_t commands[] = {
-        SXL_CMD_PING,        SXL_CMD_GET_STATUS,    SXL_CMD_GET_PROFILE, SXL_CMD_GET_FAULT_RECORD,
-        SXL_CMD_SET_SPEED,   SXL_CMD_SET_TORQUE,    SXL_CMD_RUN,         SXL_CMD_STOP,
-        SXL_CMD_CLEAR_FAULT, SXL_CMD_SET_CONTROLLER};
+    static const uint16_t commands[] = {SXL_CMD_PING,
+                                        SXL_CMD_GET_STATUS,
+                                        SXL_CMD_GET_PROFILE,
+                                        SXL_CMD_GET_FAULT_RECORD,
+                                        SXL_CMD_SET_SPEED,
+                                        SXL_CMD_SET_TORQUE,
+                                        SXL_CMD_RUN,
+                                        SXL_CMD_STOP,
+                                        SXL_CMD_CLEAR_FAULT,
+                                        SXL_CMD_SET_CONTROLLER,
+                                        SXL_CMD_GET_OPEN_PHASE,
+                                        SXL_CMD_SET_OPEN_PHASE_ACTION,
+                                        SXL_CMD_ISOLATE_LEG,
+                                        SXL_CMD_RESTORE_LEGS};
     const uint16_t pick = take8(s);
-    const uint16_t cmd = (pick < 240u) ? commands[pick % 10u] : take8(s);
+    const uint16_t cmd = (pick < 240u) ? commands[pick % 14u] : take8(s);
     const uint16_t len = (uint16_t)(take8(s) % (SXL_MAX_PAYLOAD + 1u));
     uint16_t payload[SXL_MAX_PAYLOAD];
     uint16_t bytes[SXL_MAX_FRAME];
@@ -213,6 +224,9 @@ static void control_periods(stream_t *s)
         check(!(drive.state == DRIVE_STATE_RUN && before != DRIVE_STATE_RUN) ||
               (before == DRIVE_STATE_READY && run_asked));
         check(ctl_protect_log_pending(&drive.protect) <= CTL_PROTECT_LOG_SIZE);
+        check(drive.isolated_leg < 0 ||
+              ((((unsigned)hal_sim_bus.isolated >> drive.isolated_leg) & 1u) != 0u &&
+               (hal_sim_bus.forced_off || hal_sim_bus.duty[drive.isolated_leg] == 0u)));
         check((drive.state == DRIVE_STATE_FAULT) == (drive.fault != DRIVE_FAULT_NONE));
         check((int32_t)drive.run_refusal < DRIVE_RUN_REFUSAL_COUNT);
     }
@@ -277,8 +291,15 @@ int LLVMFuzzerTestOneInput(const unsigned char *data, size_t size)
     sxl_decoder_init(&rx);
     last_record_period = 0u;
     while (s.left > 0u && steps < 4000) {
-        const uint16_t tag = (uint16_t)(take8(&s) % 5u);
-        if (tag == 0u) {
+        const uint16_t tag = (uint16_t)(take8(&s) % 6u);
+        if (tag == 5u) {
+            /* the background loop's pass; now and then the open-phase option */
+            if ((take8(&s) & 1u) != 0u) {
+                (void)drive_set_open_phase_action(&drive, (int16_t)(take8(&s) % 3u),
+                                                  (int16_t)(take8(&s) % 3u));
+            }
+            drive_background(&drive);
+        } else if (tag == 0u) {
             serial_noise(&s);
         } else if (tag == 1u) {
             serial_frame(&s);
