@@ -41,6 +41,7 @@ void sim_cli_usage(FILE *f)
         "[--open-phase {A..F}] [--open-model {resistor,open}]\n"
         "                   [--second-fault {A..F}] [--second-fault-time S] "
         "[--isolate-leg {A..F}] [--isolate-time S]\n"
+        "                   [--handoff-delay S]\n"
         "  sixphase-sim reproduce --out DIR [--jobs N] [--no-plots] [--quiet]\n"
         "  sixphase-sim sweep --out DIR [--jobs N] [--force] [--no-plots] [--quiet] run options,\n"
         "                   numbers and choices as lists (a,b,c) or ranges (start:stop:step);\n"
@@ -165,6 +166,7 @@ enum {
     G_SECOND_FAULT_TIME,
     G_ISOLATE_LEG,
     G_ISOLATE_TIME,
+    G_HANDOFF_DELAY,
     G_IDEAL
 };
 
@@ -226,6 +228,7 @@ static const opt_t options[] = {
     NUM("--second-fault-time", cfg.second_fault_s, G_SECOND_FAULT_TIME, 0.001, 100.0),
     CHOICE("--isolate-leg", cfg.isolate_leg, G_ISOLATE_LEG, phases),
     NUM("--isolate-time", cfg.isolate_s, G_ISOLATE_TIME, 0.001, 100.0),
+    NUM("--handoff-delay", cfg.handoff_delay_s, G_HANDOFF_DELAY, 0.0, 0.1),
 };
 
 #define OPTION_COUNT ((int)(sizeof options / sizeof options[0]))

@@ -51,6 +51,8 @@ typedef struct {
     int open_model;         /* fault-open-phase: 0 2 kohm in series (default), 1 open circuit */
     int second_fault_phase; /* a second phase that opens later, < 0: none */
     double second_fault_s;  /* when; <= 0: 0.3 s after the first */
+    double handoff_delay_s; /* the background's build of the post-fault set takes this long
+                             * (the target's hand-off latency, docs/faults.md); 0: one period */
     int isolate_leg;        /* a leg isolated by command (a healthy machine), < 0: none */
     double isolate_s;       /* when; <= 0: SIM_FAULT_INJECT_S */
     bool protect;           /* the firmware's software protection at its default limits; false:

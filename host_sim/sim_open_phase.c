@@ -17,6 +17,7 @@ int sim_open_phase_begin(struct sim_run *rs, char *err, size_t err_len)
     op->isolated_seen = 0u;
     op->command_sent = false;
     op->t_event = -1.0;
+    op->t_isolated = -1.0;
     op->min_speed_rpm = 0.0;
     if (c->fault == SIM_FAULT_OPEN_PHASE) {
         const double t2 = (c->second_fault_s > 0.0) ? c->second_fault_s
@@ -42,6 +43,30 @@ int sim_open_phase_begin(struct sim_run *rs, char *err, size_t err_len)
     return 0;
 }
 
+/* The legs the drive isolated in this period's ISR: their switches are off, their currents
+ * commutate at once (an open connection stays open, a connected phase floats on its diodes). */
+static void sim_open_phase_legs(struct sim_run *rs, sim_result_t *r, double t)
+{
+    sim_open_phase_t *op = &rs->open_phase;
+    plant_params_t opened;
+    uint16_t floating;
+    int k;
+    op->isolated_seen = hal_sim_bus.isolated;
+    floating = sim_fault_plant(&rs->fault, &rs->cfg->plant, op->isolated_seen, &rs->plant);
+    inverter_set_floating(&rs->inv, floating);
+    opened = rs->plant;
+    for (k = 0; k < PLANT_PHASES; k++) {
+        opened.phase_open[k] = opened.phase_open[k] || (((unsigned)floating >> k) & 1u) != 0u;
+    }
+    plant_open_commutate(&opened, &rs->x);
+    if (op->isolated_seen != 0u && op->t_isolated < 0.0) {
+        op->t_isolated = t;
+    }
+    if (op->isolated_seen != 0u && r->isolation_ms < 0.0 && op->t_event >= 0.0) {
+        r->isolation_ms = 1e3 * (t - op->t_event);
+    }
+}
+
 void sim_open_phase_period(struct sim_run *rs, sim_result_t *r, double t,
                            const sim_ctl_status_t *st)
 {
@@ -50,23 +75,12 @@ void sim_open_phase_period(struct sim_run *rs, sim_result_t *r, double t,
         op->command_sent = true;
         (void)rs->ops->isolate_leg(rs->cfg->isolate_leg); /* the ISR acts next period */
     }
-    rs->ops->background();
     if (hal_sim_bus.isolated != op->isolated_seen) {
-        /* the leg's switches went off in this period's ISR: its current commutates */
-        plant_params_t opened;
-        uint16_t floating;
-        int k;
-        op->isolated_seen = hal_sim_bus.isolated;
-        floating = sim_fault_plant(&rs->fault, &rs->cfg->plant, op->isolated_seen, &rs->plant);
-        inverter_set_floating(&rs->inv, floating);
-        opened = rs->plant;
-        for (k = 0; k < PLANT_PHASES; k++) { /* the isolated phases' currents go to zero */
-            opened.phase_open[k] = opened.phase_open[k] || ((floating >> k) & 1u) != 0u;
-        }
-        plant_open_commutate(&opened, &rs->x);
-        if (op->isolated_seen != 0u && r->isolation_ms < 0.0 && op->t_event >= 0.0) {
-            r->isolation_ms = 1e3 * (t - op->t_event);
-        }
+        sim_open_phase_legs(rs, r, t);
+    }
+    /* the background is busy building the post-fault set for the hand-off delay */
+    if (op->t_isolated < 0.0 || t >= op->t_isolated + rs->cfg->handoff_delay_s) {
+        rs->ops->background();
     }
     if (st->postfault_in_force && r->postfault_start_ms < 0.0 && op->t_event >= 0.0) {
         r->postfault_start_ms = 1e3 * (t - op->t_event);

@@ -29,6 +29,7 @@ typedef struct {
     uint16_t isolated_seen; /* legs the plant treats as switched off */
     bool command_sent;
     double t_event; /* the fault's injection or the isolation command, scenario clock; < 0 none */
+    double t_isolated; /* the first isolation, scenario clock; < 0 none yet */
     double min_speed_rpm;
     metrics_settle_t settle;
 } sim_open_phase_t;

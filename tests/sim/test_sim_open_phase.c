@@ -110,6 +110,23 @@ static void test_variants_ride_through(void **state)
     assert_true(r.phase_rms_a[3] < 0.25 * r.phase_rms_a[0]); /* B open: MT holds D near zero */
 }
 
+/* The target's hand-off: with the post-fault set 6 ms in the making the outputs stay off that
+ * long and the speed dips further, within the band still at this load. */
+static void test_handoff_delay(void **state)
+{
+    sim_config_t c;
+    sim_result_t r;
+    (void)state;
+    ride_config(&c, 2);
+    c.handoff_delay_s = 0.006;
+    run(&c, &r);
+    print_message("hand-off 6 ms: five legs %.1f ms after the isolation, dip %.1f r/min\n",
+                  r.postfault_start_ms - r.isolation_ms, r.speed_dip_rpm);
+    assert_true(fabs(r.postfault_start_ms - r.isolation_ms - 6.1) < 0.15);
+    assert_true(r.speed_dip_rpm > 10.0 && r.speed_dip_rpm < 30.0);
+    assert_int_equal(r.final_state, 3);
+}
+
 /* A second phase opening while one is isolated stops the drive: FAULT, both records. */
 static void test_second_open_phase_stops(void **state)
 {
@@ -176,6 +193,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_each_phase_rides_through),
         cmocka_unit_test(test_variants_ride_through),
+        cmocka_unit_test(test_handoff_delay),
         cmocka_unit_test(test_second_open_phase_stops),
         cmocka_unit_test(test_rated_load_exceeds_the_derated_limit),
         cmocka_unit_test(test_isolation_command_on_a_connected_phase),
