@@ -16,6 +16,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+import plot_postfault  # noqa: E402  (beside this script)
 
 # trace.csv columns (see host_sim/sim.c)
 T, SPEED, IA, IB, IC, IX, IY, TE, TREF = 0, 1, 3, 4, 5, 11, 12, 13, 16
@@ -150,6 +151,7 @@ def figure_jobs(base):
                               "Reversal 800 -> -800 r/min, no load")))
     jobs.append((comparison, (runs, "load-step_mptc49", "load-step_ddc",
                               os.path.join(plots, "load-step.png"), "Rated load step at 1500 r/min")))
+    jobs.append((plot_postfault.plots, (runs, plots)))  # section 9's figures (open phase)
     summ = os.path.join(base, "summary.json")
     if os.path.exists(summ):
         with open(summ) as f:

@@ -17,6 +17,7 @@
 #include "batch.h"
 #include "plots.h"
 #include "reproduce_cases.h"
+#include "reproduce_postfault.h"
 #include "reproduce_report.h"
 #include "sim.h"
 
@@ -89,6 +90,7 @@ int sim_reproduce(const char *out_dir, int jobs, bool plots, int quiet)
     }
     rep_cases_first_batch(cases, &n, out_dir);
     rep_cases_improvement_sweep(cases, &n, out_dir);
+    rep_cases_postfault(cases, &n, out_dir);
     n1 = n;
     if (!quiet) {
         fprintf(stderr, "reproduce: %d runs, %d workers\n", n1, jobs);

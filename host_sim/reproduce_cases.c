@@ -109,8 +109,8 @@ static void rep_apply_variant(sim_config_t *c, rep_variant_t v)
     }
 }
 
-static rep_case_t *rep_add(rep_case_t *cases, int *n, const char *dir, const char *group,
-                           const char *name, int controller, sim_scenario_t scen, double lambda)
+rep_case_t *rep_add(rep_case_t *cases, int *n, const char *dir, const char *group, const char *name,
+                    int controller, sim_scenario_t scen, double lambda)
 {
     static char dirs[REP_MAX_CASES][1100];
     static rep_case_t overflow; /* written to and ignored if the case table is full */

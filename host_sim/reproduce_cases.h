@@ -54,6 +54,11 @@ extern const char *const rep_sweep_variant[REP_SWEEP_VARIANTS]; /* names */
 extern const char *const rep_sweep_label[REP_SWEEP_VARIANTS];
 void rep_cases_improvement_sweep(rep_case_t *cases, int *n, const char *dir);
 
+/* Appends a case with the paper's method (improvements off), output under dir/runs/NAME (no
+ * fine.csv); the caller adjusts its configuration. */
+rep_case_t *rep_add(rep_case_t *cases, int *n, const char *dir, const char *group, const char *name,
+                    int controller, sim_scenario_t scen, double lambda);
+
 /* The case of that name if it ran, else NULL. */
 const rep_case_t *rep_find(const rep_case_t *cases, int n, const char *name);
 

@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "reproduce_postfault.h"
 #include "sxlink.h"
 
 static void fmt_num(char *buf, size_t len, double v, int digits)
@@ -578,6 +579,7 @@ int rep_write_report(const char *dir, const rep_case_t *cases, int n)
     rep_section_faults(f, cases, n);
     rep_section_all_runs(f, cases, n);
     rep_section_improvements(f, cases, n);
+    rep_section_postfault(f, cases, n);
     return (fclose(f) == 0) ? 0 : -1;
 }
 
