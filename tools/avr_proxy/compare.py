@@ -65,6 +65,26 @@ class Reader:
         return b
 
 
+POSTFAULT_HEAD = ([("zero_leg", "i16"), ("quiet", "u16")] +
+                  [(n, "q") for n in ("c_alpha", "c_beta", "c_x", "c_y", "free_ref_alpha",
+                                      "free_ref_beta")] +
+                  [("peak_ratio", "u32")] +
+                  [("ddc_table[%d]" % i, "i16") for i in range(12 * 2 * 2 * 2)])
+
+
+def take_postfault(r, take, fields, prefix):
+    """The open-phase part of a configuration (replay.c emit_postfault): open leg, and when
+    there is one its geometry, DDC table and the two MPTC sets with their counts."""
+    take([("open_leg", "i16")], prefix)
+    if struct.unpack("<h", fields[-1][2])[0] < 0:
+        return
+    take(POSTFAULT_HEAD, prefix)
+    for name in ("mptc_all", "mptc_large"):
+        take([(name + "_count", "i16")], prefix)
+        count = struct.unpack("<h", fields[-1][2])[0]
+        take([("%s[%d]" % (name, i), "i16") for i in range(max(0, min(count, 32)))], prefix)
+
+
 def records(r):
     """Yields (tag, [(field, kind, bytes)]) per record."""
     while r.p < len(r.d):
@@ -81,9 +101,14 @@ def records(r):
             take([("ok", "u8"), ("last_error", "u8")])
             if fields[0][2][0]:
                 take(CONFIG, "config.")
+                take_postfault(r, take, fields, "postfault.")
         elif tag == "Q":
             take([("result", "u8"), ("rejected", "u16"), ("last_error", "u8"), ("pending", "u8")])
             take(CONFIG, "config.")
+            if fields[0][2][0] == 0:
+                take_postfault(r, take, fields, "postfault.")
+        elif tag == "Z":
+            take([("inv_judged", "q")])
         elif tag == "K":
             take([("ok", "u8"), ("latched", "u16"), ("active", "u16")])
         elif tag == "L":

@@ -35,14 +35,16 @@ F_NORMAL = F_PROTECT | F_ENC_OK | F_RUNNING | F_CALIBRATED
 
 def params(controller=DDC, direction=FLUX_ERROR, guard=True, flux_mode=MTPA, levels=6,
            lam=100.0, tlim=7.0, kp=1.5, ki=60.0, flux_wb=0.26, ts=1e-4, oc=15.0, os_rpm=2000.0,
-           ov=720.0, mid=False, fewest=True, tie=True, per_set=True):
+           ov=720.0, mid=False, fewest=True, tie=True, per_set=True, open_phase=-1, strategy=0):
     """The improvement flags in one byte: bit 0 torque guard, 1 mid-period angle, 2 fewest
     transitions, 3 flux tie band off, 4 each three-phase set's zero state on its own (with
-    bit 2; guard=False alone is the paper's DDC only with fewest=False and tie=False too)."""
+    bit 2; guard=False alone is the paper's DDC only with fewest=False and tie=False too); the
+    open phase as leg + 1 (0: none)."""
     flags = ((1 if guard else 0) | (2 if mid else 0) | (4 if fewest else 0) |
              (0 if tie else 8) | (16 if fewest and per_set else 0))
     return (struct.pack("<BBBBh", controller, direction, flags, flux_mode, levels) +
-            struct.pack("<9f", lam, tlim, kp, ki, flux_wb, ts, oc, os_rpm, ov))
+            struct.pack("<9f", lam, tlim, kp, ki, flux_wb, ts, oc, os_rpm, ov) +
+            struct.pack("<BB", open_phase + 1, strategy))
 
 
 class Stream:
@@ -81,6 +83,9 @@ class Stream:
 
     def log(self):
         self.raw(b"L")
+
+    def quiet(self, mask):
+        self.raw(b"Z" + bytes([mask]))
 
     def step(self, row, ref, flags=F_NORMAL, vdc=VDC_V, theta_shift=0.0, omega_rpm=None,
              raw_override=None, tag="other"):
@@ -253,8 +258,39 @@ def build(sim, work, scale):
             s.log()
             s.clear()
             s.log()
+    build_open_phase(s, sim, work, n)
     s.raw(b"E")
     return s
+
+
+def build_open_phase(s, sim, work, n):
+    """F: open-phase operation. A ride-through run's five-leg periods (phase C open) through
+    the post-fault step: DDC with minimum loss, then maximum torque, MPTC-13, MPTC-49, a refused
+    open phase, and back to the healthy set, whose open-phase check then finds phase C."""
+    rows = record(sim, work, "ddc", "fault-open-phase", ["--ride-through", "--load", "3.5"])
+    rows = rows[3400:]  # five-leg operation: from 0.34 s (the isolation is at 0.32 s)
+    s.init(controller=DDC, open_phase=2)
+    s.mode(TORQUE)
+    s.reset()
+    s.quiet(0x04)
+    nf = min(len(rows), n(3000))
+    for k in range(nf):
+        if k == nf // 4:
+            s.request(controller=DDC, open_phase=2, strategy=1)
+            s.quiet(0x14)
+        if k == nf // 2:
+            s.request(controller=MPTC13, open_phase=2)
+            s.quiet(0x04)
+        if k == nf // 2 + 1:
+            s.request(open_phase=6)  # refused: no such phase
+        if k == nf * 5 // 8:
+            s.request(controller=MPTC49, open_phase=2, strategy=1)
+        if k == nf * 3 // 4:
+            s.request(controller=DDC)
+            s.quiet(0)
+        r = rows[k]
+        s.step(r[:3], tref(r), tag="open-phase")
+    s.log()
 
 
 def main():

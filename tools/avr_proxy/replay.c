@@ -23,11 +23,15 @@
  *   'K'          ctl_protect_clear                    -> 'K' ok u8, latched u16, active u16
  *   'L'          drain the fault log                  -> 'L' n u8, then n records
  *   'S' step     see read_step                        -> 'S' step output (emit_step)
+ *   'Z' u8       ctl_protect_quiet (bit k: phase k)   -> 'Z' inv_judged q
  *   'E'          end                                  -> 'E' steps u32, then the done mark
  * params: controller u8, ddc_direction u8, improvement flags u8 (bit 0 torque guard, 1
  *   mid-period angle, 2 fewest transitions, 3 flux tie band off), flux_ref_mode u8, duty_levels
- * i16, lambda f32, torque_limit f32, speed_kp f32, speed_ki f32, flux_ref_wb f32, sample_time f32,
- *   overcurrent_a f32, overspeed_rpm f32, dc_overvoltage_v f32 (the rest: ctl_params_default).
+ *   i16, lambda f32, torque_limit f32, speed_kp f32, speed_ki f32, flux_ref_wb f32, sample_time
+ *   f32, overcurrent_a f32, overspeed_rpm f32, dc_overvoltage_v f32, open phase + 1 u8 (0:
+ *   none), post-fault strategy u8 (the rest: ctl_params_default).
+ * config: the derived configuration's fields, then the open-phase part built with it
+ *   (emit_postfault).
  */
 #include <stdbool.h>
 #include <stddef.h>
@@ -170,6 +174,47 @@ static void read_params(ctl_params_t *p)
     p->protect.overcurrent_a = rd_f32();
     p->protect.overspeed_rpm = rd_f32();
     p->protect.dc_overvoltage_v = rd_f32();
+    p->open_phase = (int16_t)((int16_t)port_read() - 1);
+    p->postfault_strategy = (int16_t)port_read();
+}
+
+/* The open-phase part of a configuration: geometry, references, tables and sets. */
+static void emit_postfault(const ctl_postfault_config_t *pf)
+{
+    bits32_t ratio;
+    int16_t s;
+    int16_t h;
+    int16_t f;
+    wr_i16(pf->open_leg);
+    if (pf->open_leg < 0) {
+        return;
+    }
+    wr_i16(pf->zero_leg);
+    wr_u16(pf->quiet);
+    wr_q(pf->c_alpha);
+    wr_q(pf->c_beta);
+    wr_q(pf->c_x);
+    wr_q(pf->c_y);
+    wr_q(pf->free_ref_alpha);
+    wr_q(pf->free_ref_beta);
+    ratio.f = pf->peak_ratio;
+    wr_u32(ratio.u);
+    for (s = 0; s < CTL_SECTORS; s++) {
+        for (h = 0; h < 2; h++) {
+            for (f = 0; f < 2; f++) {
+                wr_i16(pf->ddc_table[s][h][f][0]);
+                wr_i16(pf->ddc_table[s][h][f][1]);
+            }
+        }
+    }
+    wr_i16(pf->mptc_all_count);
+    for (s = 0; s < pf->mptc_all_count; s++) {
+        wr_i16(pf->mptc_all[s]);
+    }
+    wr_i16(pf->mptc_large_count);
+    for (s = 0; s < pf->mptc_large_count; s++) {
+        wr_i16(pf->mptc_large[s]);
+    }
 }
 
 /* The derived configuration, so that a difference in the background's float arithmetic shows
@@ -245,6 +290,7 @@ static void do_init(void)
     wr_u8((uint8_t)ctl_state.params_last_error);
     if (ok) { /* a refused set leaves the buffer partly written: nothing to show */
         emit_config(&ctl_state.config[ctl_state.config_active]);
+        emit_postfault(&ctl_state.postfault[ctl_state.config_active]);
     }
 }
 
@@ -263,6 +309,16 @@ static void do_request(void)
     /* accepted: the set just built (standby buffer); otherwise the one in force */
     emit_config(&ctl_state.config[(e == CTL_PARAM_OK) ? (1 - ctl_state.config_active)
                                                       : ctl_state.config_active]);
+    if (e == CTL_PARAM_OK) {
+        emit_postfault(&ctl_state.postfault[1 - ctl_state.config_active]);
+    }
+}
+
+static void do_quiet(void)
+{
+    ctl_protect_quiet(&prot_state, (uint16_t)port_read());
+    wr_u8((uint8_t)'Z');
+    wr_q(prot_state.inv_judged);
 }
 
 static void do_clear(void)
@@ -427,6 +483,9 @@ int main(void)
             break;
         case 'S':
             do_step();
+            break;
+        case 'Z':
+            do_quiet();
             break;
         default:
             wr_u8((uint8_t)'?');
