@@ -47,7 +47,7 @@ for arith in float fixed; do
   # The fixed (Q24) image leaves the MPTC-49/13 search in flash (F28335_flash.cmd, the
   # SIXPHASE_FW_Q24 branch; docs/porting.md section 7): the linker's define and what it moves.
   # Both leave the open-phase step in flash (it runs only with an isolated leg; in RAM it would
-  # take L0..L3 to 91 %), and what runs once when a leg is isolated or restored.
+  # take L0..L3 to 93 %), and what runs once when a leg is isolated or restored.
   link=()
   from_flash=ctl_postfault_step,drive_open_phase_faults,drive_isolate,hal_pwm_restore_legs
   if [ $arith = float ]; then

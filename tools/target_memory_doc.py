@@ -54,6 +54,15 @@ def row(label, stack, ram):
         stack["need_words"])
 
 
+def label(name, from_flash, also):
+    """The build's name and what it leaves in flash on purpose (beyond the float build's)."""
+    own = [f for f in from_flash if f not in also]
+    if not own:
+        return name + ")"
+    return "%s; %s%s in flash)" % (name, "also " if also else "",
+                                   ", ".join("`%s`" % f for f in own))
+
+
 def render(stack_words, builds):
     (fs, fr), (qs, qr) = builds
     lines = [
@@ -66,8 +75,8 @@ def render(stack_words, builds):
         % (fr["regions"][fr["code_region"]], fr["regions"][fr["data_region"]], stack_words,
            stack_words),
         "|---|---|---|---|",
-        row("float (default)", fs, fr),
-        row("fixed (Q24; %s in flash)" % ", ".join("`%s`" % f for f in qr["from_flash"]), qs, qr),
+        row(label("float (default", fr["from_flash"], []), fs, fr),
+        row(label("fixed (Q24", qr["from_flash"], fr["from_flash"]), qs, qr),
         "",
         "Deepest paths (float): background `%s`; control interrupt `%s`." % (
             path_text(fs["background_path"]), path_text(fs["isr_path"])),

@@ -103,7 +103,7 @@ SECTIONS
                    *(.text:_ctl_mptc_select)
 #endif
                    /* control/src/ctl_postfault.c: the open-phase step (ctl_postfault_step and
-                    * its helpers) runs from flash in both images: L0..L3 would be 91 % full */
+                    * its helpers) runs from flash in both images: L0..L3 would be 93 % full */
                    /* control/src/ctl_protect.c */
                    *(.text:_any_nan) *(.text:_check_adc) *(.text:_check_encoder)
                    *(.text:_check_open_phase) *(.text:_ctl_protect_check)
