@@ -210,7 +210,7 @@ static int tool(const char *args, char *out, size_t len)
     FILE *p;
     size_t n;
     int rc;
-    (void)snprintf(cmd, sizeof cmd, "%s --port %s %s", SIXPHASE_LINK_EXE, port_path, args);
+    (void)snprintf(cmd, sizeof cmd, "%s --port %s -t 5000 %s", SIXPHASE_LINK_EXE, port_path, args);
     p = popen(cmd, "r");
     assert_non_null(p);
     n = fread(out, 1, len - 1, p);
@@ -383,12 +383,13 @@ static uint32_t cap_first_period;
 static int cap_count;
 static int16_t cap_samples[4][512];
 
-/* Arms a capture, waits until it is done (within 3 s) and reads every channel. */
+/* Arms a capture, waits until it is done (within 10 s of a possibly loaded host's time) and reads
+ * every channel. */
 static void capture(const uint16_t *signals, int n, uint16_t length, uint16_t trigger, uint16_t pre,
                     sxl_frame_t *st)
 {
     uint16_t setup[SXL_CA_SIZE] = {0};
-    const double deadline = now_s() + 3.0;
+    const double deadline = now_s() + 10.0;
     int k;
     setup[SXL_CA_CHANNELS] = (uint16_t)n;
     for (k = 0; k < 4; k++) {
