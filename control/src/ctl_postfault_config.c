@@ -95,41 +95,60 @@ static float pf_peak(const float m[4], uint16_t *quiet)
     return peak;
 }
 
-/* The strategy's current geometry: zero leg, quiet phases, peak ratio, free reference. */
-static void pf_build_strategy(ctl_postfault_config_t *pf, ctl_postfault_strategy_t strategy)
+/* The strategy's current geometry: the x-y currents per unit alpha-beta current (m), the healthy
+ * phase it holds at zero, the phases without current and the peak ratio. Small on purpose: the
+ * peak ratio is wanted on its own too (ctl_config_build), on the background's stack. */
+typedef struct {
+    float m[4];
+    int16_t zero_leg;
+    uint16_t quiet;
+    float peak_ratio;
+} pf_geometry_t;
+
+static void pf_strategy_geometry(int16_t open_leg, ctl_postfault_strategy_t strategy,
+                                 pf_geometry_t *g)
 {
-    float best[4];
-    float ck[4];
     int16_t j;
-    (void)pf_strategy_matrix(pf->open_leg, CTL_POSTFAULT_NO_LEG, best);
-    pf->zero_leg = CTL_POSTFAULT_NO_LEG;
-    pf->peak_ratio = pf_peak(best, &pf->quiet);
+    (void)pf_strategy_matrix(open_leg, CTL_POSTFAULT_NO_LEG, g->m);
+    g->zero_leg = CTL_POSTFAULT_NO_LEG;
+    g->peak_ratio = pf_peak(g->m, &g->quiet);
     for (j = 0; j < 6 && strategy == CTL_POSTFAULT_MAX_TORQUE; j++) {
         float m[4];
         uint16_t quiet;
         float peak;
-        if (j == pf->open_leg || !pf_strategy_matrix(pf->open_leg, j, m)) {
+        if (j == open_leg || !pf_strategy_matrix(open_leg, j, m)) {
             continue;
         }
         peak = pf_peak(m, &quiet);
-        if (peak < pf->peak_ratio - 1.0e-4f) {
-            pf->peak_ratio = peak;
-            pf->quiet = quiet;
-            pf->zero_leg = j;
-            best[0] = m[0];
-            best[1] = m[1];
-            best[2] = m[2];
-            best[3] = m[3];
+        if (peak < g->peak_ratio - 1.0e-4f) {
+            g->peak_ratio = peak;
+            g->quiet = quiet;
+            g->zero_leg = j;
+            g->m[0] = m[0];
+            g->m[1] = m[1];
+            g->m[2] = m[2];
+            g->m[3] = m[3];
         }
     }
+}
+
+/* The strategy's current geometry into pf: zero leg, quiet phases, peak ratio, free reference. */
+static void pf_build_strategy(ctl_postfault_config_t *pf, ctl_postfault_strategy_t strategy)
+{
+    pf_geometry_t g;
+    float ck[4];
+    pf_strategy_geometry(pf->open_leg, strategy, &g);
+    pf->zero_leg = g.zero_leg;
+    pf->quiet = g.quiet;
+    pf->peak_ratio = g.peak_ratio;
     /* free component = perp . i_xy = (m^T perp) . i_ab, perp = c_xy turned by 90 deg (exactly
      * 0 for minimum loss, whose forced part lies along c_xy) */
     pf_phase_row(pf->open_leg, ck);
     pf->free_ref_alpha = CTL_Q(0.0);
     pf->free_ref_beta = CTL_Q(0.0);
     if (pf->zero_leg != CTL_POSTFAULT_NO_LEG) {
-        pf->free_ref_alpha = ctl_from_float(-ck[3] * best[0] + ck[2] * best[2]);
-        pf->free_ref_beta = ctl_from_float(-ck[3] * best[1] + ck[2] * best[3]);
+        pf->free_ref_alpha = ctl_from_float(-ck[3] * g.m[0] + ck[2] * g.m[2]);
+        pf->free_ref_beta = ctl_from_float(-ck[3] * g.m[1] + ck[2] * g.m[3]);
     }
     pf->c_alpha = ctl_from_float(ck[0]);
     pf->c_beta = ctl_from_float(ck[1]);
@@ -139,13 +158,12 @@ static void pf_build_strategy(ctl_postfault_config_t *pf, ctl_postfault_strategy
 
 float ctl_postfault_peak_ratio(int16_t open_leg, ctl_postfault_strategy_t strategy)
 {
-    ctl_postfault_config_t pf = {0};
+    pf_geometry_t g;
     if (open_leg < 0 || open_leg > 5) {
         return 1.0f;
     }
-    pf.open_leg = open_leg;
-    pf_build_strategy(&pf, strategy);
-    return pf.peak_ratio;
+    pf_strategy_geometry(open_leg, strategy, &g);
+    return g.peak_ratio;
 }
 
 /* The 32 states of the healthy legs (the open leg's bit clear) and their effective voltages. */
