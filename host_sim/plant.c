@@ -57,6 +57,9 @@ void plant_params_default(plant_params_t *p)
     p->current_sensor_span_a = 0.5 * HAL_BOARD_CURRENT_FULL_SPAN_A;
     p->encoder_quant_on = true;
     p->encoder_lines = 2500u;
+    p->encoder_offset_rad = 0.0;
+    p->encoder_reversed = false;
+    p->encoder_stuck = false;
 }
 
 const char *plant_params_check(const plant_params_t *p)
@@ -103,6 +106,9 @@ const char *plant_params_check(const plant_params_t *p)
     }
     if (p->encoder_lines < 1u || p->encoder_lines > 1000000u) {
         return "encoder lines must be in 1..1e6";
+    }
+    if (!(fabs(p->encoder_offset_rad) <= 64.0)) {
+        return "encoder offset out of range";
     }
     return "";
 }

@@ -77,6 +77,13 @@ typedef struct {
                                    * is told the same span (drive_set_current_span) */
     bool encoder_quant_on;        /* angle quantised to 1/(4*lines) turn; speed by edge timing */
     uint32_t encoder_lines;
+    /* how the encoder sits on the shaft (docs/commissioning.md); defaults: index at the d axis,
+     * counting up for a positive turn, seen from power-up */
+    double encoder_offset_rad; /* electrical angle of the index to the d axis: the offset the
+                                * drive must learn (FW_ENCODER_OFFSET); the index pulse comes at
+                                * the mechanical angle encoder_offset_rad / pole_pairs */
+    bool encoder_reversed;     /* channels A and B swapped: counts down for a positive turn */
+    bool encoder_stuck;        /* the count never moves (a seized coupling, a dead encoder) */
 } plant_params_t;
 
 /* The sensor spans a board may have (the drive's DRIVE_CURRENT_SPAN_MIN_A..MAX_A, halved). */

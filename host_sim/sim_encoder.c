@@ -21,31 +21,85 @@ void sim_encoder_init(sim_encoder_t *enc, double ts)
     enc->first = true;
     enc->edge_speed_rev_s = 0.0;
     enc->qep_error = false;
-    enc->index_known = false;
+    enc->index_seen = true;
+    enc->turn_known = false;
+    enc->count0 = 0;
+    enc->turn_prev = 0;
+    enc->turn_lo = 0;
+    enc->theta_stuck = 0.0;
+    enc->shaft0_rad = 0.0;
 }
 
 void sim_encoder_restart(sim_encoder_t *enc)
 {
     enc->first = true;
-    enc->index_known = false;
+    enc->turn_known = false;
 }
 
-/* Index pulse: the shaft as the encoder sees it crossed a whole mechanical turn (either way).
- * Two compares per period; the turn's bounds are recomputed only after a crossing. */
-static void enc_index(sim_encoder_t *enc, double theta_m, sim_fault_state_t *fs)
+/* The shaft angle as the counter sees it (rad): from the index, in the channels' direction. */
+static double enc_shaft_rad(const plant_params_t *p, double theta_m)
 {
-    if (enc->index_known && theta_m >= enc->index_lo && theta_m < enc->index_hi) {
+    const double sign = p->encoder_reversed ? -1.0 : 1.0;
+    const double index_m = p->encoder_offset_rad / (double)p->pole_pairs;
+    return sign * (theta_m - index_m);
+}
+
+/* The same in counts (continuous). */
+static double enc_shaft_counts(const plant_params_t *p, double theta_m)
+{
+    const double cpr = 4.0 * (double)p->encoder_lines;
+    return enc_shaft_rad(p, theta_m) / ENC_TWO_PI * cpr;
+}
+
+static int64_t enc_floor_div(int64_t a, int64_t b)
+{
+    const int64_t q = a / b;
+    return (a % b != 0 && a < 0) ? q - 1 : q;
+}
+
+void sim_encoder_power_up(sim_encoder_t *enc, const plant_params_t *p, const plant_state_t *x,
+                          bool homed)
+{
+    const int64_t count = (int64_t)floor(enc_shaft_counts(p, x->theta_m));
+    enc->index_seen = homed;
+    enc->count0 = homed ? 0 : count;
+    enc->turn_prev = enc_floor_div(count, (int64_t)(4u * p->encoder_lines));
+    enc->turn_lo = enc->turn_prev * (int64_t)(4u * p->encoder_lines);
+    enc->turn_known = true;
+    enc->theta_stuck = x->theta_m;
+    enc->shaft0_rad = homed ? 0.0 : enc_shaft_rad(p, x->theta_m);
+}
+
+/* The index pulse: the count crossed a whole turn from the index since the last sample (either
+ * way). It re-homes the HAL after hal_encoder_rehome (the eQEP's first-index flag) and ends a
+ * slip the fault injection put into the count. Two compares per period; the turn is recomputed
+ * only after a crossing. */
+static void enc_index(sim_encoder_t *enc, const plant_params_t *p, int64_t count,
+                      sim_fault_state_t *fs)
+{
+    const int64_t cpr = (int64_t)(4u * p->encoder_lines);
+    int64_t turn;
+    if (enc->turn_known && count >= enc->turn_lo && count < enc->turn_lo + cpr) {
         return;
     }
-    if (enc->index_known) {
+    turn = enc_floor_div(count, cpr);
+    if (enc->turn_known && turn != enc->turn_prev) {
+        enc->index_seen = true;
         if (hal_sim_bus.encoder_homing_lost) {
             sim_fault_encoder_rehomed(fs);
         }
         hal_sim_post_encoder_index();
     }
-    enc->index_lo = floor(theta_m * (1.0 / ENC_TWO_PI)) * ENC_TWO_PI;
-    enc->index_hi = enc->index_lo + ENC_TWO_PI;
-    enc->index_known = true;
+    enc->turn_prev = turn;
+    enc->turn_lo = turn * cpr;
+    enc->turn_known = true;
+}
+
+/* The drive's HAL configuration (the eQEP driver's constants), the plant's as a fallback. */
+static uint32_t enc_hal_pole_pairs(const plant_params_t *p)
+{
+    return (hal_sim_bus.encoder_pole_pairs > 0u) ? (uint32_t)hal_sim_bus.encoder_pole_pairs
+                                                 : (uint32_t)p->pole_pairs;
 }
 
 /* lround for |q| < 2^31 without the library call: truncate (exact), then step away from zero
@@ -138,19 +192,22 @@ static void enc_quantised(sim_encoder_t *enc, const plant_params_t *p, const pla
                           double t, double ts, hal_encoder_sample_t *e)
 {
     const double cpr = 4.0 * (double)p->encoder_lines;
-    const double pos = s->theta_m / ENC_TWO_PI * cpr;
+    const double pos = enc_shaft_counts(p, s->theta_m);
     const int64_t count = (int64_t)floor(pos);
     const int64_t cpr_i = (int64_t)(4u * p->encoder_lines);
-    int64_t in_turn = count % cpr_i;
+    int64_t in_turn = (enc->index_seen ? count : count - enc->count0) % cpr_i;
     double edge_t;
     if (in_turn < 0) {
         in_turn += cpr_i;
     }
-    /* electrical angle of the counted position: (count / cpr) * Pn turns */
+    /* electrical angle of the counted position: (count / cpr) * Pn turns, plus the offset */
     e->elec_angle =
-        (uint32_t)(((uint64_t)in_turn * (uint64_t)p->pole_pairs * 4294967296ull) / (uint64_t)cpr_i);
+        (uint32_t)(((uint64_t)in_turn * (uint64_t)enc_hal_pole_pairs(p) * 4294967296ull) /
+                   (uint64_t)cpr_i) +
+        hal_sim_bus.encoder_elec_offset;
     if (enc->first) {
-        enc_fill_window(enc, count, pos, s->omega_m, cpr, t, ts);
+        const double sign = p->encoder_reversed ? -1.0 : 1.0;
+        enc_fill_window(enc, count, pos, sign * s->omega_m, cpr, t, ts);
     }
     edge_t = enc_edge_time(enc, count, pos, t, ts);
     e->mech_speed_q16 = enc_window_speed(enc, count, edge_t, cpr);
@@ -164,20 +221,40 @@ static void enc_quantised(sim_encoder_t *enc, const plant_params_t *p, const pla
     e->healthy = !enc->qep_error;
 }
 
+/* Exact angle and speed (quantisation off). */
+static void enc_exact(const sim_encoder_t *enc, const plant_params_t *p, const plant_state_t *s,
+                      hal_encoder_sample_t *e)
+{
+    const double sign = p->encoder_reversed ? -1.0 : 1.0;
+    const double shaft = enc_shaft_rad(p, s->theta_m) - (enc->index_seen ? 0.0 : enc->shaft0_rad);
+    e->elec_angle = enc_turn_u32((double)enc_hal_pole_pairs(p) * shaft / ENC_TWO_PI +
+                                 (double)hal_sim_bus.encoder_elec_offset / 4294967296.0);
+    e->mech_speed_q16 = enc_q16_clamp(sign * s->omega_m / ENC_TWO_PI);
+    e->healthy = true;
+}
+
 void sim_encoder_sample(sim_encoder_t *enc, const plant_params_t *p, const plant_state_t *x,
                         double t, double ts, sim_fault_state_t *fs)
 {
     plant_state_t seen = *x; /* the shaft as the encoder interface sees it */
     hal_encoder_sample_t e;
-    seen.theta_m = sim_fault_encoder_angle(fs, x->theta_m);
-    enc_index(enc, seen.theta_m, fs);
+    int64_t count;
+    seen.theta_m = sim_fault_encoder_angle(fs, p->encoder_stuck ? enc->theta_stuck : x->theta_m);
+    if (p->encoder_stuck) {
+        seen.omega_m = 0.0;
+    }
+    count = (int64_t)floor(enc_shaft_counts(p, seen.theta_m));
+    enc_index(enc, p, count, fs);
     e.healthy = true;
     if (!p->encoder_quant_on) {
-        e.elec_angle = enc_turn_u32((double)p->pole_pairs * seen.theta_m / ENC_TWO_PI);
-        e.mech_speed_q16 = enc_q16_clamp(seen.omega_m / ENC_TWO_PI);
+        enc_exact(enc, p, &seen, &e);
     } else {
         enc_quantised(enc, p, &seen, t, ts, &e);
     }
+    /* before the index the eQEP reports unhealthy (QEPSTS.FIMF clear: the drive refuses RUN) */
+    e.healthy = e.healthy && enc->index_seen;
+    e.index_seen = enc->index_seen;
+    e.position = (int32_t)(uint32_t)(uint64_t)(count - enc->count0);
     sim_fault_encoder(fs, &e);
     hal_sim_post_encoder(&e);
 }

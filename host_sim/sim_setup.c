@@ -143,6 +143,7 @@ int sim_setup(sim_run_t *rs, const sim_config_t *c, char *err, size_t err_len)
     plant_sync_angle(&rs->plant, &rs->x);
     sim_adc_init(&rs->adc, &rs->plant, c->seed);
     sim_encoder_init(&rs->encoder, rs->ts);
+    sim_encoder_power_up(&rs->encoder, &rs->plant, &rs->x, true);
     return 0;
 }
 

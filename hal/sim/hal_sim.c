@@ -119,11 +119,23 @@ void hal_encoder_read(hal_encoder_sample_t *s)
 {
     *s = hal_sim_bus.encoder;
     if (hal_sim_bus.encoder_homing_lost) {
-        s->healthy = false;
+        s->healthy = false; /* the eQEP's FIMF cleared: neither healthy nor homed */
+        s->index_seen = false;
     }
 }
 
 void hal_encoder_rehome(void) { hal_sim_bus.encoder_homing_lost = true; }
+
+uint32_t hal_encoder_counts_per_turn(void)
+{
+    return hal_sim_bus.encoder_initialised ? 4u * hal_sim_bus.encoder_lines : 0u;
+}
+
+uint32_t hal_encoder_offset(void) { return hal_sim_bus.encoder_elec_offset; }
+
+/* The plant's encoder model computes the angle with the bus's offset (host_sim/sim_encoder.c),
+ * so a new offset shows from the next period's sample on, as on the eQEP. */
+void hal_encoder_set_offset(uint32_t elec_offset) { hal_sim_bus.encoder_elec_offset = elec_offset; }
 
 /* ---- hal_serial.h and its line side ---- */
 

@@ -33,7 +33,8 @@ typedef struct {
     hal_adc_sample_t adc;
     bool adc_fresh; /* a new sequence completed and has not been read */
     bool adc_initialised;
-    /* encoder, written by the plant at each period start */
+    /* encoder, written by the plant at each period start; the configuration (lines, pole pairs,
+     * offset) is the drive's, which the plant's encoder model applies as the eQEP would */
     hal_encoder_sample_t encoder;
     uint32_t encoder_lines;
     uint16_t encoder_pole_pairs;

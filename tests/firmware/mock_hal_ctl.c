@@ -12,6 +12,7 @@
 mock_record_t mock_rec;
 hal_adc_sample_t mock_adc;
 hal_encoder_sample_t mock_encoder;
+uint32_t mock_encoder_offset;
 ctl_cmd_t mock_cmd;
 ctl_diag_t mock_diag;
 ctl_param_error_t mock_request_result;
@@ -29,6 +30,9 @@ void mock_reset(void)
     mock_encoder.elec_angle = 0u;
     mock_encoder.mech_speed_q16 = 0;
     mock_encoder.healthy = true;
+    mock_encoder.position = 0;
+    mock_encoder.index_seen = true;
+    mock_encoder_offset = 0u;
     mock_request_result = CTL_PARAM_OK;
 }
 
@@ -64,12 +68,19 @@ bool hal_encoder_init(uint32_t lines, uint16_t pole_pairs, uint32_t elec_offset)
 
 void hal_encoder_read(hal_encoder_sample_t *s) { *s = mock_encoder; }
 
-/* As the HAL promises: unhealthy until the test lets the index pass (mock_encoder.healthy). */
+/* As the HAL promises: unhealthy and not homed until the test lets the index pass
+ * (mock_encoder.healthy, .index_seen). */
 void hal_encoder_rehome(void)
 {
     mock_rec.rehome++;
     mock_encoder.healthy = false;
+    mock_encoder.index_seen = false;
 }
+
+uint32_t hal_encoder_counts_per_turn(void) { return 10000u; }
+
+uint32_t hal_encoder_offset(void) { return mock_encoder_offset; }
+void hal_encoder_set_offset(uint32_t elec_offset) { mock_encoder_offset = elec_offset; }
 
 bool hal_pwm_init(uint32_t carrier_hz, uint32_t dead_time_ns)
 {

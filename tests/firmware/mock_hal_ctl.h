@@ -43,8 +43,9 @@ typedef struct {
 extern mock_record_t mock_rec;
 extern hal_adc_sample_t mock_adc;
 extern hal_encoder_sample_t mock_encoder;
-extern ctl_cmd_t mock_cmd;   /* what ctl_step returns */
-extern ctl_diag_t mock_diag; /* what ctl_diag returns */
+extern uint32_t mock_encoder_offset; /* hal_encoder_offset / hal_encoder_set_offset */
+extern ctl_cmd_t mock_cmd;           /* what ctl_step returns */
+extern ctl_diag_t mock_diag;         /* what ctl_diag returns */
 extern ctl_param_error_t mock_request_result;
 
 void mock_reset(void);

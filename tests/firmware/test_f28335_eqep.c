@@ -326,6 +326,65 @@ static void check_encoder(uint32_t lines, uint16_t pp)
     }
 }
 
+/* Position reads of the counter: the unwrapped position follows the shaft across the turn's
+ * wrap (both directions) and across the first index, whose reset the eQEP latched. */
+static void read_at(uint32_t poscnt, uint16_t sts, hal_encoder_sample_t *s)
+{
+    R.eqep1.QPOSCNT = poscnt;
+    R.eqep1.QEPSTS = sts;
+    hal_encoder_read(s);
+}
+
+static void test_unwrapped_position_and_index(void **state)
+{
+    hal_encoder_sample_t s;
+    (void)state;
+    read_at(0u, 0u, &s);
+    assert_int_equal(s.position, 0);
+    assert_false(s.index_seen);
+    assert_false(s.healthy);
+    read_at(COUNTS - 5u, 0u, &s); /* backwards over the wrap: -5 */
+    assert_int_equal(s.position, -5);
+    read_at(40u, 0u, &s); /* forwards again over the wrap: +45 */
+    assert_int_equal(s.position, 40);
+    /* counting up, the index came at count 1234 (latched) and reset the counter to 0; now 20 */
+    R.eqep1.QPOSILAT = 1234u;
+    read_at(20u, EQEP_STS_FIMF | EQEP_STS_FIDF | EQEP_STS_QDF, &s);
+    assert_int_equal(s.position, 1234 + 20);
+    assert_true(s.index_seen && s.healthy);
+    read_at(COUNTS - 10u, EQEP_STS_FIMF | EQEP_STS_FIDF, &s); /* -30 over the wrap */
+    assert_int_equal(s.position, 1224);
+    /* a whole turn forward in many reads */
+    {
+        uint32_t k;
+        for (k = 1u; k <= 10u; k++) {
+            read_at((COUNTS - 10u + k * (COUNTS / 10u)) % COUNTS, EQEP_STS_FIMF, &s);
+        }
+        assert_int_equal(s.position, 1224 + (int32_t)COUNTS);
+    }
+    /* counting down through the first index: reset to QPOSMAX */
+    f28335_host_regs_reset();
+    assert_true(hal_encoder_init(LINES, PN, 0u));
+    read_at(0u, 0u, &s);
+    read_at(COUNTS - 700u, 0u, &s); /* -700 */
+    R.eqep1.QPOSILAT = COUNTS - 1000u;
+    read_at(COUNTS - 1u - 50u, EQEP_STS_FIMF, &s); /* -300 to the index, -50 after it */
+    assert_int_equal(s.position, -1050);
+    assert_int_equal(hal_encoder_counts_per_turn(), COUNTS);
+}
+
+static void test_offset_set_and_read(void **state)
+{
+    hal_encoder_sample_t s;
+    (void)state;
+    assert_int_equal(hal_encoder_offset(), 0u);
+    read_at(COUNTS / 4u, EQEP_STS_FIMF, &s);
+    hal_encoder_set_offset(0x40000000u);
+    assert_int_equal(hal_encoder_offset(), 0x40000000u);
+    read_at(COUNTS / 4u, EQEP_STS_FIMF, &s); /* 3/4 turn + 1/4 turn */
+    assert_true(s.elec_angle <= 0x00000010u || s.elec_angle >= 0xFFFFFFF0u);
+}
+
 static void test_32bit_forms_equal_64bit_references(void **state)
 {
     static const uint32_t lines[] = {1u,    100u,  143u,     144u,       1000u,
@@ -376,6 +435,8 @@ int main(void)
         cmocka_unit_test_setup(test_loss_of_edges_at_speed, setup),
         cmocka_unit_test_setup(test_loss_of_edges_after_unit_timer_reported_zero, setup),
         cmocka_unit_test_setup(test_slow_stop_stays_healthy, setup),
+        cmocka_unit_test_setup(test_unwrapped_position_and_index, setup),
+        cmocka_unit_test_setup(test_offset_set_and_read, setup),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

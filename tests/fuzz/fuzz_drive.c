@@ -195,6 +195,8 @@ static void period_inputs(stream_t *s, uint16_t flags)
     enc.elec_angle = take32(s);
     enc.mech_speed_q16 = (int32_t)(int16_t)take16(s);
     enc.healthy = (flags & 4u) != 0u;
+    enc.position = (int32_t)take32(s);
+    enc.index_seen = (flags & 16u) != 0u || enc.healthy;
     hal_sim_post_encoder(&enc);
     if ((flags & 16u) != 0u) {
         hal_sim_post_encoder_index(); /* the index: homed again after an ENCODER clear */
@@ -252,7 +254,7 @@ static void calibrated_start(void)
     static bool taken;
     if (!taken) {
         hal_adc_sample_t adc;
-        hal_encoder_sample_t enc = {0u, 0, true};
+        hal_encoder_sample_t enc = {0u, 0, true, 0, true};
         int16_t k;
         int32_t n;
         power_up();

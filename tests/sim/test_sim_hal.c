@@ -91,7 +91,7 @@ static void test_pwm_isolated_leg(void **state)
 
 static void test_encoder_and_cycles(void **state)
 {
-    hal_encoder_sample_t e = {0x40000000u, 65536, true}, out;
+    hal_encoder_sample_t e = {0x40000000u, 65536, true, 12345, true}, out;
     uint32_t c0, c1;
     (void)state;
     hal_sim_reset();
@@ -100,11 +100,17 @@ static void test_encoder_and_cycles(void **state)
     hal_sim_post_encoder(&e);
     hal_encoder_read(&out);
     assert_true(out.elec_angle == 0x40000000u && out.mech_speed_q16 == 65536 && out.healthy);
+    assert_true(out.position == 12345 && out.index_seen);
+    assert_int_equal(hal_encoder_counts_per_turn(), 4u * HAL_BOARD_ENCODER_LINES);
+    assert_int_equal(hal_encoder_offset(), 0u);
+    hal_encoder_set_offset(0x12345678u);
+    assert_int_equal(hal_encoder_offset(), 0x12345678u);
+    assert_int_equal(hal_sim_bus.encoder_elec_offset, 0x12345678u);
     /* re-homing: unhealthy, whatever the plant posts, until the plant reports the index */
     hal_encoder_rehome();
     hal_sim_post_encoder(&e);
     hal_encoder_read(&out);
-    assert_false(out.healthy);
+    assert_false(out.healthy || out.index_seen);
     hal_sim_post_encoder_index();
     hal_encoder_read(&out);
     assert_true(out.healthy);

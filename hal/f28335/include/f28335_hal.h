@@ -114,6 +114,9 @@ typedef struct {
     bool error_latched; /* counter error, phase error or signal loss seen */
     int32_t speed_q16;
     int32_t edge_speed_q16; /* speed_q16 of the last unit period in which the position moved */
+    uint32_t last_pos;      /* QPOSCNT at the last read */
+    int32_t position;       /* unwrapped counts since init (hal_encoder_sample_t.position) */
+    bool index_seen;        /* QEPSTS.FIMF at the last read */
 } f28335_qep_state_t;
 
 /* Electrical angle (2^32 = one turn) of a position count. */

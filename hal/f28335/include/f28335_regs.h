@@ -236,7 +236,8 @@ typedef struct {
 #define EQEP_STS_FIMF 0x0002u
 #define EQEP_STS_CDEF 0x0004u
 #define EQEP_STS_COEF 0x0008u
-#define EQEP_STS_QDF 0x0020u /* 1 = counting up */
+#define EQEP_STS_QDF 0x0020u  /* 1 = counting up */
+#define EQEP_STS_FIDF 0x0040u /* direction at the first index: 1 = counting up */
 #define EQEP_STS_UPEVNT 0x0080u
 
 /* ------------------------------------------------------------------ */

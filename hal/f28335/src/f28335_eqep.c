@@ -17,6 +17,13 @@
  *              watchdog, 10 ms) since init
  *   re-homing  hal_encoder_rehome clears FIMF (write 1 to clear): unhealthy
  *              until the next index sets it again and resets the count
+ *   position   unwrapped counts since init (commissioning): the change of QPOSCNT
+ *              between reads, taken modulo the turn; at the first index the counter
+ *              was reset (to 0 counting up, to QPOSMAX counting down, QEPSTS.FIDF),
+ *              so that read adds the motion up to the count latched at the index
+ *              (QPOSILAT) and from the reset value on (within a count of the edge);
+ *              the index after a re-homing is taken the same way (FIMF set again;
+ *              that FIDF is latched again then is UNCONFIRMED on the silicon)
  */
 #include "f28335_hal.h"
 #include "f28335_internal.h"
@@ -105,6 +112,9 @@ bool hal_encoder_init(uint32_t lines, uint16_t pole_pairs, uint32_t elec_offset)
     qep.error_latched = false;
     qep.speed_q16 = 0;
     qep.edge_speed_q16 = 0;
+    qep.last_pos = 0u;
+    qep.position = 0;
+    qep.index_seen = false;
 
     F28335_EALLOW();
     F28335_SYSCTRL->PCLKCR1 |= PCLKCR1_EQEP1ENCLK;
@@ -186,6 +196,42 @@ static void qep_unit_period(volatile f28335_eqep_t *e, uint16_t sts)
     }
 }
 
+/* now - before in counts, taken into -counts/2 .. counts/2 (both below counts). */
+static int32_t qep_count_step(uint32_t now, uint32_t before)
+{
+    const int32_t half = (int32_t)(qep.counts / 2u);
+    int32_t d = (int32_t)now - (int32_t)before;
+    if (d >= half) {
+        d -= (int32_t)qep.counts;
+    } else if (d < -half) {
+        d += (int32_t)qep.counts;
+    }
+    return d;
+}
+
+/* The unwrapped position: the counter's change since the last read, across the first index's
+ * reset. The sum wraps at 2^32 like the counter it extends (unsigned: no overflow). */
+static void qep_track_position(volatile f28335_eqep_t *e, uint32_t pos, uint16_t sts)
+{
+    const bool seen = (sts & EQEP_STS_FIMF) != 0u;
+    int32_t step;
+    if (seen && !qep.index_seen) {
+        const uint32_t reset = ((sts & EQEP_STS_FIDF) != 0u) ? 0u : qep.counts - 1u;
+        step = qep_count_step(e->QPOSILAT, qep.last_pos) + qep_count_step(pos, reset);
+    } else {
+        step = qep_count_step(pos, qep.last_pos);
+    }
+    qep.position = (int32_t)((uint32_t)qep.position + (uint32_t)step);
+    qep.last_pos = pos;
+    qep.index_seen = seen;
+}
+
+uint32_t hal_encoder_counts_per_turn(void) { return qep.counts; }
+
+uint32_t hal_encoder_offset(void) { return qep.elec_offset; }
+
+void hal_encoder_set_offset(uint32_t elec_offset) { qep.elec_offset = elec_offset; }
+
 F28335_RAMFUNC(hal_encoder_read)
 void hal_encoder_read(hal_encoder_sample_t *s)
 {
@@ -218,9 +264,12 @@ void hal_encoder_read(hal_encoder_sample_t *s)
         e->QCLR = (uint16_t)(clr | EQEP_INT);
     }
 
+    qep_track_position(e, pos, sts);
     s->elec_angle = f28335_qep_angle(&qep, pos);
     s->mech_speed_q16 = qep.speed_q16;
     s->healthy = ((sts & EQEP_STS_FIMF) != 0u) && !qep.error_latched;
+    s->position = qep.position;
+    s->index_seen = qep.index_seen;
 }
 
 /* FIMF is write-1-to-clear; the zeros written with it leave the other status bits alone. */
