@@ -10,7 +10,10 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "motor_params_file.h"
 #include "scenario.h"
+
+#define CLI_DEG_TO_RAD (3.14159265358979323846 / 180.0)
 
 void sim_cli_usage(FILE *f)
 {
@@ -29,6 +32,14 @@ void sim_cli_usage(FILE *f)
         "                   [--flux-ref {constant,mtpa}] [--torque-limit NM] [--trip-current A] "
         "[--lxy H] [--vdc V] [--dead-time S]\n"
         "                   [--sensor-span A]\n"
+        "                   plant (the controller keeps the reference machine): [--motor-r OHM]\n"
+        "                   [--motor-ld H] [--motor-lq H] [--motor-lxy H] [--motor-psi-f WB]\n"
+        "                   [--motor-pole-pairs N] [--encoder-offset-deg DEG] "
+        "[--encoder-reversed]\n"
+        "                   [--encoder-stuck]\n"
+        "                   controller (the plant stays): [--ctl-r OHM] [--ctl-ld H] [--ctl-lq H]\n"
+        "                   [--ctl-lxy H] [--ctl-psi-f WB] [--ctl-pole-pairs N]\n"
+        "                   [--ctl-encoder-offset-deg DEG] | [--ctl-params FILE]\n"
         "                   [--psi5 WB] [--psi7 WB] [--integrator {exact,rk4}] [--plant-step S]\n"
         "                   [--fine-rate HZ]\n"
         "                   [--no-dead-time] [--no-harmonics] [--no-adc-offset] [--no-adc-gain]\n"
@@ -65,16 +76,17 @@ void sim_cli_usage(FILE *f)
 }
 
 typedef enum {
-    OPT_SET_BOOL, /* flag: the bool field := flag_value */
-    OPT_SET_INT,  /* flag: the int field := flag_value */
-    OPT_IDEAL,    /* flag: every non-ideality off */
-    OPT_PAPER,    /* flag: the paper's DDC, every improvement off */
-    OPT_NUMBER,   /* decimal number in [lo, hi] into a double */
-    OPT_INTEGER,  /* decimal integer in [lo, hi] into an int */
-    OPT_SEED,     /* unsigned 64-bit integer */
-    OPT_CHOICE,   /* one of choices[], its index into an int */
-    OPT_SCENARIO, /* a scenario or fault-<name> */
-    OPT_DIRECTORY /* a path */
+    OPT_SET_BOOL,  /* flag: the bool field := flag_value */
+    OPT_SET_INT,   /* flag: the int field := flag_value */
+    OPT_IDEAL,     /* flag: every non-ideality off */
+    OPT_PAPER,     /* flag: the paper's DDC, every improvement off */
+    OPT_NUMBER,    /* decimal number in [lo, hi] into a double */
+    OPT_INTEGER,   /* decimal integer in [lo, hi] into an int */
+    OPT_SEED,      /* unsigned 64-bit integer */
+    OPT_CHOICE,    /* one of choices[], its index into an int */
+    OPT_SCENARIO,  /* a scenario or fault-<name> */
+    OPT_DIRECTORY, /* a path */
+    OPT_FILE       /* a file to read once the options are parsed (a const char * field) */
 } opt_kind_t;
 
 #define OPT_RUN 1u
@@ -167,6 +179,23 @@ enum {
     G_ISOLATE_LEG,
     G_ISOLATE_TIME,
     G_HANDOFF_DELAY,
+    G_MOTOR_R, /* the plant's machine, the controller's left alone */
+    G_MOTOR_LD,
+    G_MOTOR_LQ,
+    G_MOTOR_LXY,
+    G_MOTOR_PSI_F,
+    G_MOTOR_POLES,
+    G_ENC_OFFSET,
+    G_ENC_REVERSED,
+    G_ENC_STUCK,
+    G_CTL_R, /* the controller's machine, the plant left alone */
+    G_CTL_LD,
+    G_CTL_LQ,
+    G_CTL_LXY,
+    G_CTL_PSI_F,
+    G_CTL_POLES,
+    G_CTL_ENC_OFFSET,
+    G_CTL_PARAMS,
     G_IDEAL
 };
 
@@ -201,6 +230,25 @@ static const opt_t options[] = {
     NUM("--trip-current", cfg.trip_current_a, G_TRIP, 0.1, 1000.0),
     NUM("--fine-rate", cfg.fine_rate_hz, G_FINE_RATE, 10000.0, 10e6),
     NUM("--lxy", cfg.plant.lxy_h, G_LXY, 1e-4, 1.0),
+    NUM("--motor-r", cfg.plant.r_ohm, G_MOTOR_R, 1e-3, 999.0),
+    NUM("--motor-ld", cfg.plant.ld_h, G_MOTOR_LD, 1e-5, 9.0),
+    NUM("--motor-lq", cfg.plant.lq_h, G_MOTOR_LQ, 1e-5, 9.0),
+    NUM("--motor-lxy", cfg.plant.lxy_h, G_MOTOR_LXY, 1e-5, 9.0),
+    NUM("--motor-psi-f", cfg.plant.psi_f_wb, G_MOTOR_PSI_F, 1e-3, 5.0),
+    {"--motor-pole-pairs", OPT_INTEGER, OPT_RUN, F(cfg.plant.pole_pairs), G_MOTOR_POLES, 1.0, 64.0,
+     0, NULL},
+    NUM("--encoder-offset-deg", encoder_offset_deg, G_ENC_OFFSET, -360.0, 360.0),
+    FLAG("--encoder-reversed", OPT_SET_BOOL, cfg.plant.encoder_reversed, G_ENC_REVERSED, 1),
+    FLAG("--encoder-stuck", OPT_SET_BOOL, cfg.plant.encoder_stuck, G_ENC_STUCK, 1),
+    NUM("--ctl-r", cfg.ctl.r_ohm, G_CTL_R, 0.0, 999.0),
+    NUM("--ctl-ld", cfg.ctl.ld_h, G_CTL_LD, 1e-5, 9.0),
+    NUM("--ctl-lq", cfg.ctl.lq_h, G_CTL_LQ, 1e-5, 9.0),
+    NUM("--ctl-lxy", cfg.ctl.lxy_h, G_CTL_LXY, 1e-5, 9.0),
+    NUM("--ctl-psi-f", cfg.ctl.psi_f_wb, G_CTL_PSI_F, 1e-3, 5.0),
+    {"--ctl-pole-pairs", OPT_INTEGER, OPT_RUN, F(cfg.ctl.pole_pairs), G_CTL_POLES, 1.0, 64.0, 0,
+     NULL},
+    NUM("--ctl-encoder-offset-deg", ctl_encoder_offset_deg, G_CTL_ENC_OFFSET, -360.0, 360.0),
+    {"--ctl-params", OPT_FILE, OPT_RUN, F(ctl_params_path), G_CTL_PARAMS, 0.0, 0.0, 0, NULL},
     NUM("--vdc", cfg.plant.vdc_v, G_VDC, 50.0, 1500.0),
     NUM("--dead-time", cfg.plant.dead_time_s, G_DEAD_TIME, 0.0, 20e-6),
     NUM("--psi5", cfg.plant.psi5_wb, G_PSI5, 0.0, 0.1),
@@ -396,6 +444,12 @@ static int apply_option(const opt_t *opt, const char *v, sim_cli_t *o, char *err
             return cli_fail(err, len, "bad value for %s: '%s'", opt->name, v);
         }
         return 2;
+    case OPT_FILE:
+        if (!v || !*v || strlen(v) > 900 || v[0] == '-') {
+            return cli_fail(err, len, "bad value for %s: '%s'", opt->name, v);
+        }
+        *(const char **)(void *)(base + opt->field) = v;
+        return 2;
     case OPT_DIRECTORY:
     default:
         if (!v || !*v || strlen(v) > 900 || v[0] == '-') {
@@ -553,6 +607,65 @@ static int check_combination(const sim_cli_t *o, const int *seen, unsigned where
     return 0;
 }
 
+/* The controller's machine from a motor parameter file (firmware/tools/motor_params_file.h). */
+static int cli_read_ctl_params(sim_cli_t *o, char *err, size_t len)
+{
+    motor_params_t m;
+    sim_ctl_machine_t *c = &o->cfg.ctl;
+    char why[600];
+    if (motor_params_read(o->ctl_params_path, &m, why, sizeof why) != 0) {
+        return cli_fail(err, len, "bad value for --ctl-params: %s%s", why, "");
+    }
+    if (m.have & (1u << MOTOR_PARAM_R)) {
+        c->r_ohm = m.value[MOTOR_PARAM_R];
+    }
+    if (m.have & (1u << MOTOR_PARAM_LD)) {
+        c->ld_h = m.value[MOTOR_PARAM_LD];
+    }
+    if (m.have & (1u << MOTOR_PARAM_LQ)) {
+        c->lq_h = m.value[MOTOR_PARAM_LQ];
+    }
+    if (m.have & (1u << MOTOR_PARAM_LXY)) {
+        c->lxy_h = m.value[MOTOR_PARAM_LXY];
+    }
+    if (m.have & (1u << MOTOR_PARAM_PSI_F)) {
+        c->psi_f_wb = m.value[MOTOR_PARAM_PSI_F];
+    }
+    if (m.have & (1u << MOTOR_PARAM_POLE_PAIRS)) {
+        c->pole_pairs = (int)m.value[MOTOR_PARAM_POLE_PAIRS];
+    }
+    if (m.have & (1u << MOTOR_PARAM_ENCODER_OFFSET)) {
+        c->encoder_offset_rad =
+            m.value[MOTOR_PARAM_ENCODER_OFFSET] / 4294967296.0 * 360.0 * CLI_DEG_TO_RAD;
+    }
+    return 0;
+}
+
+/* What follows from the options once they are all known: --lxy sets the controller's L_xy too
+ * (as it always has), the offsets in radians, the controller's machine from a file. */
+static int cli_derive(sim_cli_t *o, const int *seen, char *err, size_t len)
+{
+    int g;
+    if (seen[G_LXY] && seen[G_MOTOR_LXY]) {
+        return cli_fail(err, len, "%s and %s set the same thing", "--lxy", "--motor-lxy");
+    }
+    if (seen[G_LXY] && !seen[G_CTL_LXY]) {
+        o->cfg.ctl.lxy_h = o->cfg.plant.lxy_h;
+    }
+    o->cfg.plant.encoder_offset_rad = o->encoder_offset_deg * CLI_DEG_TO_RAD;
+    o->cfg.ctl.encoder_offset_rad = o->ctl_encoder_offset_deg * CLI_DEG_TO_RAD;
+    if (!seen[G_CTL_PARAMS]) {
+        return 0;
+    }
+    for (g = G_CTL_R; g <= G_CTL_ENC_OFFSET; g++) {
+        if (seen[g] || (g == G_CTL_LXY && seen[G_LXY])) {
+            return cli_fail(err, len, "%s and %s set the same thing", "--ctl-params",
+                            "a --ctl-... or --lxy option");
+        }
+    }
+    return cli_read_ctl_params(o, err, len);
+}
+
 static int cli_parse(int argc, char **argv, sim_cli_t *o, char *err, size_t len, unsigned where)
 {
     int seen[GROUP_LIMIT] = {0};
@@ -595,6 +708,9 @@ static int cli_parse(int argc, char **argv, sim_cli_t *o, char *err, size_t len,
             return -1;
         }
         i += used;
+    }
+    if (cli_derive(o, seen, err, len) != 0) {
+        return -1;
     }
     return check_combination(o, seen, where, err, len);
 }

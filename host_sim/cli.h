@@ -21,6 +21,9 @@ typedef struct {
     double serve_rate;
     int serve_fast;
     int serve_baud;
+    /* encoder offsets in electrical degrees (into cfg.plant / cfg.ctl in radians) */
+    double encoder_offset_deg, ctl_encoder_offset_deg;
+    const char *ctl_params_path; /* --ctl-params FILE (into cfg.ctl), NULL: none */
 } sim_cli_t;
 
 /* argv[0] is the first option (after the sub-command). 0 on success. */

@@ -77,11 +77,11 @@ static void rep_apply_variant(sim_config_t *c, rep_variant_t v)
     case REP_FS_7K5:
         c->fs_hz = 7500.0;
         break;
-    case REP_LXY_5MH:
-        p->lxy_h = 0.005;
+    case REP_LXY_5MH: /* the machine's L_xy: the plant's and the controller's (as --lxy) */
+        p->lxy_h = c->ctl.lxy_h = 0.005;
         break;
     case REP_LXY_20MH:
-        p->lxy_h = 0.020;
+        p->lxy_h = c->ctl.lxy_h = 0.020;
         break;
     case REP_FLOAT:
         c->arith = 1;

@@ -69,6 +69,9 @@ void sim_config_default(sim_config_t *c)
     c->isolate_leg = -1;
     c->isolate_s = 0.0;
     plant_params_default(&c->plant);
+    c->ctl.r_ohm = c->ctl.ld_h = c->ctl.lq_h = c->ctl.lxy_h = c->ctl.psi_f_wb = -1.0;
+    c->ctl.pole_pairs = 0;
+    c->ctl.encoder_offset_rad = 0.0;
     c->out_dir = NULL;
     c->write_trace = true;
     c->write_fine = true;

@@ -22,6 +22,16 @@ typedef enum {
     SIM_SCEN_REVERSAL = 3   /* 800 -> -800 r/min, no load */
 } sim_scenario_t;
 
+/* The machine as the controller's parameter set and the encoder HAL describe it: the firmware's
+ * defaults (the reference machine, control/include/ctl_machine.h) for every field left unset,
+ * whatever the plant is. Set by --ctl-* or --ctl-params FILE (and by --lxy, which sets the
+ * plant's and the controller's L_xy together, as before). */
+typedef struct {
+    double r_ohm, ld_h, lq_h, lxy_h, psi_f_wb; /* < 0: the reference machine's */
+    int pole_pairs;                            /* <= 0: the reference machine's */
+    double encoder_offset_rad; /* the HAL's index offset (FW_ENCODER_OFFSET), electrical */
+} sim_ctl_machine_t;
+
 typedef struct {
     int controller; /* 0 ddc, 1 mptc49, 2 mptc13 */
     int arith;      /* 0 fixed, 1 float */
@@ -62,7 +72,8 @@ typedef struct {
     bool passive_load;      /* the load only opposes motion (serve): a rotor at rest stays at
                                rest; false: an ideal torque source (the scenarios) */
     plant_params_t plant;
-    const char *out_dir; /* NULL: write nothing */
+    sim_ctl_machine_t ctl; /* the controller's machine (the reference one unless set) */
+    const char *out_dir;   /* NULL: write nothing */
     bool write_trace;
     bool write_fine;
     const struct sim_observer *observer; /* NULL: none (tests watch a run through it) */
@@ -147,6 +158,9 @@ typedef struct {
     double phase_limit_peak_a; /* the peak the healthy torque limit allows: T_lim / (3 Pn psi_f) */
     double diode_conduction;   /* share of the analysis window in which an isolated leg whose
                                 * phase is still connected conducted through a diode */
+    /* the machine the controller was told (sim_ctl_machine_t resolved) */
+    double ctl_r_ohm, ctl_ld_h, ctl_lq_h, ctl_lxy_h, ctl_psi_f_wb, ctl_encoder_offset_deg;
+    int ctl_pole_pairs;
     /* core parameters in force */
     double p_speed_kp, p_speed_ki, p_torque_limit, p_flux_ref_wb;
     int p_duty_levels, p_ddc_direction, p_flux_ref_mode, p_ddc_torque_guard;

@@ -135,12 +135,26 @@ static void sim_print_plant_json(FILE *f, const plant_params_t *p)
             "\"adc_gain_error\": %s, \"adc_gain_error_max\": %.6g, \"adc_noise\": %s, "
             "\"adc_noise_counts\": %.6g, \"current_sensor_span_a\": %.6g, "
             "\"encoder_quantisation\": %s, "
-            "\"encoder_lines\": %u}\n",
+            "\"encoder_lines\": %u, \"encoder_offset_deg\": %.6g, \"encoder_reversed\": %s, "
+            "\"encoder_stuck\": %s},\n",
             p->dead_time_on ? "true" : "false", p->harmonics_on ? "true" : "false",
             p->adc_offset_on ? "true" : "false", p->adc_offset_counts,
             p->adc_gain_on ? "true" : "false", p->adc_gain_error,
             p->adc_noise_on ? "true" : "false", p->adc_noise_counts, p->current_sensor_span_a,
-            p->encoder_quant_on ? "true" : "false", (unsigned)p->encoder_lines);
+            p->encoder_quant_on ? "true" : "false", (unsigned)p->encoder_lines,
+            p->encoder_offset_rad * (180.0 / 3.14159265358979323846),
+            p->encoder_reversed ? "true" : "false", p->encoder_stuck ? "true" : "false");
+}
+
+/* The machine the controller was told (sim_ctl_machine_t: set, or the reference machine's). */
+static void sim_print_ctl_machine_json(FILE *f, const sim_result_t *r)
+{
+    fprintf(f,
+            "  \"controller_machine\": {\"r_ohm\": %.6g, \"ld_h\": %.6g, \"lq_h\": %.6g, "
+            "\"lxy_h\": %.6g, \"psi_f_wb\": %.6g, \"pole_pairs\": %d, \"encoder_offset_deg\": "
+            "%.6g}\n",
+            r->ctl_r_ohm, r->ctl_ld_h, r->ctl_lq_h, r->ctl_lxy_h, r->ctl_psi_f_wb,
+            r->ctl_pole_pairs, r->ctl_encoder_offset_deg);
 }
 
 static void sim_print_json(FILE *f, const sim_config_t *c, const sim_result_t *r, bool host_timings)
@@ -168,6 +182,7 @@ static void sim_print_json(FILE *f, const sim_config_t *c, const sim_result_t *r
             r->p_ddc_torque_guard ? "true" : "false", r->p_mid_period_angle ? "true" : "false",
             r->p_pulse_pattern, r->p_flux_tie_band);
     sim_print_plant_json(f, &c->plant);
+    sim_print_ctl_machine_json(f, r);
     fprintf(f, "}\n");
 }
 

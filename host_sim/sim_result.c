@@ -23,6 +23,17 @@ static void result_identity(const sim_run_t *rs, sim_result_t *r)
     r->duration_s = (double)rs->n_periods * rs->ts;
     r->window_start_s = (double)rs->k_win * rs->ts;
     r->window_end_s = (double)rs->n_periods * rs->ts;
+    {
+        sim_ctl_machine_t m;
+        sim_ctl_machine_resolve(c, &m);
+        r->ctl_r_ohm = m.r_ohm;
+        r->ctl_ld_h = m.ld_h;
+        r->ctl_lq_h = m.lq_h;
+        r->ctl_lxy_h = m.lxy_h;
+        r->ctl_psi_f_wb = m.psi_f_wb;
+        r->ctl_pole_pairs = m.pole_pairs;
+        r->ctl_encoder_offset_deg = m.encoder_offset_rad * (180.0 / 3.14159265358979323846);
+    }
 }
 
 /* The drive at the end: state, faults, its first fault record, the parameters in force. */

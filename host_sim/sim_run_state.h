@@ -70,6 +70,11 @@ int sim_loop_run(sim_run_t *rs, sim_result_t *r, char *err, size_t err_len);
 /* Identity, drive status, timing and metrics of the finished run into r. */
 void sim_result_fill(sim_run_t *rs, sim_result_t *r);
 
+/* The controller's pole pairs (sim_ctl_machine_t: set, or the reference machine's). */
+int sim_ctl_pole_pairs(const sim_config_t *c);
+/* The controller's whole machine: each field set, or the reference machine's. */
+void sim_ctl_machine_resolve(const sim_config_t *c, sim_ctl_machine_t *m);
+
 /* Monotonic wall clock, s. */
 double sim_wall_now(void);
 

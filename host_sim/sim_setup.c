@@ -7,6 +7,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "ctl_machine.h"
 #include "hal_cycles.h"
 #include "hal_sim.h"
 #include "sim_run_state.h"
@@ -28,7 +29,30 @@ static int setup_fail(char *err, size_t len, const char *msg)
     return -1;
 }
 
-/* The controller as the firmware's parameter set would configure it for this run. */
+/* A controller machine value: the one set, else the reference machine's. */
+static double setup_ctl_value(double set, double reference)
+{
+    return (set >= 0.0) ? set : reference;
+}
+
+int sim_ctl_pole_pairs(const sim_config_t *c)
+{
+    return (c->ctl.pole_pairs > 0) ? c->ctl.pole_pairs : CTL_MACHINE_POLE_PAIRS;
+}
+
+void sim_ctl_machine_resolve(const sim_config_t *c, sim_ctl_machine_t *m)
+{
+    m->r_ohm = setup_ctl_value(c->ctl.r_ohm, CTL_MACHINE_R_OHM);
+    m->ld_h = setup_ctl_value(c->ctl.ld_h, CTL_MACHINE_LD_H);
+    m->lq_h = setup_ctl_value(c->ctl.lq_h, CTL_MACHINE_LQ_H);
+    m->lxy_h = setup_ctl_value(c->ctl.lxy_h, CTL_MACHINE_LXY_H);
+    m->psi_f_wb = setup_ctl_value(c->ctl.psi_f_wb, CTL_MACHINE_PSI_F_WB);
+    m->pole_pairs = sim_ctl_pole_pairs(c);
+    m->encoder_offset_rad = c->ctl.encoder_offset_rad;
+}
+
+/* The controller as the firmware's parameter set would configure it for this run: the
+ * controller's machine (sim_ctl_machine_t), the plant's inertia. */
 static void setup_controller_config(const sim_run_t *rs, sim_ctl_config_t *cc)
 {
     const sim_config_t *c = rs->cfg;
@@ -46,12 +70,14 @@ static void setup_controller_config(const sim_run_t *rs, sim_ctl_config_t *cc)
     cc->flux_tie_band = c->flux_tie_band;
     cc->j_kgm2 = p->j_kgm2;
     cc->flux_ref_wb = 0.0;
-    cc->r_ohm = p->r_ohm;
-    cc->ld_h = p->ld_h;
-    cc->lq_h = p->lq_h;
-    cc->lxy_h = p->lxy_h;
-    cc->psi_f_wb = p->psi_f_wb;
-    cc->pole_pairs = p->pole_pairs;
+    sim_ctl_machine_t m;
+    sim_ctl_machine_resolve(c, &m);
+    cc->r_ohm = m.r_ohm;
+    cc->ld_h = m.ld_h;
+    cc->lq_h = m.lq_h;
+    cc->lxy_h = m.lxy_h;
+    cc->psi_f_wb = m.psi_f_wb;
+    cc->pole_pairs = m.pole_pairs;
     cc->torque_limit_nm = rs->plan.torque_limit;
     cc->protect = c->protect ? 1 : 0;
     cc->current_full_span_a = 2.0 * p->current_sensor_span_a;
@@ -93,11 +119,15 @@ static int setup_timing(sim_run_t *rs, char *err, size_t err_len)
 static int setup_drive(sim_run_t *rs, char *err, size_t err_len)
 {
     const plant_params_t *p = &rs->plant;
+    const double offset_turns = rs->cfg->ctl.encoder_offset_rad / (2.0 * 3.14159265358979323846);
+    const uint32_t offset =
+        (uint32_t)(int64_t)llround((offset_turns - floor(offset_turns)) * 4294967296.0);
     sim_ctl_config_t cc;
     hal_sim_reset();
     if (!hal_pwm_init((uint32_t)lround(rs->cfg->fs_hz),
                       (uint32_t)lround((p->dead_time_on ? p->dead_time_s : 0.0) * 1e9)) ||
-        !hal_adc_init() || !hal_encoder_init(p->encoder_lines, (uint16_t)p->pole_pairs, 0u)) {
+        !hal_adc_init() ||
+        !hal_encoder_init(p->encoder_lines, (uint16_t)sim_ctl_pole_pairs(rs->cfg), offset)) {
         return setup_fail(err, err_len, "simulator HAL refused its configuration");
     }
     hal_cycles_init();

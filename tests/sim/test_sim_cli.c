@@ -2,6 +2,7 @@
  * value, a non-zero exit and nothing written; good arguments parse. */
 #define _POSIX_C_SOURCE 200809L
 
+#include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -106,6 +107,104 @@ static void test_open_phase_arguments(void **state)
     assert_true(o.cfg.second_fault_s == 0.6);
 }
 
+/* The plant and the controller's machine are set apart: the plant's options leave the
+ * controller at the reference machine, the controller's leave the plant; --lxy sets both. */
+static void test_plant_and_controller_apart(void **state)
+{
+    static const char *const a[] = {"--controller",
+                                    "ddc",
+                                    "--scenario",
+                                    "steady",
+                                    "--motor-r",
+                                    "2.8",
+                                    "--motor-ld",
+                                    "0.03",
+                                    "--motor-lq",
+                                    "0.07",
+                                    "--motor-lxy",
+                                    "0.012",
+                                    "--motor-psi-f",
+                                    "0.2",
+                                    "--motor-pole-pairs",
+                                    "4",
+                                    "--encoder-offset-deg",
+                                    "-90",
+                                    "--encoder-reversed",
+                                    "--ctl-r",
+                                    "1.5",
+                                    "--ctl-pole-pairs",
+                                    "2",
+                                    "--ctl-encoder-offset-deg",
+                                    "45"};
+    static const char *const b[] = {"--controller", "ddc", "--scenario", "steady", "--lxy", "0.02"};
+    sim_cli_t o;
+    char err[256] = "";
+    (void)state;
+    assert_int_equal(parse(a, (int)(sizeof a / sizeof a[0]), &o, err, sizeof err), 0);
+    assert_true(o.cfg.plant.r_ohm == 2.8 && o.cfg.plant.ld_h == 0.03 && o.cfg.plant.lq_h == 0.07);
+    assert_true(o.cfg.plant.lxy_h == 0.012 && o.cfg.plant.psi_f_wb == 0.2);
+    assert_int_equal(o.cfg.plant.pole_pairs, 4);
+    assert_true(fabs(o.cfg.plant.encoder_offset_rad + 0.5 * 3.14159265358979) < 1e-12);
+    assert_true(o.cfg.plant.encoder_reversed && !o.cfg.plant.encoder_stuck);
+    assert_true(o.cfg.ctl.r_ohm == 1.5 && o.cfg.ctl.ld_h < 0.0 && o.cfg.ctl.lxy_h < 0.0);
+    assert_int_equal(o.cfg.ctl.pole_pairs, 2);
+    assert_true(fabs(o.cfg.ctl.encoder_offset_rad - 0.25 * 3.14159265358979) < 1e-12);
+    assert_int_equal(parse(b, (int)(sizeof b / sizeof b[0]), &o, err, sizeof err), 0);
+    assert_true(o.cfg.plant.lxy_h == 0.02 && o.cfg.ctl.lxy_h == 0.02);
+    assert_true(o.cfg.ctl.r_ohm < 0.0 && o.cfg.plant.r_ohm == 2.0); /* defaults: reference */
+}
+
+/* --ctl-params reads a motor parameter file; anything but #define lines and comments, an
+ * unknown or repeated name or a bad value is refused in one line naming the line. */
+static void write_file(const char *path, const char *text)
+{
+    FILE *f = fopen(path, "w");
+    assert_non_null(f);
+    fputs(text, f);
+    assert_int_equal(fclose(f), 0);
+}
+
+static void test_ctl_params_file(void **state)
+{
+    static const char *const bad[] = {
+        "#include <stdio.h>\n",
+        "#define SIXPHASE_MOTOR_R_OHM 2.0f\n#define SIXPHASE_MOTOR_R_OHM 2.1f\n",
+        "#define SIXPHASE_MOTOR_WHEELS 4u\n",
+        "#define SIXPHASE_MOTOR_R_OHM two\n",
+        "#define SIXPHASE_MOTOR_LD_H -0.03f\n",
+        "#define SIXPHASE_MOTOR_POLE_PAIRS 3.5f\n",
+        "#define SIXPHASE_MOTOR_R_OHM 2.0f extra\n",
+        "/* unterminated comment\n",
+        "int x = 1;\n"};
+    const char *path = "/tmp/sixphase-cli-params.h";
+    const char *args[] = {"--controller", "ddc", "--scenario", "steady",
+                          "--ctl-params", path,  "--ctl-r",    "1"};
+    sim_cli_t o;
+    char err[256] = "";
+    size_t i;
+    (void)state;
+    write_file(path, "/* identified */\n\n#define SIXPHASE_MOTOR_R_OHM 2.5f\n"
+                     "  #define SIXPHASE_MOTOR_LXY_H 1.1e-2f\n"
+                     "#define SIXPHASE_MOTOR_POLE_PAIRS 3u\n"
+                     "#define SIXPHASE_MOTOR_ENCODER_OFFSET 1073741824u\n");
+    assert_int_equal(parse(args, 6, &o, err, sizeof err), 0);
+    assert_true(o.cfg.ctl.r_ohm == 2.5 && fabs(o.cfg.ctl.lxy_h - 0.011) < 1e-12);
+    assert_true(o.cfg.ctl.ld_h < 0.0 && o.cfg.ctl.pole_pairs == 3);
+    assert_true(fabs(o.cfg.ctl.encoder_offset_rad - 0.5 * 3.14159265358979) < 1e-12);
+    assert_int_not_equal(parse(args, 8, &o, err, sizeof err), 0); /* and --ctl-r: twice */
+    assert_non_null(strstr(err, "set the same thing"));
+    for (i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        write_file(path, bad[i]);
+        assert_int_not_equal(parse(args, 6, &o, err, sizeof err), 0);
+        print_message("bad file %u: %s\n", (unsigned)i, err);
+        assert_non_null(strstr(err, "line "));
+        assert_null(strchr(err, '\n'));
+    }
+    (void)remove(path);
+    assert_int_not_equal(parse(args, 6, &o, err, sizeof err), 0);
+    assert_non_null(strstr(err, "cannot read"));
+}
+
 typedef struct {
     const char *args[8];
     int n;
@@ -182,6 +281,14 @@ static const bad_case_t bad_cases[] = {
     {{"--controller", "ddc", "--scenario", "steady", "--ride-through", "--ride-through"},
      6,
      "more than once"},
+    {{"--controller", "ddc", "--scenario", "steady", "--motor-r", "0"}, 6, "'0'"},
+    {{"--controller", "ddc", "--scenario", "steady", "--motor-pole-pairs", "0"}, 6, "'0'"},
+    {{"--controller", "ddc", "--scenario", "steady", "--ctl-pole-pairs", "65"}, 6, "'65'"},
+    {{"--controller", "ddc", "--scenario", "steady", "--encoder-offset-deg", "400"}, 6, "'400'"},
+    {{"--controller", "ddc", "--scenario", "steady", "--lxy", "0.01", "--motor-lxy", "0.01"},
+     8,
+     "set the same thing"},
+    {{"--controller", "ddc", "--scenario", "steady", "--ctl-params", "-x"}, 6, "'-x'"},
 };
 
 static void test_bad_arguments_rejected(void **state)
@@ -346,6 +453,8 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_good_arguments),
+        cmocka_unit_test(test_plant_and_controller_apart),
+        cmocka_unit_test(test_ctl_params_file),
         cmocka_unit_test(test_bad_arguments_rejected),
         cmocka_unit_test(test_serve_and_fault_time_arguments),
         cmocka_unit_test(test_open_phase_arguments),

@@ -1,0 +1,57 @@
+/*
+ * The motor parameter file: the identified machine as a C header of #defines, written by
+ * `sixphase-link identify --out FILE` (and `sixphase-sim run --scenario commission --out
+ * DIR`), read back by the firmware build (-DSIXPHASE_MOTOR_PARAMS="FILE": fw.h includes it,
+ * fw_startup.c uses its values instead of the reference machine's) and by
+ * `sixphase-sim --ctl-params FILE`. docs/porting.md section 8.
+ *
+ * The file holds only full-line comments ("/ * ... * /" on one line), blank lines and lines
+ * "#define NAME VALUE" with a name of MOTOR_PARAM_LIST; every entry is optional (a missing
+ * one keeps the reference machine's value). The reader refuses anything else: another line,
+ * an unknown or repeated name, a value that is not a plain number of its kind (a float with
+ * an optional f suffix, an unsigned integer with an optional u suffix) or outside its range.
+ * Host code only.
+ */
+#ifndef MOTOR_PARAMS_FILE_H
+#define MOTOR_PARAMS_FILE_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+
+/* X(id, NAME suffix, description, unit, lo, hi, is_integer); ranges as ctl_params_check's */
+#define MOTOR_PARAM_LIST(X)                                                                        \
+    X(MOTOR_PARAM_R, "R_OHM", "stator resistance", "ohm", 0.0, 1000.0, 0)                          \
+    X(MOTOR_PARAM_LD, "LD_H", "d-axis inductance", "H", 1e-6, 10.0, 0)                             \
+    X(MOTOR_PARAM_LQ, "LQ_H", "q-axis inductance", "H", 1e-6, 10.0, 0)                             \
+    X(MOTOR_PARAM_LXY, "LXY_H", "x-y (leakage) inductance", "H", 1e-6, 10.0, 0)                    \
+    X(MOTOR_PARAM_PSI_F, "PSI_F_WB", "magnet flux linkage", "Wb", 1e-4, 10.0, 0)                   \
+    X(MOTOR_PARAM_POLE_PAIRS, "POLE_PAIRS", "pole pairs (checked)", "", 1.0, 64.0, 1)              \
+    X(MOTOR_PARAM_ENCODER_OFFSET, "ENCODER_OFFSET",                                                \
+      "electrical angle of the encoder index to the d axis, 2^32 = one turn", "", 0.0,             \
+      4294967295.0, 1)
+
+#define MOTOR_PARAM_ENUM(id, name, text, unit, lo, hi, integer) id,
+typedef enum { MOTOR_PARAM_LIST(MOTOR_PARAM_ENUM) MOTOR_PARAM_COUNT } motor_param_t;
+#undef MOTOR_PARAM_ENUM
+
+#define MOTOR_PARAM_PREFIX "SIXPHASE_MOTOR_"
+
+typedef struct {
+    unsigned have;                       /* bit (1 << motor_param_t) per entry present */
+    double value[MOTOR_PARAM_COUNT];     /* SI units; pole pairs and the offset as integers */
+    double sigma[MOTOR_PARAM_COUNT];     /* 1-sigma uncertainty (writer's comments; 0: none) */
+    const char *note[MOTOR_PARAM_COUNT]; /* a word for the comment (quality), or NULL */
+} motor_params_t;
+
+void motor_params_clear(motor_params_t *m);
+void motor_params_set(motor_params_t *m, motor_param_t id, double value, double sigma,
+                      const char *note);
+
+/* Read path into m; 0, or -1 with one line in err (the file and line that are refused). */
+int motor_params_read(const char *path, motor_params_t *m, char *err, size_t err_len);
+
+/* Write m as the header, a comment line with its origin first; 0, or -1 on a write error. */
+int motor_params_write(FILE *f, const motor_params_t *m, const char *origin);
+
+#endif /* MOTOR_PARAMS_FILE_H */
