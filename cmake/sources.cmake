@@ -24,14 +24,25 @@ set(SIXPHASE_CTL_SOURCES
     control/src/ctl_postfault.c
     control/src/ctl.c)
 
-# Drive application: control ISR body, state machine, stage profiler.
+# Drive application: control ISR body, state machine, stage profiler, commissioning (the
+# motor identification: the sequence, its steps, their excitation and statistics).
 set(SIXPHASE_DRIVE_SOURCES
     firmware/app/drive.c
     firmware/app/drive_open_phase.c
     firmware/app/drive_background.c
     firmware/app/drive_capture.c
     firmware/app/capture.c
-    firmware/app/profile.c)
+    firmware/app/profile.c
+    firmware/app/drive_commission.c
+    firmware/app/commission.c
+    firmware/app/ident_ctx.c
+    firmware/app/ident_excite.c
+    firmware/app/ident_stats.c
+    firmware/app/ident_phase.c
+    firmware/app/ident_encoder.c
+    firmware/app/ident_resistance.c
+    firmware/app/ident_inductance.c
+    firmware/app/ident_flux.c)
 
 # Serial protocol framing shared by the firmware and the host tool.
 set(SIXPHASE_SXLINK_SOURCES

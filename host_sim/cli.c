@@ -21,7 +21,7 @@ void sim_cli_usage(FILE *f)
         f,
         "usage:\n"
         "  sixphase-sim run --controller {ddc,mptc49,mptc13} --scenario "
-        "{steady,load-step,accel,reversal,fault-<name>}\n"
+        "{steady,load-step,accel,reversal,commission,fault-<name>}\n"
         "                   [--lambda X] [--fs HZ] [--speed RPM] [--load NM] [--duration S]\n"
         "                   [--arith {fixed,float}] [--seed N] [--out DIR]\n"
         "                   [--ddc-direction {flux-error,xy-table}] [--duty-levels N] "
@@ -40,6 +40,7 @@ void sim_cli_usage(FILE *f)
         "                   controller (the plant stays): [--ctl-r OHM] [--ctl-ld H] [--ctl-lq H]\n"
         "                   [--ctl-lxy H] [--ctl-psi-f WB] [--ctl-pole-pairs N]\n"
         "                   [--ctl-encoder-offset-deg DEG] | [--ctl-params FILE]\n"
+        "                   commission: [--commission-steps MASK] [--commission-current PERMILLE]\n"
         "                   [--psi5 WB] [--psi7 WB] [--integrator {exact,rk4}] [--plant-step S]\n"
         "                   [--fine-rate HZ]\n"
         "                   [--no-dead-time] [--no-harmonics] [--no-adc-offset] [--no-adc-gain]\n"
@@ -196,6 +197,8 @@ enum {
     G_CTL_POLES,
     G_CTL_ENC_OFFSET,
     G_CTL_PARAMS,
+    G_COMM_STEPS,
+    G_COMM_CURRENT,
     G_IDEAL
 };
 
@@ -249,6 +252,10 @@ static const opt_t options[] = {
      NULL},
     NUM("--ctl-encoder-offset-deg", ctl_encoder_offset_deg, G_CTL_ENC_OFFSET, -360.0, 360.0),
     {"--ctl-params", OPT_FILE, OPT_RUN, F(ctl_params_path), G_CTL_PARAMS, 0.0, 0.0, 0, NULL},
+    {"--commission-steps", OPT_INTEGER, OPT_RUN, F(cfg.commission_steps), G_COMM_STEPS, 1.0, 63.0,
+     0, NULL},
+    {"--commission-current", OPT_INTEGER, OPT_RUN, F(cfg.commission_permille), G_COMM_CURRENT,
+     100.0, 800.0, 0, NULL},
     NUM("--vdc", cfg.plant.vdc_v, G_VDC, 50.0, 1500.0),
     NUM("--dead-time", cfg.plant.dead_time_s, G_DEAD_TIME, 0.0, 20e-6),
     NUM("--psi5", cfg.plant.psi5_wb, G_PSI5, 0.0, 0.1),
@@ -373,9 +380,10 @@ static int parse_choice(const char *s, const char *const *choices, int *out)
 
 static int parse_scenario(const char *s, sim_config_t *c)
 {
-    static const char *const scenarios[] = {"steady", "load-step", "accel", "reversal", NULL};
+    static const char *const scenarios[] = {"steady",   "load-step",  "accel",
+                                            "reversal", "commission", NULL};
     static const sim_scenario_t values[] = {SIM_SCEN_STEADY, SIM_SCEN_LOAD_STEP, SIM_SCEN_ACCEL,
-                                            SIM_SCEN_REVERSAL};
+                                            SIM_SCEN_REVERSAL, SIM_SCEN_COMMISSION};
     int k;
     if (parse_choice(s, scenarios, &k) == 0) {
         c->scenario = values[k];
@@ -576,6 +584,9 @@ static int check_combination(const sim_cli_t *o, const int *seen, unsigned where
     }
     if (where == OPT_REPRODUCE && !c->out_dir) {
         return cli_fail(err, len, "missing %s%s", "--out", "");
+    }
+    if ((seen[G_COMM_STEPS] || seen[G_COMM_CURRENT]) && c->scenario != SIM_SCEN_COMMISSION) {
+        return cli_fail(err, len, "%s needs --scenario commission%s", "--commission-...", "");
     }
     if (seen[G_FAULT_TIME] && c->fault == SIM_FAULT_NONE) {
         return cli_fail(err, len, "%s needs a fault-<name> scenario%s", "--fault-time", "");

@@ -5,6 +5,8 @@
 #include <string.h>
 
 #include "sim_open_phase.h"
+#include "sim_rng.h"
+#include "sxlink_commission.h"
 
 #define SIM_FINE_RATE_HZ 100000.0
 
@@ -33,6 +35,8 @@ const char *sim_scenario_name(sim_scenario_t s)
         return "accel";
     case SIM_SCEN_REVERSAL:
         return "reversal";
+    case SIM_SCEN_COMMISSION:
+        return "commission";
     default:
         return "?";
     }
@@ -72,6 +76,8 @@ void sim_config_default(sim_config_t *c)
     c->ctl.r_ohm = c->ctl.ld_h = c->ctl.lq_h = c->ctl.lxy_h = c->ctl.psi_f_wb = -1.0;
     c->ctl.pole_pairs = 0;
     c->ctl.encoder_offset_rad = 0.0;
+    c->commission_steps = SXL_COMM_STEPS_ALL;
+    c->commission_permille = SXL_COMM_CURRENT_DEFAULT_PERMILLE;
     c->out_dir = NULL;
     c->write_trace = true;
     c->write_fine = true;
@@ -110,6 +116,13 @@ static void sim_plan_scenario(const sim_config_t *c, sim_plan_t *pl)
         pl->t_event = 0.1;
         pl->window = 0.25;
         break;
+    case SIM_SCEN_COMMISSION: /* at standstill, no load; duration: a bound on the sequence */
+        pl->speed = pl->speed0 = 0.0;
+        pl->load0 = pl->load = load_set ? c->load_nm : 0.0;
+        pl->duration = 60.0;
+        pl->t_event = 0.0;
+        pl->window = 0.01;
+        break;
     case SIM_SCEN_STEADY:
     default:
         pl->speed = speed_set ? c->speed_rpm : 1500.0;
@@ -145,6 +158,12 @@ void sim_plan(const sim_config_t *c, sim_plan_t *pl)
     }
     if (pl->window > 0.5 * pl->duration) {
         pl->window = 0.5 * pl->duration;
+    }
+    pl->theta0_rad = 0.0;
+    if (c->scenario == SIM_SCEN_COMMISSION) { /* its own stream: the ADC's draws stay as they are */
+        sim_rng_t rng;
+        sim_rng_seed(&rng, c->seed ^ 0x5EEDC0FFEEull);
+        pl->theta0_rad = 2.0 * 3.14159265358979323846 * sim_rng_uniform(&rng);
     }
 }
 

@@ -16,6 +16,8 @@ typedef struct {
     double t_event;      /* s: reference or load step */
     double window;       /* s: analysis window at the end of the run */
     double torque_limit; /* N*m: speed-loop output limit */
+    double theta0_rad;   /* mechanical angle of the rotor at power-up (commission: from the
+                          * seed, anywhere; the others: 0, at the index) */
 } sim_plan_t;
 
 void sim_plan(const sim_config_t *c, sim_plan_t *pl);

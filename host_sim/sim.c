@@ -75,7 +75,8 @@ int sim_run(const sim_config_t *c, sim_result_t *r, char *err, size_t err_len)
         return -1; /* found before simulating, not after */
     }
     if (sim_setup(&rs, c, err, err_len) == 0 && sim_setup_calibrate(&rs, r, err, err_len) == 0 &&
-        sim_loop_run(&rs, r, err, err_len) == 0) {
+        ((c->scenario == SIM_SCEN_COMMISSION) ? sim_commission_loop(&rs, r, err, err_len)
+                                              : sim_loop_run(&rs, r, err, err_len)) == 0) {
         sim_result_fill(&rs, r);
         rc = sim_finish_files(&rs, r, err, err_len);
     }

@@ -19,7 +19,8 @@ typedef enum {
     SIM_SCEN_STEADY = 0,    /* 1500 r/min, rated load */
     SIM_SCEN_LOAD_STEP = 1, /* rated load step at 1500 r/min */
     SIM_SCEN_ACCEL = 2,     /* 0 -> 800 r/min, no load */
-    SIM_SCEN_REVERSAL = 3   /* 800 -> -800 r/min, no load */
+    SIM_SCEN_REVERSAL = 3,  /* 800 -> -800 r/min, no load */
+    SIM_SCEN_COMMISSION = 4 /* the drive's commissioning sequence (sim_commission.c) */
 } sim_scenario_t;
 
 /* The machine as the controller's parameter set and the encoder HAL describe it: the firmware's
@@ -73,7 +74,11 @@ typedef struct {
                                rest; false: an ideal torque source (the scenarios) */
     plant_params_t plant;
     sim_ctl_machine_t ctl; /* the controller's machine (the reference one unless set) */
-    const char *out_dir;   /* NULL: write nothing */
+    /* scenario commission: the steps (sxlink_commission.h bits) and the test current (per mille
+     * of rated), as COMMISSION_START takes them */
+    int commission_steps;
+    int commission_permille;
+    const char *out_dir; /* NULL: write nothing */
     bool write_trace;
     bool write_fine;
     const struct sim_observer *observer; /* NULL: none (tests watch a run through it) */
@@ -103,6 +108,19 @@ typedef struct sim_observer {
     /* each plant sample of the analysis window */
     void (*fine)(void *ctx, const sim_fine_row_t *row);
 } sim_observer_t;
+
+/* The commissioning scenario's outcome: the drive's results beside the plant's values. */
+#define SIM_COMM_QUANTITIES 8
+typedef struct {
+    bool ran;
+    int state, reason, step; /* sxlink_commission.h lists */
+    double duration_s;       /* from the start to the end of the sequence */
+    double value[SIM_COMM_QUANTITIES], sigma[SIM_COMM_QUANTITIES], extra[SIM_COMM_QUANTITIES];
+    int quality[SIM_COMM_QUANTITIES], reason_q[SIM_COMM_QUANTITIES];
+    double truth[SIM_COMM_QUANTITIES]; /* the plant's (NaN where there is none) */
+    int apply_result;                  /* drive_commission_apply's, after a DONE sequence */
+    unsigned applied;                  /* quantities applied */
+} sim_commission_result_t;
 
 typedef struct {
     char controller[8];
@@ -161,6 +179,7 @@ typedef struct {
     /* the machine the controller was told (sim_ctl_machine_t resolved) */
     double ctl_r_ohm, ctl_ld_h, ctl_lq_h, ctl_lxy_h, ctl_psi_f_wb, ctl_encoder_offset_deg;
     int ctl_pole_pairs;
+    sim_commission_result_t comm; /* scenario commission */
     /* core parameters in force */
     double p_speed_kp, p_speed_ki, p_torque_limit, p_flux_ref_wb;
     int p_duty_levels, p_ddc_direction, p_flux_ref_mode, p_ddc_torque_guard;

@@ -10,6 +10,7 @@
 #include "ctl.h"
 #include "ctl_pu.h"
 #include "drive.h"
+#include "drive_commission.h"
 #include "hal_cycles.h"
 #include "link_service.h"
 #include "profile.h"
@@ -174,6 +175,7 @@ static void bridge_period_status(sim_ctl_status_t *st)
     st->ready = bridge_drive.state == DRIVE_STATE_READY;
     st->running = bridge_drive.state == DRIVE_STATE_RUN;
     st->faulted = bridge_drive.state == DRIVE_STATE_FAULT;
+    st->commissioning = bridge_drive.state == DRIVE_STATE_COMMISSION;
     st->fault = (int)bridge_drive.fault;
     st->torque_ref_nm = q2d(dg->torque_ref) * CTL_BASE_TORQUE_NM;
     st->flux_ref_wb = q2d(dg->flux_ref) * CTL_BASE_FLUX_WB;
@@ -242,6 +244,38 @@ static void bridge_link_init(double gap_s)
     ctl_set_stage_hook(&bridge_drive.ctl, prof_ctl_stage); /* stage timing, as fw_startup */
 }
 static void bridge_link_step(void) { link_service_step(&bridge_link, &bridge_drive); }
+
+static int bridge_commission_start(unsigned mask, unsigned permille)
+{
+    return (int)drive_request_commission(&bridge_drive, (uint16_t)mask, (uint16_t)permille);
+}
+
+static void bridge_commission_status(sim_comm_status_t *st)
+{
+    const comm_t *c = &bridge_drive.comm;
+    int q;
+    st->state = (int)c->state;
+    st->step = (int)c->step;
+    st->reason = (int)c->reason;
+    st->progress = (int)comm_progress_percent(c);
+    st->periods = (unsigned long)c->periods;
+    for (q = 0; q < SIM_CTL_COMM_QUANTITIES && q < (int)COMM_Q_COUNT; q++) {
+        const ident_result_t *r = &c->x.result[q];
+        st->value[q] = (double)r->value;
+        st->sigma[q] = (double)r->sigma;
+        st->extra[q] = (double)r->extra;
+        st->quality[q] = (int)r->quality;
+        st->reason_q[q] = (int)r->reason;
+    }
+}
+
+static int bridge_commission_apply(unsigned *applied)
+{
+    uint16_t a = 0u;
+    const int rc = (int)drive_commission_apply(&bridge_drive, &a);
+    *applied = (unsigned)a;
+    return rc;
+}
 static unsigned long bridge_link_frames(void) { return (unsigned long)bridge_link.frames_handled; }
 static int bridge_link_shutdown(void)
 {
@@ -253,9 +287,23 @@ static int bridge_isolate_leg(int leg)
     return drive_request_isolate_leg(&bridge_drive, (int16_t)leg) ? 1 : 0;
 }
 
-const sim_ctl_ops_t SIM_BRIDGE_OPS = {
-    SIM_BRIDGE_ARITH,         bridge_init,          bridge_isr,           bridge_request_run,
-    bridge_set_speed_rpm,     bridge_set_torque_nm, bridge_status,        bridge_report_overrun,
-    bridge_read_fault_record, bridge_link_init,     bridge_link_step,     bridge_link_frames,
-    bridge_link_shutdown,     bridge_period_status, bridge_request_clear, bridge_background,
-    bridge_isolate_leg};
+const sim_ctl_ops_t SIM_BRIDGE_OPS = {SIM_BRIDGE_ARITH,
+                                      bridge_init,
+                                      bridge_isr,
+                                      bridge_request_run,
+                                      bridge_set_speed_rpm,
+                                      bridge_set_torque_nm,
+                                      bridge_status,
+                                      bridge_report_overrun,
+                                      bridge_read_fault_record,
+                                      bridge_link_init,
+                                      bridge_link_step,
+                                      bridge_link_frames,
+                                      bridge_link_shutdown,
+                                      bridge_period_status,
+                                      bridge_request_clear,
+                                      bridge_background,
+                                      bridge_isolate_leg,
+                                      bridge_commission_start,
+                                      bridge_commission_status,
+                                      bridge_commission_apply};

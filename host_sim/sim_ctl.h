@@ -37,10 +37,11 @@ typedef struct {
 typedef struct {
     int state; /* drive_state_t, as a number (reported in metrics.json) */
     /* the states the simulator acts on, named by the bridge from drive.h's drive_state_t */
-    bool ready;   /* DRIVE_STATE_READY: calibrated, waiting for RUN */
-    bool running; /* DRIVE_STATE_RUN */
-    bool faulted; /* DRIVE_STATE_FAULT */
-    int fault;    /* drive_fault_t */
+    bool ready;         /* DRIVE_STATE_READY: calibrated, waiting for RUN */
+    bool running;       /* DRIVE_STATE_RUN */
+    bool faulted;       /* DRIVE_STATE_FAULT */
+    bool commissioning; /* DRIVE_STATE_COMMISSION */
+    int fault;          /* drive_fault_t */
     double torque_ref_nm, flux_ref_wb;
     double torque_est_nm, flux_est_wb;
     int vector;  /* commanded active state (S_A = bit 5) */
@@ -61,6 +62,16 @@ typedef struct {
     int postfault_in_force;  /* the parameter set of the isolated leg is in force */
     double torque_limit_nm;  /* the speed loop's limit in force (derated with an open phase) */
 } sim_ctl_status_t;
+
+/* The commissioning sequence as the drive reports it (sxlink_commission.h lists, SI). */
+#define SIM_CTL_COMM_QUANTITIES 8
+typedef struct {
+    int state, step, reason, progress;
+    unsigned long periods;
+    double value[SIM_CTL_COMM_QUANTITIES], sigma[SIM_CTL_COMM_QUANTITIES];
+    double extra[SIM_CTL_COMM_QUANTITIES];
+    int quality[SIM_CTL_COMM_QUANTITIES], reason_q[SIM_CTL_COMM_QUANTITIES];
+} sim_comm_status_t;
 
 /* One record of the drive's fault log, in SI units. */
 typedef struct {
@@ -105,6 +116,11 @@ typedef struct {
      * board's background loop would run */
     void (*background)(void);
     int (*isolate_leg)(int leg); /* drive_request_isolate_leg: 1 accepted, 0 refused */
+    /* commissioning, through the calls the serial commands make (drive_commission.h):
+     * 0 accepted, else drive_comm_result_t */
+    int (*commission_start)(unsigned mask, unsigned permille);
+    void (*commission_status)(sim_comm_status_t *st);
+    int (*commission_apply)(unsigned *applied);
 } sim_ctl_ops_t;
 
 /* Defined by the two builds of the bridge. The float build's symbols are all

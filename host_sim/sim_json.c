@@ -67,6 +67,48 @@ static void sim_print_fault_json(FILE *f, const sim_config_t *c, const sim_resul
             rec->duty);
 }
 
+/* One quantity of the commissioning: identified beside true, the error (degrees for the
+ * offset, per cent for the others), uncertainty, quality. */
+static void sim_print_comm_quantity(FILE *f, const sim_commission_result_t *cr, int q, bool comma)
+{
+    const double v = cr->value[q], t = cr->truth[q];
+    double error = (double)NAN;
+    if (cr->quality[q] == SXL_COMM_QUALITY_OK || cr->quality[q] == SXL_COMM_QUALITY_POOR) {
+        if (q == SXL_COMM_Q_OFFSET) {
+            error = fmod(v - t + 540.0, 360.0) - 180.0;
+        } else if (t != 0.0) {
+            error = 100.0 * (v / t - 1.0);
+        }
+    }
+    fprintf(f, "    \"%s\": {\"identified\": ", sxl_comm_quantity_name((uint16_t)q));
+    fprintf(f, (v == v) ? "%.7g" : "null", v);
+    fprintf(f, ", \"true\": %.7g, \"%s\": ", t,
+            (q == SXL_COMM_Q_OFFSET) ? "error_deg" : "error_percent");
+    fprintf(f, (error == error) ? "%.4g" : "null", error);
+    fprintf(f, ", \"sigma\": %.4g, \"extra\": %.6g, \"quality\": \"%s\", \"reason\": \"%s\"}%s\n",
+            cr->sigma[q], cr->extra[q], sxl_comm_quality_name((uint16_t)cr->quality[q]),
+            sxl_comm_reason_name((uint16_t)cr->reason_q[q]), comma ? "," : "");
+}
+
+/* The commissioning scenario's block. */
+static void sim_print_commission_json(FILE *f, const sim_result_t *r)
+{
+    const sim_commission_result_t *cr = &r->comm;
+    int q;
+    if (!cr->ran) {
+        return;
+    }
+    fprintf(f,
+            "  \"commission\": {\"state\": \"%s\", \"reason\": \"%s\", \"last_step\": \"%s\", "
+            "\"duration_s\": %.6g, \"apply_result\": %d, \"applied_mask\": %u, \"results\": {\n",
+            sxl_comm_state_name((uint16_t)cr->state), sxl_comm_reason_name((uint16_t)cr->reason),
+            sxl_comm_step_name((uint16_t)cr->step), cr->duration_s, cr->apply_result, cr->applied);
+    for (q = 0; q < SIM_COMM_QUANTITIES; q++) {
+        sim_print_comm_quantity(f, cr, q, q + 1 < SIM_COMM_QUANTITIES);
+    }
+    fprintf(f, "  }},\n");
+}
+
 /* The six phases' THD as a JSON array (null where not meaningful). */
 static void sim_print_phase_thd_json(FILE *f, const sim_result_t *r)
 {
@@ -171,6 +213,7 @@ static void sim_print_json(FILE *f, const sim_config_t *c, const sim_result_t *r
     sim_print_results_json(f, c, r, host_timings);
     sim_print_fault_json(f, c, r);
     sim_open_phase_json(f, c, r);
+    sim_print_commission_json(f, r);
     fprintf(f,
             "  \"controller_params\": {\"lambda_nm_per_wb\": %.6g, \"speed_kp_nm_per_rad_s\": "
             "%.6g, \"speed_ki_nm_per_rad\": %.6g, \"torque_limit_nm\": %.6g, "

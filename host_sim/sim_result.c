@@ -72,6 +72,12 @@ void sim_result_fill(sim_run_t *rs, sim_result_t *r)
 {
     result_identity(rs, r);
     result_drive(rs, r);
+    if (rs->cfg->scenario == SIM_SCEN_COMMISSION) { /* no analysis window: the sequence */
+        r->wall_s = rs->wall1_s - rs->wall0_s;
+        r->realtime_factor = (r->wall_s > 0.0) ? r->duration_s / r->wall_s : 0.0;
+        r->thd_percent = r->thd50_percent = r->transient_ms = -1.0;
+        return;
+    }
     r->wall_s = rs->wall1_s - rs->wall0_s;
     r->realtime_factor = (r->wall_s > 0.0) ? r->duration_s / r->wall_s : 0.0;
     r->isr_mean_us = (rs->isr_timed > 0) ? 1e6 * rs->isr_wall_s / (double)rs->isr_timed : 0.0;

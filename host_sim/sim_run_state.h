@@ -64,6 +64,10 @@ void sim_teardown(sim_run_t *rs, bool ok);
  * recorder and metrics); -1 when the plant diverged. */
 int sim_loop_period(sim_run_t *rs, sim_result_t *r, long k);
 
+/* The commissioning scenario after the calibration: the sequence until the drive leaves
+ * COMMISSION, its results into r (sim_commission.c). */
+int sim_commission_loop(sim_run_t *rs, sim_result_t *r, char *err, size_t err_len);
+
 /* The scenario: every control period. */
 int sim_loop_run(sim_run_t *rs, sim_result_t *r, char *err, size_t err_len);
 

@@ -170,10 +170,12 @@ int sim_setup(sim_run_t *rs, const sim_config_t *c, char *err, size_t err_len)
     }
     inverter_init(&rs->inv, &rs->plant, rs->ts);
     rs->x.omega_m = rs->plan.speed0 * 2.0 * 3.14159265358979323846 / 60.0;
+    rs->x.theta_m = rs->plan.theta0_rad;
     plant_sync_angle(&rs->plant, &rs->x);
     sim_adc_init(&rs->adc, &rs->plant, c->seed);
     sim_encoder_init(&rs->encoder, rs->ts);
-    sim_encoder_power_up(&rs->encoder, &rs->plant, &rs->x, true);
+    /* commissioning finds the index itself; every other scenario starts homed */
+    sim_encoder_power_up(&rs->encoder, &rs->plant, &rs->x, c->scenario != SIM_SCEN_COMMISSION);
     return 0;
 }
 
@@ -221,11 +223,13 @@ int sim_setup_calibrate(sim_run_t *rs, sim_result_t *r, char *err, size_t err_le
     } else if (!st.ready) {
         return setup_fail(err, err_len, "drive did not finish ADC calibration");
     }
-    rs->x.theta_m = 0.0;
+    rs->x.theta_m = rs->plan.theta0_rad;
     plant_sync_angle(&rs->plant, &rs->x);
     sim_encoder_restart(&rs->encoder);
-    rs->ops->set_speed_rpm(rs->plan.speed0);
-    rs->ops->request_run(); /* refused by a drive already in FAULT */
+    if (rs->cfg->scenario != SIM_SCEN_COMMISSION) { /* it asks for its sequence instead */
+        rs->ops->set_speed_rpm(rs->plan.speed0);
+        rs->ops->request_run(); /* refused by a drive already in FAULT */
+    }
     rs->adc.clipped = 0;
     r->outputs_off = true;
     r->fault_time_s = (rs->k_detect == 0) ? 0.0 : -1.0;

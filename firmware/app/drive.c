@@ -2,6 +2,7 @@
 
 #include "ctl_pu.h"
 #include "drive_capture.h"
+#include "drive_commission.h"
 #include "drive_open_phase.h"
 #include "hal_board.h"
 #include "hal_cycles.h"
@@ -52,6 +53,8 @@ uint16_t drive_fault_to_mask(drive_fault_t fault)
 static void drive_latch_fault(drive_t *d, drive_fault_t fault)
 {
     hal_pwm_force_off();
+    comm_abort(&d->comm, COMM_REASON_FAULT); /* a sequence running ends here */
+    d->phase_verifying = false;
     if (d->state != DRIVE_STATE_FAULT) {
         d->fault = fault;
         d->state = DRIVE_STATE_FAULT;
@@ -133,6 +136,9 @@ void drive_init(drive_t *d, const ctl_params_t *p)
     d->torque_ref_nm = 0.0f;
     d->isr_cycles_last = 0u;
     d->isr_cycles_max = 0u;
+    comm_init(&d->comm);
+    d->phase_check_pending = false;
+    d->phase_verifying = false;
     for (i = 0; i < HAL_ADC_PHASES; i++) {
         d->offset_sum[i] = 0;
         d->offset_counts[i] = (int16_t)HAL_BOARD_CURRENT_ZERO_COUNTS;
@@ -201,6 +207,8 @@ static const ctl_protect_limits_t *drive_limits(const drive_t *d)
     return d->ctl.initialised ? &ctl_config(&d->ctl)->protect : &d->fallback_limits;
 }
 
+const ctl_protect_limits_t *drive_protect_limits(const drive_t *d) { return drive_limits(d); }
+
 static void drive_scale_measurements(drive_t *d)
 {
     int16_t i;
@@ -245,6 +253,8 @@ static void drive_run_step(drive_t *d)
     prof_mark(PROF_PWM);
 }
 
+void drive_run_period(drive_t *d) { drive_run_step(d); }
+
 static void drive_control_step(drive_t *d);
 
 drive_run_refusal_t drive_run_check(const drive_t *d)
@@ -269,11 +279,13 @@ static void drive_refuse_run(drive_t *d, drive_run_refusal_t why)
     }
 }
 
-/* READY: a run request starts the drive when nothing stands against it. */
+/* READY: a run request starts the drive when nothing stands against it; otherwise a
+ * commissioning request may start the sequence. */
 static void drive_ready_step(drive_t *d)
 {
     drive_run_refusal_t why;
     if (!d->run_requested) {
+        drive_commission_begin(d);
         return;
     }
     d->run_requested = false;
@@ -286,6 +298,13 @@ static void drive_ready_step(drive_t *d)
     ctl_reset(&d->ctl);
     d->state = DRIVE_STATE_RUN;
     hal_pwm_enable();
+    /* after an OPEN_PHASE clear: the phase check first, on six legs (with a leg isolated the
+     * open-phase protection watches the five that run; the check waits for the restore) */
+    if (d->phase_check_pending && d->isolated_leg < 0) {
+        drive_phase_verify_start(d);
+        drive_phase_verify_period(d);
+        return;
+    }
     drive_run_step(d);
 }
 
@@ -311,8 +330,14 @@ static uint16_t drive_protect(drive_t *d, bool running)
     in->raw_vdc = (int16_t)d->adc.vdc;
     in->theta_e = d->meas.theta_e;
     in->omega_e = d->meas.omega_e;
-    in->torque_est = running ? d->ctl.diag.torque_est : CTL_Q(0.0);
+    in->torque_est = (running && !d->phase_verifying) ? d->ctl.diag.torque_est : CTL_Q(0.0);
     in->encoder_healthy = d->encoder.healthy;
+    if (d->state == DRIVE_STATE_COMMISSION) {
+        /* the sequence may run before the index: only an error after it is unhealthy, and the
+         * angle comes from the count, which the index's reset does not make jump */
+        in->encoder_healthy = d->encoder.healthy || !d->encoder.index_seen;
+        in->theta_e = drive_commission_angle(d);
+    }
     in->overrun = false; /* reported by the platform after the ISR (drive_report_overrun) */
     in->hw_trip = hal_pwm_hw_trip_seen();
     in->running = running;
@@ -349,7 +374,7 @@ uint16_t drive_clear_blockers(const drive_t *d, bool fresh)
 /* FAULT: a clear request leaves it only when nothing stands against it in this period. */
 static void drive_fault_step(drive_t *d, bool fresh)
 {
-    bool encoder_fault;
+    bool encoder_fault, open_phase;
     hal_pwm_force_off();
     if (!d->clear_requested) {
         return;
@@ -357,6 +382,7 @@ static void drive_fault_step(drive_t *d, bool fresh)
     d->clear_requested = false;
     d->clear_blocked = drive_clear_blockers(d, fresh);
     encoder_fault = (d->protect.latched & CTL_FAULT_ENCODER) != 0u;
+    open_phase = (d->protect.latched & CTL_FAULT_OPEN_PHASE) != 0u;
     if (d->clear_blocked != 0u || !ctl_protect_clear(&d->protect)) {
         return;
     }
@@ -365,6 +391,9 @@ static void drive_fault_step(drive_t *d, bool fresh)
          * standstill does not say otherwise: the index must be seen again before RUN. */
         hal_encoder_rehome();
         d->encoder.healthy = false;
+    }
+    if (open_phase) { /* not re-verifiable at standstill: the next run checks the phases */
+        d->phase_check_pending = true;
     }
     d->fault = DRIVE_FAULT_NONE;
     if (d->calibrated) {
@@ -391,7 +420,8 @@ static void drive_control_step(drive_t *d)
     drive_open_phase_period(d);
     if (fresh) {
         /* stale words would fake a stuck converter: check fresh conversions only */
-        faults = drive_protect(d, d->state == DRIVE_STATE_RUN);
+        faults =
+            drive_protect(d, d->state == DRIVE_STATE_RUN || d->state == DRIVE_STATE_COMMISSION);
         if (faults != 0u) { /* an open phase may be ridden through (drive_open_phase.h) */
             faults = drive_open_phase_faults(d, faults);
         }
@@ -428,10 +458,19 @@ static void drive_control_step(drive_t *d)
         if (d->stop_requested) {
             d->stop_requested = false;
             hal_pwm_force_off();
+            comm_abort(&d->comm, COMM_REASON_ABORTED); /* a phase check before control */
+            d->phase_verifying = false;
             d->state = DRIVE_STATE_READY;
             break;
         }
+        if (d->phase_verifying) {
+            drive_phase_verify_period(d);
+            break;
+        }
         drive_run_step(d);
+        break;
+    case DRIVE_STATE_COMMISSION:
+        drive_commission_period(d);
         break;
     case DRIVE_STATE_FAULT:
         drive_fault_step(d, fresh);
@@ -482,7 +521,7 @@ void drive_request_clear_fault(drive_t *d) { d->clear_requested = true; }
 
 bool drive_set_current_span(drive_t *d, float full_span_a)
 {
-    if (d->state == DRIVE_STATE_RUN ||
+    if (d->state == DRIVE_STATE_RUN || d->state == DRIVE_STATE_COMMISSION ||
         !(full_span_a >= DRIVE_CURRENT_SPAN_MIN_A && full_span_a <= DRIVE_CURRENT_SPAN_MAX_A)) {
         return false;
     }

@@ -13,6 +13,9 @@
  *
  * States: INIT -> CALIBRATE (PWM off, ADC offsets averaged) -> READY
  *         READY -> RUN on a run command; RUN -> READY on stop;
+ *         READY -> COMMISSION on a commissioning request (drive_commission.h), back to READY
+ *         when the sequence ends or on stop, never entered from RUN (it runs with the
+ *         protection active, as RUN does);
  *         any -> FAULT (PWM forced off, latched) ; FAULT -> READY on a clear
  *         command when nothing stands against it in that period
  *         (drive_clear_blockers; FAULT -> CALIBRATE if the offsets were never
@@ -31,6 +34,7 @@
 #include <stdint.h>
 
 #include "capture.h"
+#include "commission.h"
 #include "ctl.h"
 #include "ctl_protect.h"
 #include "hal_adc.h"
@@ -46,7 +50,8 @@ typedef enum {
     DRIVE_STATE_CALIBRATE = 1,
     DRIVE_STATE_READY = 2,
     DRIVE_STATE_RUN = 3,
-    DRIVE_STATE_FAULT = 4
+    DRIVE_STATE_FAULT = 4,
+    DRIVE_STATE_COMMISSION = 5 /* the motor identification and encoder alignment */
 } drive_state_t;
 
 /* Drive fault codes, from the one fault list (firmware/link/sxlink_faults.h). */
@@ -135,6 +140,11 @@ typedef struct {
     volatile int16_t isolate_request; /* leg to isolate by command, -1 none (background -> ISR) */
     volatile bool restore_request;    /* end the isolation (background -> ISR) */
     bool open_phase_paused; /* RUN with the outputs off until the set in force fits the legs */
+    /* commissioning (drive_commission.h): the sequence, its results; and the phase check a run
+     * must pass after an OPEN_PHASE fault was cleared */
+    comm_t comm;
+    bool phase_check_pending; /* an OPEN_PHASE fault was cleared: check before RUN controls */
+    bool phase_verifying;     /* RUN is running that check */
 } drive_t;
 
 /* Configure the controller; HAL peripherals must be initialised already. */
@@ -213,6 +223,12 @@ void drive_report_overrun(drive_t *d);
 
 /* Force the drive into FAULT with the given code (PWM off, latched). */
 void drive_trip(drive_t *d, drive_fault_t fault);
+
+/* The protection limits in force (the reference machine's until a valid set is). */
+const ctl_protect_limits_t *drive_protect_limits(const drive_t *d);
+
+/* ISR: one period of normal control in RUN (the control step and the PWM write). */
+void drive_run_period(drive_t *d);
 
 /* Per-unit duty to the HAL's unsigned Q15 duty. */
 uint16_t drive_duty_to_hal(ctl_q duty);

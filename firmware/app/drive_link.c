@@ -2,6 +2,7 @@
 
 #include "ctl_barrier.h"
 #include "ctl_pu.h"
+#include "drive_commission.h"
 #include "drive_open_phase.h"
 #include "hal_pwm.h"
 #include "profile.h"
@@ -11,7 +12,8 @@
  * (C99 has no static_assert; a false condition gives an array of size -1). The fault names
  * and codes come from one list (sxlink_faults.h). */
 #define DRIVE_LINK_ASSERT(name, cond) typedef char drive_link_assert_##name[(cond) ? 1 : -1]
-DRIVE_LINK_ASSERT(state_names, (int32_t)SXL_STATE_NAME_COUNT == (int32_t)DRIVE_STATE_FAULT + 1);
+DRIVE_LINK_ASSERT(state_names,
+                  (int32_t)SXL_STATE_NAME_COUNT == (int32_t)DRIVE_STATE_COMMISSION + 1);
 DRIVE_LINK_ASSERT(run_refusal_names,
                   (int32_t)SXL_RUN_REFUSAL_NAME_COUNT == (int32_t)DRIVE_RUN_REFUSAL_COUNT);
 
@@ -378,6 +380,89 @@ static uint16_t on_capture_stop(drive_t *d, const sxl_frame_t *req, sxl_frame_t 
     return SXL_OK;
 }
 
+/* Commissioning (sxlink_commission.h): each quantity's scales on the wire. */
+#define LINK_COMM_SCALE(id, number, name, unit, scale, xscale, extra) CTL_FLOAT_LITERAL(scale),
+#define LINK_COMM_XSCALE(id, number, name, unit, scale, xscale, extra) CTL_FLOAT_LITERAL(xscale),
+static const float link_comm_scale[COMM_Q_COUNT] = {SXL_COMM_QUANTITY_LIST(LINK_COMM_SCALE)};
+static const float link_comm_xscale[COMM_Q_COUNT] = {SXL_COMM_QUANTITY_LIST(LINK_COMM_XSCALE)};
+#undef LINK_COMM_SCALE
+#undef LINK_COMM_XSCALE
+
+static uint16_t on_commission_start(drive_t *d, const sxl_frame_t *req, sxl_frame_t *reply,
+                                    uint16_t rx_errors)
+{
+    (void)reply;
+    (void)rx_errors;
+    switch (drive_request_commission(d, req->payload[SXL_CC_MASK],
+                                     sxl_get_u16(&req->payload[SXL_CC_CURRENT]))) {
+    case DRIVE_COMM_OK:
+        return SXL_OK;
+    case DRIVE_COMM_INVALID:
+        return SXL_ERR_VALUE;
+    default:
+        return SXL_ERR_REFUSED; /* the status says why */
+    }
+}
+
+static uint16_t on_commission_status(drive_t *d, const sxl_frame_t *req, sxl_frame_t *reply,
+                                     uint16_t rx_errors)
+{
+    const comm_t *c = &d->comm;
+    uint16_t *out = &reply->payload[1];
+    (void)req;
+    (void)rx_errors;
+    out[SXL_CT_STATE] = (uint16_t)((uint16_t)c->state & 0xFFu);
+    out[SXL_CT_STEP] = (uint16_t)((uint16_t)c->step & 0xFFu);
+    out[SXL_CT_PROGRESS] = (uint16_t)(comm_progress_percent(c) & 0xFFu);
+    out[SXL_CT_REASON] = (uint16_t)((uint16_t)c->reason & 0xFFu);
+    out[SXL_CT_MASK] = (uint16_t)(c->mask & 0xFFu);
+    sxl_put_u16(&out[SXL_CT_CURRENT], c->permille);
+    sxl_put_u32(&out[SXL_CT_PERIODS], c->periods);
+    reply->len = (uint16_t)(1u + SXL_CT_SIZE);
+    return SXL_OK;
+}
+
+static uint16_t on_commission_result(drive_t *d, const sxl_frame_t *req, sxl_frame_t *reply,
+                                     uint16_t rx_errors)
+{
+    const uint16_t q = req->payload[0];
+    uint16_t *out = &reply->payload[1];
+    const ident_result_t *r;
+    (void)rx_errors;
+    if (q >= (uint16_t)COMM_Q_COUNT) {
+        return SXL_ERR_VALUE;
+    }
+    r = &d->comm.x.result[q];
+    out[SXL_CR2_QUANTITY] = q;
+    out[SXL_CR2_QUALITY] = (uint16_t)((uint16_t)r->quality & 0xFFu);
+    out[SXL_CR2_REASON] = (uint16_t)((uint16_t)r->reason & 0xFFu);
+    sxl_put_i32(&out[SXL_CR2_VALUE], float_to_i32(r->value * link_comm_scale[q]));
+    sxl_put_i32(&out[SXL_CR2_SIGMA], float_to_i32(r->sigma * link_comm_scale[q]));
+    sxl_put_i32(&out[SXL_CR2_EXTRA], float_to_i32(r->extra * link_comm_xscale[q]));
+    reply->len = (uint16_t)(1u + SXL_CR2_SIZE);
+    return SXL_OK;
+}
+
+static uint16_t on_commission_apply(drive_t *d, const sxl_frame_t *req, sxl_frame_t *reply,
+                                    uint16_t rx_errors)
+{
+    uint16_t applied = 0u;
+    (void)req;
+    (void)rx_errors;
+    switch (drive_commission_apply(d, &applied)) {
+    case DRIVE_COMM_OK:
+        sxl_put_u16(&reply->payload[1 + SXL_CA2_APPLIED], applied);
+        reply->len = (uint16_t)(1u + SXL_CA2_SIZE);
+        return SXL_OK;
+    case DRIVE_COMM_BUSY:
+        return SXL_ERR_BUSY;
+    case DRIVE_COMM_REJECTED:
+        return SXL_ERR_VALUE;
+    default:
+        return SXL_ERR_REFUSED;
+    }
+}
+
 static uint16_t on_get_open_phase(drive_t *d, const sxl_frame_t *req, sxl_frame_t *reply,
                                   uint16_t rx_errors)
 {
@@ -440,6 +525,10 @@ static const struct {
     {SXL_CMD_CAPTURE_STATUS, 0u, on_capture_status},
     {SXL_CMD_CAPTURE_READ, 3u, on_capture_read},
     {SXL_CMD_CAPTURE_STOP, 0u, on_capture_stop},
+    {SXL_CMD_COMMISSION_START, SXL_CC_SIZE, on_commission_start},
+    {SXL_CMD_COMMISSION_STATUS, 0u, on_commission_status},
+    {SXL_CMD_COMMISSION_RESULT, 1u, on_commission_result},
+    {SXL_CMD_COMMISSION_APPLY, 0u, on_commission_apply},
     {SXL_CMD_GET_OPEN_PHASE, 0u, on_get_open_phase},
     {SXL_CMD_SET_OPEN_PHASE_ACTION, 2u, on_set_open_phase_action},
     {SXL_CMD_ISOLATE_LEG, 1u, on_isolate_leg},

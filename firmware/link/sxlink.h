@@ -16,6 +16,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 
+#include "sxlink_commission.h"
 #include "sxlink_faults.h"
 
 #define SXL_SOF 0xA5u
@@ -42,6 +43,11 @@
 #define SXL_CMD_CAPTURE_STATUS 0x21u /* none -> SXL_CS_* */
 #define SXL_CMD_CAPTURE_READ 0x22u   /* uint8 channel, uint16 first sample -> SXL_CR_* */
 #define SXL_CMD_CAPTURE_STOP 0x23u   /* none -> result only; the record is discarded */
+/* Commissioning (sxlink_commission.h, docs/serial-protocol.md). */
+#define SXL_CMD_COMMISSION_START 0x40u  /* SXL_CC_* -> result only */
+#define SXL_CMD_COMMISSION_STATUS 0x41u /* none -> SXL_CT_* */
+#define SXL_CMD_COMMISSION_RESULT 0x42u /* uint8 quantity -> SXL_CR2_* */
+#define SXL_CMD_COMMISSION_APPLY 0x43u  /* none -> SXL_CA2_* */
 /* Open-phase operation (docs/faults.md): ids 0x50..0x5F. */
 #define SXL_CMD_GET_OPEN_PHASE 0x50u /* none -> SXL_OP_* */
 /* uint8 action 0 stop, 1 ride through; uint8 strategy 0 minimum loss, 1 maximum torque */
@@ -229,13 +235,23 @@ int16_t sxl_get_i16(const uint16_t *p);
 
 /* Names (sxlink_names.c), upper case as in the firmware's enums; "?" out of range. Plain
  * numbers, no firmware headers, so host programs can use them. */
-#define SXL_STATE_NAME_COUNT 5u       /* drive_state_t: INIT .. FAULT */
+#define SXL_STATE_NAME_COUNT 6u       /* drive_state_t: INIT .. COMMISSION */
 #define SXL_RUN_REFUSAL_NAME_COUNT 4u /* drive_run_refusal_t: NONE .. UNDERVOLTAGE */
 const char *sxl_run_refusal_name(uint16_t reason);
 const char *sxl_state_name(uint16_t state);
 const char *sxl_fault_name(uint16_t code);
 /* One line on what a drive fault code means (the fault list's description; "" for NONE). */
 const char *sxl_fault_description(uint16_t code);
+/* Commissioning's lists (sxlink_commission.h): names as the tool prints them; "?" out of range. */
+const char *sxl_comm_step_name(uint16_t step);
+const char *sxl_comm_quantity_name(uint16_t quantity);
+const char *sxl_comm_quantity_unit(uint16_t quantity);
+double sxl_comm_quantity_scale(uint16_t quantity); /* wire value = SI value x scale */
+double sxl_comm_quantity_extra_scale(uint16_t quantity);
+const char *sxl_comm_quality_name(uint16_t quality);
+const char *sxl_comm_reason_name(uint16_t reason);
+const char *sxl_comm_reason_text(uint16_t reason);
+const char *sxl_comm_state_name(uint16_t state);
 /* Name of ctl_fault_t bit number bit (0 = OVERCURRENT .. 15 = PLATFORM), not of a mask. */
 const char *sxl_fault_bit_name(uint16_t bit);
 /* The names of the bits set in mask joined by '|' ("NONE" for 0) into out (cap chars incl.

@@ -3,8 +3,8 @@
  * checks the other tables' counts against the firmware's enums at compile time. */
 #include "sxlink.h"
 
-static const char *const state_names[SXL_STATE_NAME_COUNT] = {"INIT", "CALIBRATE", "READY", "RUN",
-                                                              "FAULT"};
+static const char *const state_names[SXL_STATE_NAME_COUNT] = {"INIT", "CALIBRATE", "READY",
+                                                              "RUN",  "FAULT",     "COMMISSION"};
 
 /* From the one fault list (sxlink_faults.h), by code and by bit number. */
 #define NAME_BY_CODE(name, code, bit_name, bit, text) [code] = #name,
@@ -21,6 +21,84 @@ static const char *const fault_bit_names[SXL_FAULT_BIT_COUNT] = {SXL_FAULT_LIST(
 
 static const char *const run_refusal_names[SXL_RUN_REFUSAL_NAME_COUNT] = {
     "NONE", "NOT_READY", "ENCODER", "UNDERVOLTAGE"};
+
+/* Commissioning's lists (sxlink_commission.h), by number. */
+#define COMM_NAME(id, number, name, ...) [number] = name,
+#define COMM_TEXT(id, number, name, text) [number] = text,
+#define COMM_UNIT(id, number, name, unit, scale, xscale, extra) [number] = unit,
+#define COMM_SCALE(id, number, name, unit, scale, xscale, extra) [number] = scale,
+#define COMM_XSCALE(id, number, name, unit, scale, xscale, extra) [number] = xscale,
+static const char *const comm_step_names[SXL_COMM_STEP_COUNT] = {SXL_COMM_STEP_LIST(COMM_NAME)};
+static const char *const comm_quantity_names[SXL_COMM_QUANTITY_COUNT] = {
+    SXL_COMM_QUANTITY_LIST(COMM_NAME)};
+static const char *const comm_quantity_units[SXL_COMM_QUANTITY_COUNT] = {
+    SXL_COMM_QUANTITY_LIST(COMM_UNIT)};
+static const double comm_quantity_scales[SXL_COMM_QUANTITY_COUNT] = {
+    SXL_COMM_QUANTITY_LIST(COMM_SCALE)};
+static const double comm_quantity_xscales[SXL_COMM_QUANTITY_COUNT] = {
+    SXL_COMM_QUANTITY_LIST(COMM_XSCALE)};
+static const char *const comm_quality_names[SXL_COMM_QUALITY_COUNT] = {
+    SXL_COMM_QUALITY_LIST(COMM_NAME)};
+static const char *const comm_reason_texts[SXL_COMM_REASON_COUNT] = {
+    SXL_COMM_REASON_LIST(COMM_TEXT)};
+static const char *const comm_reason_names[SXL_COMM_REASON_COUNT] = {
+    SXL_COMM_REASON_LIST(COMM_NAME)};
+static const char *const comm_state_names[SXL_COMM_STATE_COUNT] = {SXL_COMM_STATE_LIST(COMM_NAME)};
+#undef COMM_NAME
+#undef COMM_TEXT
+#undef COMM_UNIT
+#undef COMM_SCALE
+#undef COMM_XSCALE
+
+static const char *name_in(const char *const *names, uint16_t count, uint16_t k)
+{
+    return (k < count && names[k]) ? names[k] : "?";
+}
+
+const char *sxl_comm_step_name(uint16_t step)
+{
+    return name_in(comm_step_names, SXL_COMM_STEP_COUNT, step);
+}
+
+const char *sxl_comm_quantity_name(uint16_t quantity)
+{
+    return name_in(comm_quantity_names, SXL_COMM_QUANTITY_COUNT, quantity);
+}
+
+const char *sxl_comm_quantity_unit(uint16_t quantity)
+{
+    return name_in(comm_quantity_units, SXL_COMM_QUANTITY_COUNT, quantity);
+}
+
+double sxl_comm_quantity_scale(uint16_t quantity)
+{
+    return (quantity < SXL_COMM_QUANTITY_COUNT) ? comm_quantity_scales[quantity] : 1.0;
+}
+
+double sxl_comm_quantity_extra_scale(uint16_t quantity)
+{
+    return (quantity < SXL_COMM_QUANTITY_COUNT) ? comm_quantity_xscales[quantity] : 1.0;
+}
+
+const char *sxl_comm_quality_name(uint16_t quality)
+{
+    return name_in(comm_quality_names, SXL_COMM_QUALITY_COUNT, quality);
+}
+
+const char *sxl_comm_reason_text(uint16_t reason)
+{
+    return name_in(comm_reason_texts, SXL_COMM_REASON_COUNT, reason);
+}
+
+const char *sxl_comm_reason_name(uint16_t reason)
+{
+    return name_in(comm_reason_names, SXL_COMM_REASON_COUNT, reason);
+}
+
+const char *sxl_comm_state_name(uint16_t state)
+{
+    return name_in(comm_state_names, SXL_COMM_STATE_COUNT, state);
+}
 
 const char *sxl_run_refusal_name(uint16_t reason)
 {

@@ -1,0 +1,247 @@
+/* The commissioning sequence, see commission.h. */
+#include "commission.h"
+
+#include "ctl_barrier.h"
+
+#define COMM_BANDWIDTH_RAD_S 942.0f /* current regulator, 150 Hz */
+#define COMM_LIMIT_DQ 0.35f         /* |u_dq| limit, of the DC link */
+#define COMM_LIMIT_XY 0.10f         /* |u_x|, |u_y| limit */
+
+static const float step_seconds[SXL_COMM_STEP_COUNT] = {
+    IDENT_PHASE_SECONDS,      IDENT_ENCODER_SECONDS,    IDENT_RESISTANCE_SECONDS,
+    IDENT_INDUCTANCE_SECONDS, IDENT_INDUCTANCE_SECONDS, IDENT_FLUX_SECONDS};
+
+uint16_t comm_step_quantities(int16_t step)
+{
+    switch (step) {
+    case COMM_STEP_PHASES:
+        return (uint16_t)(1u << COMM_Q_PHASES);
+    case COMM_STEP_ENCODER:
+        return (uint16_t)((1u << COMM_Q_COUNTS) | (1u << COMM_Q_OFFSET));
+    case COMM_STEP_RESISTANCE:
+        return (uint16_t)(1u << COMM_Q_R);
+    case COMM_STEP_INDUCTANCE:
+        return (uint16_t)((1u << COMM_Q_LD) | (1u << COMM_Q_LQ));
+    case COMM_STEP_LXY:
+        return (uint16_t)(1u << COMM_Q_LXY);
+    case COMM_STEP_FLUX:
+        return (uint16_t)(1u << COMM_Q_PSI_F);
+    default:
+        return 0u;
+    }
+}
+
+void comm_init(comm_t *c)
+{
+    int16_t q;
+    c->start_requested = 0;
+    c->req_mask = 0u;
+    c->req_permille = 0u;
+    c->state = COMM_STATE_IDLE;
+    c->step = COMM_STEP_PHASES;
+    c->reason = COMM_REASON_NONE;
+    c->mask = 0u;
+    c->permille = 0u;
+    c->periods = 0u;
+    c->step_start = 0u;
+    c->done_seconds = 0.0f;
+    c->total_seconds = 0.0f;
+    for (q = 0; q < COMM_Q_COUNT; q++) {
+        ident_set_result(&c->x, (comm_quantity_t)q, 0.0f, 0.0f, 0.0f, COMM_QUALITY_NOT_RUN,
+                         COMM_REASON_NONE);
+    }
+}
+
+bool comm_mask_valid(uint16_t mask)
+{
+    const uint16_t need_encoder = (uint16_t)(SXL_COMM_STEPS_ALL & ~0x3u);
+    if ((mask & ~SXL_COMM_STEPS_ALL) != 0u || (mask & (1u << COMM_STEP_PHASES)) == 0u) {
+        return false;
+    }
+    return (mask & need_encoder) == 0u || (mask & (1u << COMM_STEP_ENCODER)) != 0u;
+}
+
+bool comm_current_valid(uint16_t permille)
+{
+    return permille >= SXL_COMM_CURRENT_MIN_PERMILLE && permille <= SXL_COMM_CURRENT_MAX_PERMILLE;
+}
+
+void comm_request(comm_t *c, uint16_t mask, uint16_t permille)
+{
+    c->req_mask = mask;
+    c->req_permille = permille;
+    CTL_COMPILER_BARRIER(); /* the request is complete before it is flagged */
+    c->start_requested = 1;
+}
+
+/* The step's own start. */
+static void comm_begin_step(comm_t *c)
+{
+    ident_ctx_t *x = &c->x;
+    x->reason = COMM_REASON_NONE;
+    c->step_start = c->periods;
+    switch (c->step) {
+    case COMM_STEP_PHASES:
+        ident_phase_begin(x, &c->s.phase);
+        break;
+    case COMM_STEP_ENCODER:
+        ident_encoder_begin(x, &c->s.encoder);
+        break;
+    case COMM_STEP_RESISTANCE:
+        ident_resistance_begin(x, &c->s.resistance);
+        break;
+    case COMM_STEP_INDUCTANCE:
+        ident_inductance_begin(x, &c->s.inductance, IDENT_AXIS_D, IDENT_AXIS_Q);
+        break;
+    case COMM_STEP_LXY:
+        ident_inductance_begin(x, &c->s.inductance, IDENT_AXIS_X, IDENT_AXIS_Y);
+        break;
+    default:
+        ident_flux_begin(x, &c->s.flux);
+        break;
+    }
+}
+
+static ident_status_t comm_run_step(comm_t *c, const ident_input_t *in)
+{
+    ident_ctx_t *x = &c->x;
+    switch (c->step) {
+    case COMM_STEP_PHASES:
+        return ident_phase_step(x, &c->s.phase, in);
+    case COMM_STEP_ENCODER:
+        return ident_encoder_step(x, &c->s.encoder, in);
+    case COMM_STEP_RESISTANCE:
+        return ident_resistance_step(x, &c->s.resistance, in);
+    case COMM_STEP_INDUCTANCE:
+    case COMM_STEP_LXY:
+        return ident_inductance_step(x, &c->s.inductance, in);
+    default:
+        return ident_flux_step(x, &c->s.flux, in);
+    }
+}
+
+/* The first selected step from `from` on; COMM_STEP_END when none. */
+static int16_t comm_next_step(const comm_t *c, int16_t from)
+{
+    int16_t k;
+    for (k = from; k < (int16_t)COMM_STEP_END; k++) {
+        if ((c->mask & (1u << k)) != 0u) {
+            return k;
+        }
+    }
+    return (int16_t)COMM_STEP_END;
+}
+
+void comm_start(comm_t *c, const ident_machine_t *m, uint16_t mask, uint16_t permille)
+{
+    ident_ctx_t *x = &c->x;
+    float i_test = (float)permille * 0.001f * m->rated_a;
+    int16_t k;
+    comm_init(c);
+    c->state = COMM_STATE_RUNNING;
+    c->mask = mask;
+    c->permille = permille;
+    for (k = 0; k < (int16_t)COMM_STEP_END; k++) {
+        if ((mask & (1u << k)) != 0u) {
+            c->total_seconds += step_seconds[k];
+        }
+    }
+    x->m = *m;
+    if (i_test > COMM_TRIP_FRACTION * m->trip_a) {
+        i_test = COMM_TRIP_FRACTION * m->trip_a;
+    }
+    x->i_test = i_test;
+    ident_reg_init(&x->reg, 0.5f * (m->ld + m->lq), m->lxy, COMM_BANDWIDTH_RAD_S, m->ts,
+                   COMM_LIMIT_DQ * m->vdc, COMM_LIMIT_XY * m->vdc);
+    ident_traj_reset(&x->traj, 0.0f);
+    x->frame = IDENT_FRAME_COMMAND;
+    x->damping = 0.0f;
+    x->enc_known = false;
+    x->offset_known = false;
+    x->cpe = 0.0f;
+    x->offset_turns = 0.0f;
+    x->comp_dq[0] = x->comp_dq[1] = 0.0f;
+    c->step = comm_next_step(c, 0);
+    comm_begin_step(c);
+}
+
+/* The sequence ends: state, reason; the selected quantities never reached are SKIPPED. */
+static void comm_end(comm_t *c, int16_t state, int16_t reason)
+{
+    int16_t k, q;
+    c->state = state;
+    c->reason = reason;
+    if (state == COMM_STATE_DONE) {
+        return;
+    }
+    for (k = c->step; k < (int16_t)COMM_STEP_END; k++) {
+        const uint16_t quantities = ((c->mask & (1u << k)) != 0u) ? comm_step_quantities(k) : 0u;
+        for (q = 0; q < COMM_Q_COUNT; q++) {
+            if ((quantities & (1u << q)) != 0u && c->x.result[q].quality == COMM_QUALITY_NOT_RUN) {
+                c->x.result[q].reason = COMM_REASON_SKIPPED;
+            }
+        }
+    }
+}
+
+void comm_abort(comm_t *c, int16_t reason)
+{
+    if (c->state == COMM_STATE_RUNNING) {
+        comm_end(c, COMM_STATE_ABORTED, reason);
+    }
+}
+
+/* After a step: the next one, or the end. False when the sequence ended. */
+static bool comm_advance(comm_t *c, ident_status_t status)
+{
+    if (status == IDENT_FAILED) {
+        comm_end(c, COMM_STATE_FAILED, c->x.reason);
+        return false;
+    }
+    c->done_seconds += step_seconds[c->step];
+    c->step = comm_next_step(c, (int16_t)(c->step + 1));
+    if (c->step == (int16_t)COMM_STEP_END) {
+        c->step = (int16_t)(COMM_STEP_END - 1);
+        comm_end(c, COMM_STATE_DONE, COMM_REASON_NONE);
+        return false;
+    }
+    comm_begin_step(c);
+    return true;
+}
+
+bool comm_period(comm_t *c, const ident_input_t *in, float u[4])
+{
+    ident_status_t status;
+    int16_t k;
+    if (c->state != COMM_STATE_RUNNING) {
+        return false;
+    }
+    c->periods++;
+    ident_measure(&c->x, in);
+    status = comm_run_step(c, in);
+    if (status != IDENT_RUNNING && !comm_advance(c, status)) {
+        return false;
+    }
+    ident_regulate(&c->x, in->vdc);
+    for (k = 0; k < 4; k++) {
+        u[k] = c->x.reg.u[k];
+    }
+    return true;
+}
+
+uint16_t comm_progress_percent(const comm_t *c)
+{
+    float done = c->done_seconds;
+    if (c->state != COMM_STATE_RUNNING) {
+        return (c->state == COMM_STATE_DONE) ? 100u : 0u;
+    }
+    if (c->total_seconds <= 0.0f) {
+        return 0u;
+    }
+    {
+        const float running = (float)(c->periods - c->step_start) * c->x.m.ts;
+        const float cap = step_seconds[c->step];
+        done += (running < cap) ? running : cap;
+    }
+    return (uint16_t)(100.0f * done / c->total_seconds);
+}

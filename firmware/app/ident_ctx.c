@@ -1,0 +1,118 @@
+/* What the identification steps share, see ident.h. */
+#include "ident.h"
+
+/* Electrical turns the output is applied after the sample, in periods: the command written in
+ * period k is in force during period k + 1, on average 1.5 periods after the sample. */
+#define IDENT_OUTPUT_DELAY_PERIODS 1.5f
+
+uint32_t ident_periods(const ident_ctx_t *x, float seconds)
+{
+    const float n = seconds / x->m.ts;
+    return (n < 1.0f) ? 1u : (uint32_t)(n + 0.5f);
+}
+
+void ident_goto(ident_ctx_t *x, int16_t phase)
+{
+    x->phase = phase;
+    x->t = 0u;
+}
+
+ident_status_t ident_fail(ident_ctx_t *x, int16_t reason)
+{
+    x->reason = reason;
+    return IDENT_FAILED;
+}
+
+void ident_set_result(ident_ctx_t *x, comm_quantity_t q, float value, float sigma, float extra,
+                      int16_t quality, int16_t reason)
+{
+    ident_result_t *r = &x->result[q];
+    r->value = value;
+    r->sigma = sigma;
+    r->extra = extra;
+    r->quality = quality;
+    r->reason = reason;
+}
+
+float ident_rotor_angle(const ident_ctx_t *x, const ident_input_t *in)
+{
+    const float a = ident_turns_u32(in->elec_angle) + x->offset_turns;
+    return a - (float)(int32_t)a;
+}
+
+float ident_ramp(uint32_t t, uint32_t n)
+{
+    float s, c;
+    if (t >= n || n == 0u) {
+        return 1.0f;
+    }
+    ident_sincos(0.5f * (float)t / (float)n, &s, &c);
+    return 0.5f - 0.5f * c;
+}
+
+void ident_measure(ident_ctx_t *x, const ident_input_t *in)
+{
+    float v[4];
+    float angle;
+    float out_angle;
+    ident_vsd(in->i_phase, v);
+    x->i_ab[0] = v[0];
+    x->i_ab[1] = v[1];
+    x->i_xy[0] = v[2];
+    x->i_xy[1] = v[3];
+    x->speed_e =
+        (x->enc_known && x->cpe != 0.0f) ? in->mech_rev_s * x->m.counts_per_turn / x->cpe : 0.0f;
+    if (x->frame == IDENT_FRAME_ROTOR) {
+        angle = ident_rotor_angle(x, in);
+        out_angle = angle + IDENT_OUTPUT_DELAY_PERIODS * x->speed_e * x->m.ts;
+    } else {
+        angle = x->traj.angle;
+        out_angle = angle;
+    }
+    ident_sincos(angle, &x->frame_s, &x->frame_c);
+    ident_sincos(out_angle, &x->out_s, &x->out_c);
+    ident_to_frame(v[0], v[1], x->frame_s, x->frame_c, x->i_dq);
+    x->t++;
+}
+
+/* A phase reference below this (A) gets a proportional share of the dead-time voltage. */
+#define IDENT_DEAD_BAND_A 0.02f
+
+/* Each phase's dead-time voltage with the sign of its reference current, as a vector. */
+static void ident_dead_time(ident_ctx_t *x, const float ref[2], float vdc, float comp[4])
+{
+    const float vd = vdc * x->m.dead_time_s / x->m.ts;
+    float r[4], phase[IDENT_PHASES];
+    int16_t k;
+    ident_from_frame(ref[0], ref[1], x->out_s, x->out_c, r);
+    r[2] = x->ref_xy[0];
+    r[3] = x->ref_xy[1];
+    for (k = 0; k < IDENT_PHASES; k++) {
+        float share = ident_vsd_phase(r, k) * (1.0f / IDENT_DEAD_BAND_A);
+        share = (share > 1.0f) ? 1.0f : ((share < -1.0f) ? -1.0f : share);
+        phase[k] = vd * share;
+    }
+    ident_vsd(phase, comp);
+}
+
+void ident_regulate(ident_ctx_t *x, float vdc)
+{
+    float ref[2], comp[4];
+    int16_t k;
+    ref[0] = x->ref_dq[0];
+    ref[1] = x->ref_dq[1];
+    if (x->frame == IDENT_FRAME_COMMAND && x->damping > 0.0f) {
+        ref[1] -= x->damping * (x->speed_e - x->traj.speed);
+    }
+    ident_reg_step(&x->reg, x->out_s, x->out_c, ref, x->i_dq, x->ref_xy, x->i_xy);
+    ident_dead_time(x, ref, vdc, comp);
+    for (k = 0; k < 4; k++) {
+        x->reg.u[k] += comp[k];
+    }
+    ident_to_frame(comp[0], comp[1], x->out_s, x->out_c, x->comp_dq);
+}
+
+float ident_u_frame(const ident_ctx_t *x, int16_t axis)
+{
+    return x->reg.u_dq[axis] + x->comp_dq[axis];
+}

@@ -1,0 +1,261 @@
+/* Identification step 2, the encoder: see ident_encoder.h. */
+#include "ident_encoder.h"
+
+#include "ctl_q.h"
+
+#define ENC_ALIGN_RAMP_S 0.3f
+#define ENC_ALIGN_HOLD_S 0.2f
+#define ENC_ALIGN_MOVE_S 0.2f /* then a quarter turn on: a rotor that sat opposite the field */
+#define ENC_ALIGN_SETTLE_S 0.3f
+#define ENC_ALIGN_ANGLE (1.0f / 24.0f) /* 15 degrees: every phase carries a quarter or more */
+#define ENC_SOFT_KI_RAD_S 10.0f        /* alignment: integral gain (R + kp) times this */
+#define ENC_SPEED 1.0f                 /* electrical turns/s */
+#define ENC_ACCEL 4.0f                 /* turns/s^2 */
+#define ENC_MIN_MOTION 0.25f           /* of the nominal counts in the first turn, else NO_MOTION */
+#define ENC_SETTLE_TURNS 0.5f          /* after the index / a reversal, before measuring */
+#define ENC_MEASURE_QUARTERS 8         /* counts per electrical turn: two turns */
+#define ENC_CPE_TOLERANCE 0.1f         /* of the nominal counts per electrical turn */
+#define ENC_OFFSET_TURNS 2.0f          /* averaged each way */
+#define ENC_STOP_HOLD_S 0.2f
+#define ENC_DAMPING_RATIO 0.7f
+#define ENC_POOR_SIGMA_TURNS 0.0028f /* 1 electrical degree */
+
+enum { EN_ALIGN, EN_ALIGN2, EN_SPIN, EN_FWD, EN_TURN, EN_BWD, EN_STOP };
+
+void ident_encoder_begin(ident_ctx_t *x, ident_encoder_t *s)
+{
+    x->frame = IDENT_FRAME_COMMAND;
+    x->damping = 0.0f;
+    x->enc_known = false;
+    x->offset_known = false;
+    x->ref_dq[0] = x->ref_dq[1] = 0.0f;
+    x->ref_xy[0] = x->ref_xy[1] = 0.0f;
+    ident_traj_reset(&x->traj, ENC_ALIGN_ANGLE);
+    /* while aligning, the rotor's swing is not yet damped through the encoder (its direction is
+     * unknown): a proportional gain of R and a slow integrator make the regulator nearly a
+     * voltage source, whose current the back-EMF changes: the swing damps electrically */
+    ident_reg_gains_dq(&x->reg, x->m.r, 2.0f * x->m.r * ENC_SOFT_KI_RAD_S, x->m.ts);
+    s->travel_index = -1.0f;
+    s->measuring = false;
+    s->have_ref = false;
+    ident_goto(x, EN_ALIGN);
+}
+
+/* Damping of the rotor's swing about the commanded angle: q current against the speed error,
+ * for a damping ratio ENC_DAMPING_RATIO with the parameter set's inertia and flux. */
+static float enc_damping_gain(const ident_ctx_t *x)
+{
+    const float pn = (float)x->m.pole_pairs;
+    const float kt = 3.0f * pn * x->m.psi_f;
+    const float wn2 = kt * x->i_test * pn / x->m.inertia;
+    const float kd_rad = 2.0f * ENC_DAMPING_RATIO * ctl_sqrtf(wn2) * x->m.inertia / (pn * kt);
+    return kd_rad * 6.2831853f; /* per electrical turn/s */
+}
+
+static float enc_nominal_cpe(const ident_ctx_t *x)
+{
+    return x->m.counts_per_turn / (float)x->m.pole_pairs;
+}
+
+/* After the first commanded turn: the direction and a first counts per electrical turn. */
+static ident_status_t enc_first_turn(ident_ctx_t *x, ident_encoder_t *s, const ident_input_t *in)
+{
+    const float moved = (float)(in->position - s->p0);
+    if (moved < ENC_MIN_MOTION * enc_nominal_cpe(x) * x->traj.travel &&
+        moved > -ENC_MIN_MOTION * enc_nominal_cpe(x) * x->traj.travel) {
+        ident_set_result(x, COMM_Q_COUNTS, moved / x->traj.travel, 0.0f, 0.0f, COMM_QUALITY_FAILED,
+                         COMM_REASON_NO_MOTION);
+        return ident_fail(x, COMM_REASON_NO_MOTION);
+    }
+    x->cpe = moved / x->traj.travel;
+    x->enc_known = true;
+    x->damping = enc_damping_gain(x);
+    s->travel_known = x->traj.travel;
+    return IDENT_RUNNING;
+}
+
+/* The measured counts per electrical turn against the configured pole pairs. */
+static ident_status_t enc_judge_counts(ident_ctx_t *x, ident_encoder_t *s)
+{
+    const float cpe = ident_blocks_mean(&s->cpe);
+    const float mag = (cpe < 0.0f) ? -cpe : cpe;
+    const float implied = (mag > 0.0f) ? x->m.counts_per_turn / mag : 0.0f;
+    const float nominal = enc_nominal_cpe(x);
+    int16_t reason = COMM_REASON_NONE;
+    if (cpe < 0.0f) {
+        reason = COMM_REASON_REVERSED;
+    } else if (mag > (1.0f + ENC_CPE_TOLERANCE) * nominal ||
+               mag < (1.0f - ENC_CPE_TOLERANCE) * nominal) {
+        reason = COMM_REASON_POLE_PAIRS;
+    }
+    ident_set_result(x, COMM_Q_COUNTS, cpe, ident_blocks_sigma(&s->cpe),
+                     (float)(int32_t)(implied + 0.5f),
+                     (reason == COMM_REASON_NONE) ? COMM_QUALITY_OK : COMM_QUALITY_FAILED, reason);
+    if (reason != COMM_REASON_NONE) {
+        return ident_fail(x, reason);
+    }
+    x->cpe = cpe;
+    s->travel_start = x->traj.travel;
+    ident_blocks_init(&s->fwd, (int32_t)ident_periods(x, 0.25f / ENC_SPEED));
+    ident_goto(x, EN_FWD);
+    return IDENT_RUNNING;
+}
+
+/* Quarter turns of counts per electrical turn, once the index was seen and the rotor settled. */
+static ident_status_t enc_measure_counts(ident_ctx_t *x, ident_encoder_t *s,
+                                         const ident_input_t *in)
+{
+    const float travel = x->traj.travel;
+    if (!s->measuring) {
+        if (x->enc_known && s->travel_index >= 0.0f &&
+            travel >= ((s->travel_index > s->travel_known) ? s->travel_index : s->travel_known) +
+                          ENC_SETTLE_TURNS) {
+            s->measuring = true;
+            s->p_mark = in->position;
+            s->travel_mark = travel;
+            ident_blocks_init(&s->cpe, 1);
+        }
+        return IDENT_RUNNING;
+    }
+    if (travel >= s->travel_mark + 0.25f) {
+        ident_blocks_add_block(&s->cpe,
+                               (float)(in->position - s->p_mark) / (travel - s->travel_mark));
+        s->p_mark = in->position;
+        s->travel_mark = travel;
+        if (s->cpe.blocks >= ENC_MEASURE_QUARTERS) {
+            return enc_judge_counts(x, s);
+        }
+    }
+    return IDENT_RUNNING;
+}
+
+static ident_status_t enc_spin(ident_ctx_t *x, ident_encoder_t *s, const ident_input_t *in)
+{
+    const int32_t counted = in->position - s->p0;
+    if (!x->enc_known && x->traj.travel >= 1.0f && enc_first_turn(x, s, in) != IDENT_RUNNING) {
+        return IDENT_FAILED;
+    }
+    if (s->travel_index < 0.0f && in->index_seen) {
+        s->travel_index = x->traj.travel;
+    }
+    if (s->travel_index < 0.0f &&
+        (x->traj.travel > 2.0f * (float)x->m.pole_pairs + 3.0f ||
+         (float)((counted < 0) ? -counted : counted) > 1.25f * x->m.counts_per_turn)) {
+        ident_set_result(x, COMM_Q_COUNTS, x->cpe, 0.0f, 0.0f, COMM_QUALITY_FAILED,
+                         COMM_REASON_NO_INDEX);
+        return ident_fail(x, COMM_REASON_NO_INDEX);
+    }
+    return enc_measure_counts(x, s, in);
+}
+
+/* The commanded angle minus the HAL's (half a count added), unwrapped about the first one. */
+static float enc_offset_sample(ident_encoder_t *s, const ident_ctx_t *x, const ident_input_t *in)
+{
+    const float half_count = 0.5f / x->cpe;
+    const float d = x->traj.angle - ident_turns_u32(in->elec_angle) - half_count;
+    if (!s->have_ref) {
+        s->ref = ident_wrap_half(d);
+        s->have_ref = true;
+    }
+    return s->ref + ident_wrap_half(d - s->ref);
+}
+
+/* The offset from both directions, into the result and the context. */
+static ident_status_t enc_finish(ident_ctx_t *x, ident_encoder_t *s)
+{
+    const float mf = ident_blocks_mean(&s->fwd);
+    const float mb = ident_blocks_mean(&s->bwd);
+    const float sf = ident_blocks_sigma(&s->fwd);
+    const float sb = ident_blocks_sigma(&s->bwd);
+    const float sigma = 0.5f * ctl_sqrtf(sf * sf + sb * sb);
+    float absolute;
+    x->offset_turns = 0.5f * (mf + mb);
+    x->offset_known = true;
+    x->offset_abs = x->m.hal_offset +
+                    (uint32_t)(int32_t)(ident_wrap_half(x->offset_turns) * 2147483648.0f) * 2u;
+    absolute = ident_turns_u32(x->m.hal_offset) + x->offset_turns;
+    absolute -= (float)(int32_t)absolute;
+    if (absolute < 0.0f) {
+        absolute += 1.0f;
+    }
+    ident_set_result(x, COMM_Q_OFFSET, 360.0f * absolute, 360.0f * sigma, 360.0f * 0.5f * (mf - mb),
+                     (sigma > ENC_POOR_SIGMA_TURNS) ? COMM_QUALITY_POOR : COMM_QUALITY_OK,
+                     (sigma > ENC_POOR_SIGMA_TURNS) ? COMM_REASON_SCATTER : COMM_REASON_NONE);
+    return IDENT_DONE;
+}
+
+/* Forward, reverse, backward, stop: the offset's sweeps. */
+static ident_status_t enc_sweep(ident_ctx_t *x, ident_encoder_t *s, const ident_input_t *in)
+{
+    const float travel = x->traj.travel;
+    switch (x->phase) {
+    case EN_FWD:
+        ident_blocks_add(&s->fwd, enc_offset_sample(s, x, in));
+        if (travel >= s->travel_start + ENC_OFFSET_TURNS) {
+            x->traj.target = -ENC_SPEED;
+            ident_goto(x, EN_TURN);
+        }
+        break;
+    case EN_TURN:
+        if (x->traj.speed > -ENC_SPEED) {
+            s->travel_start = travel;
+        } else if (travel <= s->travel_start - ENC_SETTLE_TURNS) {
+            s->travel_start = travel;
+            ident_blocks_init(&s->bwd, s->fwd.length);
+            ident_goto(x, EN_BWD);
+        }
+        break;
+    case EN_BWD:
+        ident_blocks_add(&s->bwd, enc_offset_sample(s, x, in));
+        if (travel <= s->travel_start - ENC_OFFSET_TURNS) {
+            x->traj.target = 0.0f;
+            ident_goto(x, EN_STOP);
+        }
+        break;
+    default: /* EN_STOP */
+        if (x->traj.speed != 0.0f) {
+            x->t = 0u;
+        } else if (x->t >= ident_periods(x, ENC_STOP_HOLD_S)) {
+            return enc_finish(x, s);
+        }
+        break;
+    }
+    return IDENT_RUNNING;
+}
+
+/* The current rises at angle 0 and holds; then the angle moves a quarter turn and holds: a
+ * rotor that sat at the first angle's unstable point (the field opposite its d axis) is pulled
+ * off it by the second. */
+static void enc_align(ident_ctx_t *x, ident_encoder_t *s, const ident_input_t *in)
+{
+    const uint32_t ramp = ident_periods(x, ENC_ALIGN_RAMP_S);
+    const uint32_t move = ident_periods(x, ENC_ALIGN_MOVE_S);
+    if (x->phase == EN_ALIGN) {
+        x->ref_dq[0] = x->i_test * ident_ramp(x->t, ramp);
+        if (x->t >= ramp + ident_periods(x, ENC_ALIGN_HOLD_S)) {
+            ident_goto(x, EN_ALIGN2);
+        }
+        return;
+    }
+    ident_traj_reset(&x->traj, ENC_ALIGN_ANGLE + 0.25f * ident_ramp(x->t, move));
+    if (x->t >= move + ident_periods(x, ENC_ALIGN_SETTLE_S)) {
+        ident_reg_gains_nominal(&x->reg);
+        s->p0 = in->position;
+        x->traj.target = ENC_SPEED;
+        x->traj.accel = ENC_ACCEL;
+        ident_goto(x, EN_SPIN);
+    }
+}
+
+ident_status_t ident_encoder_step(ident_ctx_t *x, ident_encoder_t *s, const ident_input_t *in)
+{
+    if (x->phase == EN_ALIGN || x->phase == EN_ALIGN2) {
+        enc_align(x, s, in);
+        return IDENT_RUNNING;
+    }
+    ident_traj_step(&x->traj, x->m.ts);
+    if (x->phase == EN_SPIN) {
+        return enc_spin(x, s, in);
+    }
+    return enc_sweep(x, s, in);
+}

@@ -1,0 +1,46 @@
+/*
+ * Identification step 2, the encoder. A current vector (the test current) at a commanded
+ * angle pulls the rotor's d axis along (docs/commissioning.md):
+ *   align  the current rises at a fixed angle (raised cosine) and holds, then the angle moves
+ *          a quarter turn and holds (a rotor at the first angle's unstable point, the field
+ *          opposite its d axis, is pulled off it);
+ *   spin   the angle turns forward at 1 electrical turn/s. After the first commanded turn the
+ *          count's change gives the direction and a first counts-per-electrical-turn (no
+ *          count: NO_MOTION); from then on the rotor's swing about the commanded angle is
+ *          damped (q current against the speed error). Once the index has been seen (within
+ *          2 Pn + 3 commanded turns or 1.25 counted mechanical turns, else NO_INDEX) the
+ *          counts per electrical turn are measured over two whole turns in quarter-turn
+ *          blocks: negative is REVERSED (A and B swapped), more than 10 % from 4 lines / Pn
+ *          is POLE_PAIRS (the result's extra: the pole pairs the count implies);
+ *   offset the angle keeps turning forward two turns, then backward two turns, at the same
+ *          speed after a settling half turn; the commanded angle minus the HAL's angle is
+ *          averaged in quarter-turn blocks each way. The mean of the two directions is the
+ *          offset (friction and the swing cancel); half their difference is the lag.
+ * The HAL's angle is the floor of the count: half a count is added. About 12 s.
+ */
+#ifndef IDENT_ENCODER_H
+#define IDENT_ENCODER_H
+
+#include "ident.h"
+
+typedef struct {
+    int32_t p0;         /* position at the spin's start */
+    int32_t p_mark;     /* position at the start of a measuring quarter turn */
+    float travel_mark;  /* commanded travel there, turns */
+    float travel_index; /* commanded travel when the index was first seen; < 0: not yet */
+    float travel_known; /* commanded travel when the direction was found */
+    bool measuring;     /* counts per electrical turn being measured */
+    ident_blocks_t cpe; /* counts per electrical turn, quarter-turn blocks */
+    ident_blocks_t fwd; /* offset turning forward, turns, quarter-turn blocks */
+    ident_blocks_t bwd; /* and backward */
+    float ref;          /* the offset's unwrapping reference, turns */
+    bool have_ref;
+    float travel_start; /* travel at the start of the running direction's part */
+} ident_encoder_t;
+
+void ident_encoder_begin(ident_ctx_t *x, ident_encoder_t *s);
+ident_status_t ident_encoder_step(ident_ctx_t *x, ident_encoder_t *s, const ident_input_t *in);
+
+#define IDENT_ENCODER_SECONDS 12.0f
+
+#endif /* IDENT_ENCODER_H */

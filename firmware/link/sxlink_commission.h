@@ -1,0 +1,134 @@
+/*
+ * Commissioning on the link (docs/commissioning.md, docs/serial-protocol.md): the steps of the
+ * sequence, the quantities it identifies, the quality of each result and the reasons, one list
+ * each. The firmware's enums, the protocol's name tables and the host tool's printing come from
+ * these lists. Numbers are on the wire: never renumber. Plain macros, no firmware types.
+ */
+#ifndef SXLINK_COMMISSION_H
+#define SXLINK_COMMISSION_H
+
+/* Steps, in the order they run: X(id, number, name, what it does). A step mask has bit
+ * (1 << number) per step. */
+#define SXL_COMM_STEP_LIST(X)                                                                      \
+    X(PHASES, 0, "phases", "phase check: each phase carries its share of a test current")          \
+    X(ENCODER, 1, "encoder", "encoder direction, counts per electrical turn and index offset")     \
+    X(RESISTANCE, 2, "r", "stator resistance from DC current at two levels")                       \
+    X(INDUCTANCE, 3, "ldq", "L_d and L_q from a square wave at standstill")                        \
+    X(LXY, 4, "lxy", "L_xy from a square wave in the x-y plane")                                   \
+    X(FLUX, 5, "psi_f", "magnet flux at steady speed")
+
+#define SXL_COMM_STEP_COUNT 6u
+#define SXL_COMM_STEPS_ALL 0x3Fu
+/* The phase check always runs first, and every step after the encoder's needs it: a mask
+ * without bit PHASES, or with any of bits 2..5 but not ENCODER, is refused. */
+
+/* Quantities: X(id, number, name, unit, scale, extra scale, extra's meaning). The reply carries
+ * value and uncertainty as int32 of the SI value times scale, the extra times its own scale. */
+#define SXL_COMM_QUANTITY_LIST(X)                                                                  \
+    X(PHASES, 0, "phases", "", 1000.0, 1.0,                                                        \
+      "smallest phase current over its share (value); the phase that failed, 0..5 = A..F, or -1")  \
+    X(COUNTS, 1, "counts_per_elec_turn", "counts", 1000.0, 1.0, "pole pairs the count implies")    \
+    X(OFFSET, 2, "encoder_offset", "deg", 1000.0, 1000.0,                                          \
+      "half the forward-backward difference (the lag), deg")                                       \
+    X(R, 3, "r", "ohm", 1.0e6, 1.0, "-")                                                           \
+    X(LD, 4, "ld", "H", 1.0e9, 1.0, "rotor motion during the test, encoder counts")                \
+    X(LQ, 5, "lq", "H", 1.0e9, 1.0, "rotor motion during the test, encoder counts")                \
+    X(LXY, 6, "lxy", "H", 1.0e9, 1.0, "rotor motion during the test, encoder counts")              \
+    X(PSI_F, 7, "psi_f", "Wb", 1.0e6, 10.0, "test speed, r/min")
+
+#define SXL_COMM_QUANTITY_COUNT 8u
+
+/* Quality of a result: X(id, number, name, meaning). */
+#define SXL_COMM_QUALITY_LIST(X)                                                                   \
+    X(NOT_RUN, 0, "not_run", "not selected, or an earlier step failed")                            \
+    X(OK, 1, "ok", "within its quality limit")                                                     \
+    X(POOR, 2, "poor", "a number, but its uncertainty or a check is beyond the limit")             \
+    X(FAILED, 3, "failed", "no number: the reason says why")
+
+#define SXL_COMM_QUALITY_COUNT 4u
+
+/* Why: a refused start, the end of the sequence, a result that failed or is poor.
+ * X(id, number, name, text). */
+#define SXL_COMM_REASON_LIST(X)                                                                    \
+    X(NONE, 0, "none", "none")                                                                     \
+    X(ABORTED, 1, "aborted", "stopped by a stop command")                                          \
+    X(FAULT, 2, "fault", "a protection fault ended the sequence (the drive is in FAULT)")          \
+    X(NOT_READY, 3, "not_ready", "refused: the drive is not READY")                                \
+    X(UNDERVOLTAGE, 4, "undervoltage", "refused: DC link below the under-voltage limit")           \
+    X(ENCODER_ERROR, 5, "encoder_error", "refused: encoder counter or signal error")               \
+    X(OPEN_PHASE, 6, "open_phase", "a phase carries less than its share of the test current")      \
+    X(CURRENT_LIMIT, 7, "current_limit", "a phase current above twice the test current")           \
+    X(NO_CURRENT, 8, "no_current", "the test current was not reached within the voltage limit")    \
+    X(NO_MOTION, 9, "no_motion", "the encoder did not count while the field turned the rotor")     \
+    X(REVERSED, 10, "reversed", "the encoder counts backwards: channels A and B swapped")          \
+    X(POLE_PAIRS, 11, "pole_pairs",                                                                \
+      "counts per electrical turn do not match the configured pole pairs")                         \
+    X(NO_INDEX, 12, "no_index", "no index pulse within the search")                                \
+    X(ROTOR_MOVED, 13, "rotor_moved", "the rotor turned during a standstill test")                 \
+    X(NO_SPEED, 14, "no_speed", "the speed did not settle at its reference")                       \
+    X(SCATTER, 15, "scatter", "the blocks disagree: uncertainty above the quality limit")          \
+    X(SKIPPED, 16, "skipped", "not run: an earlier step failed")                                   \
+    X(OUT_OF_RANGE, 17, "out_of_range",                                                            \
+      "the estimate lies outside the range the controller accepts")
+
+#define SXL_COMM_REASON_COUNT 18u
+
+/* State of the sequence (COMMISSION_STATUS): X(id, number, name, meaning). */
+#define SXL_COMM_STATE_LIST(X)                                                                     \
+    X(IDLE, 0, "idle", "never started since power-up")                                             \
+    X(RUNNING, 1, "running", "the drive is in COMMISSION")                                         \
+    X(DONE, 2, "done", "every selected step ran; results readable")                                \
+    X(FAILED, 3, "failed", "a step failed; the results so far readable")                           \
+    X(ABORTED, 4, "aborted", "stopped by a stop command or a fault")
+
+#define SXL_COMM_STATE_COUNT 5u
+
+/* The lists' numbers by name, for host programs (the firmware has its own enums, ident.h). */
+#define SXL_COMM_NUMBER(id, number, ...) SXL_COMM_STEP_##id = number,
+enum { SXL_COMM_STEP_ID_FIRST = -1, SXL_COMM_STEP_LIST(SXL_COMM_NUMBER) SXL_COMM_STEP_ID_END };
+#undef SXL_COMM_NUMBER
+#define SXL_COMM_NUMBER(id, number, ...) SXL_COMM_Q_##id = number,
+enum { SXL_COMM_Q_FIRST = -1, SXL_COMM_QUANTITY_LIST(SXL_COMM_NUMBER) SXL_COMM_Q_END };
+#undef SXL_COMM_NUMBER
+#define SXL_COMM_NUMBER(id, number, ...) SXL_COMM_QUALITY_##id = number,
+enum { SXL_COMM_QUALITY_FIRST = -1, SXL_COMM_QUALITY_LIST(SXL_COMM_NUMBER) SXL_COMM_QUALITY_END };
+#undef SXL_COMM_NUMBER
+#define SXL_COMM_NUMBER(id, number, ...) SXL_COMM_REASON_##id = number,
+enum { SXL_COMM_REASON_FIRST = -1, SXL_COMM_REASON_LIST(SXL_COMM_NUMBER) SXL_COMM_REASON_END };
+#undef SXL_COMM_NUMBER
+#define SXL_COMM_NUMBER(id, number, ...) SXL_COMM_STATE_##id = number,
+enum { SXL_COMM_STATE_FIRST = -1, SXL_COMM_STATE_LIST(SXL_COMM_NUMBER) SXL_COMM_STATE_END };
+#undef SXL_COMM_NUMBER
+
+/* Test current of COMMISSION_START, per mille of the rated current (torque limit over
+ * 3 Pn psi_f of the parameter set in force). */
+#define SXL_COMM_CURRENT_MIN_PERMILLE 100u
+#define SXL_COMM_CURRENT_MAX_PERMILLE 800u
+#define SXL_COMM_CURRENT_DEFAULT_PERMILLE 400u
+
+/* COMMISSION_START payload. */
+#define SXL_CC_MASK 0u    /* uint8 steps */
+#define SXL_CC_CURRENT 1u /* uint16 test current, per mille of rated */
+#define SXL_CC_SIZE 3u
+/* COMMISSION_STATUS reply (after the result byte). */
+#define SXL_CT_STATE 0u    /* uint8 SXL_COMM_STATE */
+#define SXL_CT_STEP 1u     /* uint8 step running (or the last one run) */
+#define SXL_CT_PROGRESS 2u /* uint8 % of the whole sequence */
+#define SXL_CT_REASON 3u   /* uint8 SXL_COMM_REASON: the last refusal or the end's reason */
+#define SXL_CT_MASK 4u     /* uint8 steps of the sequence */
+#define SXL_CT_CURRENT 5u  /* uint16 test current, per mille of rated */
+#define SXL_CT_PERIODS 7u  /* uint32 control periods since the start */
+#define SXL_CT_SIZE 11u
+/* COMMISSION_RESULT request: uint8 quantity; reply (after the result byte): */
+#define SXL_CR2_QUANTITY 0u /* uint8 */
+#define SXL_CR2_QUALITY 1u  /* uint8 SXL_COMM_QUALITY */
+#define SXL_CR2_REASON 2u   /* uint8 SXL_COMM_REASON */
+#define SXL_CR2_VALUE 3u    /* int32 value x scale */
+#define SXL_CR2_SIGMA 7u    /* int32 1-sigma uncertainty x scale */
+#define SXL_CR2_EXTRA 11u   /* int32 the quantity's extra */
+#define SXL_CR2_SIZE 15u
+/* COMMISSION_APPLY reply (after the result byte): uint16 quantities applied, bit per id. */
+#define SXL_CA2_APPLIED 0u
+#define SXL_CA2_SIZE 2u
+
+#endif /* SXLINK_COMMISSION_H */
