@@ -73,7 +73,9 @@ static void sim_print_comm_quantity(FILE *f, const sim_commission_result_t *cr, 
 {
     const double v = cr->value[q], t = cr->truth[q];
     double error = (double)NAN;
-    if (cr->quality[q] == SXL_COMM_QUALITY_OK || cr->quality[q] == SXL_COMM_QUALITY_POOR) {
+    /* a failed count (wrong pole pairs) is still a measured number */
+    if (cr->quality[q] == SXL_COMM_QUALITY_OK || cr->quality[q] == SXL_COMM_QUALITY_POOR ||
+        (q == SXL_COMM_Q_COUNTS && v != 0.0)) {
         if (q == SXL_COMM_Q_OFFSET) {
             error = fmod(v - t + 540.0, 360.0) - 180.0;
         } else if (t != 0.0) {
