@@ -176,6 +176,7 @@ static void bridge_period_status(sim_ctl_status_t *st)
     st->running = bridge_drive.state == DRIVE_STATE_RUN;
     st->faulted = bridge_drive.state == DRIVE_STATE_FAULT;
     st->commissioning = bridge_drive.state == DRIVE_STATE_COMMISSION;
+    st->phase_verifying = bridge_drive.phase_verifying;
     st->fault = (int)bridge_drive.fault;
     st->torque_ref_nm = q2d(dg->torque_ref) * CTL_BASE_TORQUE_NM;
     st->flux_ref_wb = q2d(dg->flux_ref) * CTL_BASE_FLUX_WB;

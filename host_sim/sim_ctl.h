@@ -37,11 +37,12 @@ typedef struct {
 typedef struct {
     int state; /* drive_state_t, as a number (reported in metrics.json) */
     /* the states the simulator acts on, named by the bridge from drive.h's drive_state_t */
-    bool ready;         /* DRIVE_STATE_READY: calibrated, waiting for RUN */
-    bool running;       /* DRIVE_STATE_RUN */
-    bool faulted;       /* DRIVE_STATE_FAULT */
-    bool commissioning; /* DRIVE_STATE_COMMISSION */
-    int fault;          /* drive_fault_t */
+    bool ready;           /* DRIVE_STATE_READY: calibrated, waiting for RUN */
+    bool running;         /* DRIVE_STATE_RUN */
+    bool faulted;         /* DRIVE_STATE_FAULT */
+    bool commissioning;   /* DRIVE_STATE_COMMISSION */
+    bool phase_verifying; /* RUN, checking the phases before control (after an OPEN_PHASE) */
+    int fault;            /* drive_fault_t */
     double torque_ref_nm, flux_ref_wb;
     double torque_est_nm, flux_est_wb;
     int vector;  /* commanded active state (S_A = bit 5) */

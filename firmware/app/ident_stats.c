@@ -5,6 +5,7 @@
 
 void ident_blocks_init(ident_blocks_t *b, int32_t length)
 {
+    b->ref = 0.0f;
     b->sum = 0.0f;
     b->n = 0;
     b->length = (length > 0) ? length : 1;
@@ -23,10 +24,13 @@ void ident_blocks_add_block(ident_blocks_t *b, float block_mean)
 
 void ident_blocks_add(ident_blocks_t *b, float x)
 {
-    b->sum += x;
+    if (b->n == 0 && b->blocks == 0) {
+        b->ref = x;
+    }
+    b->sum += x - b->ref;
     b->n++;
     if (b->n >= b->length) {
-        ident_blocks_add_block(b, b->sum / (float)b->n);
+        ident_blocks_add_block(b, b->ref + b->sum / (float)b->n);
         b->sum = 0.0f;
         b->n = 0;
     }

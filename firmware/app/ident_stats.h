@@ -1,9 +1,10 @@
 /*
  * Statistics of the motor identification: a mean kept in blocks. Samples are summed into a
- * block of a fixed length in single precision (a few hundred samples: the sum loses nothing
- * that matters); each closed block's mean goes into a running mean and variance (Welford's
- * update) of the block means, so thousands of samples lose no precision and the spread of the
- * blocks gives the uncertainty of the mean (its standard error, 1 sigma).
+ * block of a fixed length in single precision, as their differences from the first sample
+ * (a large common value would otherwise eat the sum's digits); each closed block's mean goes
+ * into a running mean and variance (Welford's update) of the block means, so hundreds of
+ * thousands of samples lose no precision and the spread of the blocks gives the uncertainty of
+ * the mean (its standard error, 1 sigma).
  */
 #ifndef IDENT_STATS_H
 #define IDENT_STATS_H
@@ -11,6 +12,7 @@
 #include <stdint.h>
 
 typedef struct {
+    float ref;      /* the first sample: the sums hold differences from it */
     float sum;      /* of the open block */
     int32_t n;      /* samples in the open block */
     int32_t length; /* samples per block */

@@ -428,6 +428,115 @@ static void test_fault_names_match_masks(void **state)
     assert_string_equal(sxl_state_name(DRIVE_STATE_FAULT), "FAULT");
 }
 
+/* Commissioning (0x40..0x43): lengths, values and states checked; results on the wire. */
+static void test_commission_start_validates(void **state)
+{
+    (void)state;
+    req.len = 2u;
+    assert_int_equal(send(SXL_CMD_COMMISSION_START), SXL_ERR_LENGTH);
+    req.len = SXL_CC_SIZE;
+    req.payload[SXL_CC_MASK] = 0x3Fu;
+    sxl_put_u16(&req.payload[SXL_CC_CURRENT], 400u);
+    assert_int_equal(send(SXL_CMD_COMMISSION_START), SXL_ERR_REFUSED); /* calibrating */
+    calibrate();
+    req.payload[SXL_CC_MASK] = 0x7Fu; /* an unknown step */
+    assert_int_equal(send(SXL_CMD_COMMISSION_START), SXL_ERR_VALUE);
+    req.payload[SXL_CC_MASK] = 0x05u; /* R without the encoder step */
+    assert_int_equal(send(SXL_CMD_COMMISSION_START), SXL_ERR_VALUE);
+    req.payload[SXL_CC_MASK] = 0x3Fu;
+    sxl_put_u16(&req.payload[SXL_CC_CURRENT], 900u);
+    assert_int_equal(send(SXL_CMD_COMMISSION_START), SXL_ERR_VALUE);
+    sxl_put_u16(&req.payload[SXL_CC_CURRENT], 400u);
+    mock_adc.vdc = 1000u; /* 195 V: below the under-voltage limit */
+    will_return(hal_adc_read, true);
+    drive_control_isr(&d);
+    assert_int_equal(send(SXL_CMD_COMMISSION_START), SXL_ERR_REFUSED);
+    req.len = 0u;
+    assert_int_equal(send(SXL_CMD_COMMISSION_STATUS), SXL_OK);
+    assert_int_equal(rep.len, 1u + SXL_CT_SIZE);
+    assert_int_equal(rep.payload[1 + SXL_CT_STATE], SXL_COMM_STATE_IDLE);
+    assert_int_equal(rep.payload[1 + SXL_CT_REASON], SXL_COMM_REASON_UNDERVOLTAGE);
+    mock_adc.vdc = 2765u;
+    will_return(hal_adc_read, true);
+    drive_control_isr(&d);
+    req.len = SXL_CC_SIZE;
+    assert_int_equal(send(SXL_CMD_COMMISSION_START), SXL_OK);
+    will_return(hal_adc_read, true);
+    drive_control_isr(&d);
+    assert_int_equal(d.state, DRIVE_STATE_COMMISSION);
+    req.len = 0u;
+    assert_int_equal(send(SXL_CMD_COMMISSION_STATUS), SXL_OK);
+    assert_int_equal(rep.payload[1 + SXL_CT_STATE], SXL_COMM_STATE_RUNNING);
+    assert_int_equal(rep.payload[1 + SXL_CT_STEP], SXL_COMM_STEP_PHASES);
+    assert_int_equal(rep.payload[1 + SXL_CT_MASK], 0x3Fu);
+    assert_int_equal(sxl_get_u16(&rep.payload[1 + SXL_CT_CURRENT]), 400u);
+    assert_int_equal(sxl_get_u32(&rep.payload[1 + SXL_CT_PERIODS]), 1u);
+    assert_int_equal(send(SXL_CMD_COMMISSION_APPLY), SXL_ERR_REFUSED); /* still running */
+    req.len = SXL_CC_SIZE;
+    assert_int_equal(send(SXL_CMD_COMMISSION_START), SXL_ERR_REFUSED); /* not READY */
+    assert_int_equal(send(SXL_CMD_STOP), SXL_ERR_LENGTH);
+    req.len = 0u;
+    assert_int_equal(send(SXL_CMD_STOP), SXL_OK);
+    will_return(hal_adc_read, true);
+    drive_control_isr(&d);
+    assert_int_equal(d.state, DRIVE_STATE_READY);
+    assert_int_equal(send(SXL_CMD_COMMISSION_STATUS), SXL_OK);
+    assert_int_equal(rep.payload[1 + SXL_CT_STATE], SXL_COMM_STATE_ABORTED);
+    assert_int_equal(rep.payload[1 + SXL_CT_REASON], SXL_COMM_REASON_ABORTED);
+}
+
+static void test_commission_results_and_apply(void **state)
+{
+    ident_result_t *res = d.comm.x.result;
+    uint16_t applied;
+    (void)state;
+    calibrate();
+    req.len = 0u;
+    assert_int_equal(send(SXL_CMD_COMMISSION_APPLY), SXL_ERR_REFUSED); /* nothing identified */
+    req.len = 1u;
+    req.payload[0] = SXL_COMM_QUANTITY_COUNT;
+    assert_int_equal(send(SXL_CMD_COMMISSION_RESULT), SXL_ERR_VALUE);
+    /* a finished sequence's results, as the steps leave them */
+    d.comm.state = COMM_STATE_DONE;
+    res[COMM_Q_R] = (ident_result_t){2.5f, 0.01f, 0.0f, COMM_QUALITY_OK, COMM_REASON_NONE};
+    res[COMM_Q_LD] = (ident_result_t){0.04f, 1e-5f, 3.0f, COMM_QUALITY_OK, COMM_REASON_NONE};
+    res[COMM_Q_LQ] =
+        (ident_result_t){0.06f, 0.01f, 30.0f, COMM_QUALITY_POOR, COMM_REASON_ROTOR_MOVED};
+    res[COMM_Q_OFFSET] = (ident_result_t){90.5f, 0.1f, 0.25f, COMM_QUALITY_OK, COMM_REASON_NONE};
+    d.comm.x.offset_abs = 0x405B05B0u;
+    req.payload[0] = SXL_COMM_Q_LQ;
+    assert_int_equal(send(SXL_CMD_COMMISSION_RESULT), SXL_OK);
+    assert_int_equal(rep.len, 1u + SXL_CR2_SIZE);
+    assert_int_equal(rep.payload[1 + SXL_CR2_QUANTITY], SXL_COMM_Q_LQ);
+    assert_int_equal(rep.payload[1 + SXL_CR2_QUALITY], SXL_COMM_QUALITY_POOR);
+    assert_int_equal(rep.payload[1 + SXL_CR2_REASON], SXL_COMM_REASON_ROTOR_MOVED);
+    assert_int_equal(sxl_get_i32(&rep.payload[1 + SXL_CR2_VALUE]), 60000000); /* nH */
+    assert_int_equal(sxl_get_i32(&rep.payload[1 + SXL_CR2_SIGMA]), 10000000);
+    assert_int_equal(sxl_get_i32(&rep.payload[1 + SXL_CR2_EXTRA]), 30);
+    req.payload[0] = SXL_COMM_Q_OFFSET;
+    assert_int_equal(send(SXL_CMD_COMMISSION_RESULT), SXL_OK);
+    assert_int_equal(sxl_get_i32(&rep.payload[1 + SXL_CR2_VALUE]), 90500); /* mdeg */
+    assert_int_equal(sxl_get_i32(&rep.payload[1 + SXL_CR2_EXTRA]), 250);
+    /* APPLY: the OK values into the parameter set requested, the offset into the HAL */
+    req.len = 0u;
+    mock_request_result = CTL_PARAM_BUSY;
+    assert_int_equal(send(SXL_CMD_COMMISSION_APPLY), SXL_ERR_BUSY);
+    assert_int_equal(mock_encoder_offset, 0u); /* nothing half applied */
+    mock_request_result = CTL_PARAM_OK;
+    assert_int_equal(send(SXL_CMD_COMMISSION_APPLY), SXL_OK);
+    assert_int_equal(rep.len, 1u + SXL_CA2_SIZE);
+    applied = sxl_get_u16(&rep.payload[1 + SXL_CA2_APPLIED]);
+    assert_int_equal(applied,
+                     (1u << SXL_COMM_Q_R) | (1u << SXL_COMM_Q_LD) | (1u << SXL_COMM_Q_OFFSET));
+    assert_true(mock_rec.requested.resistance_ohm == 2.5f);
+    assert_true(mock_rec.requested.ld_h == 0.04f);
+    assert_true(mock_rec.requested.lq_h == 0.055f); /* POOR: the set in force kept */
+    assert_int_equal(mock_encoder_offset, 0x405B05B0u);
+    /* outside READY: refused */
+    drive_trip(&d, DRIVE_FAULT_OVERRUN);
+    assert_int_equal(send(SXL_CMD_COMMISSION_APPLY), SXL_ERR_REFUSED);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -442,6 +551,8 @@ int main(void)
         cmocka_unit_test_setup(test_fault_record_saturates, setup),
         cmocka_unit_test_setup(test_fault_names_match_masks, setup),
         cmocka_unit_test_setup(test_open_phase_commands, setup),
+        cmocka_unit_test_setup(test_commission_start_validates, setup),
+        cmocka_unit_test_setup(test_commission_results_and_apply, setup),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

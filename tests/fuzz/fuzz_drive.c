@@ -4,9 +4,11 @@
  * run-time parameter sets, interleaved with control periods that carry arbitrary ADC words,
  * encoder samples, missing conversions and hardware trips, on the drive application and the
  * fixed-point control core over the simulator HAL. After every step:
- *   - the PWM is off in every state but RUN;
+ *   - the PWM is off in every state but RUN and COMMISSION (a sequence that ends, fails or is
+ *     stopped leaves it off);
  *   - FAULT is left only through a clear request, RUN entered only from READY on a run
- *     request;
+ *     request, COMMISSION only from READY on a commissioning request, and COMMISSION means
+ *     a sequence running;
  *   - every reply encodes, and decodes back to itself;
  *   - the fault log holds at most its size, its records come out in order, each with a
  *     fault bit set and a period not in the future;
@@ -152,8 +154,14 @@ static void serial_frame(stream_t *s)
                                         SXL_CMD_SET_OPEN_PHASE_ACTION,
                                         SXL_CMD_ISOLATE_LEG,
                                         SXL_CMD_RESTORE_LEGS};
+    /* the commissioning's commands on picks 240..247, so that the picks below keep the
+     * commands the committed corpus chose with them */
+    static const uint16_t commission[] = {SXL_CMD_COMMISSION_START, SXL_CMD_COMMISSION_STATUS,
+                                          SXL_CMD_COMMISSION_RESULT, SXL_CMD_COMMISSION_APPLY};
     const uint16_t pick = take8(s);
-    const uint16_t cmd = (pick < 240u) ? commands[pick % 14u] : take8(s);
+    const uint16_t cmd = (pick < 240u)   ? commands[pick % 14u]
+                         : (pick < 248u) ? commission[pick % 4u]
+                                         : take8(s);
     const uint16_t len = (uint16_t)(take8(s) % (SXL_MAX_PAYLOAD + 1u));
     uint16_t payload[SXL_MAX_PAYLOAD];
     uint16_t bytes[SXL_MAX_FRAME];
@@ -217,11 +225,16 @@ static void control_periods(stream_t *s)
         const drive_state_t before = drive.state;
         const bool run_asked = drive.run_requested;
         const bool clear_asked = drive.clear_requested;
+        const bool comm_asked = drive.comm.start_requested != 0;
         if (r > 0u && (flags & 1u) != 0u) {
             hal_sim_bus.adc_fresh = true; /* the same words again, freshly converted */
         }
         drive_control_isr(&drive);
-        check(drive.state == DRIVE_STATE_RUN || hal_sim_bus.forced_off);
+        check(drive.state == DRIVE_STATE_RUN || drive.state == DRIVE_STATE_COMMISSION ||
+              hal_sim_bus.forced_off);
+        check(!(drive.state == DRIVE_STATE_COMMISSION && before != DRIVE_STATE_COMMISSION) ||
+              (before == DRIVE_STATE_READY && comm_asked));
+        check(drive.state != DRIVE_STATE_COMMISSION || drive.comm.state == COMM_STATE_RUNNING);
         check(!(before == DRIVE_STATE_FAULT && drive.state != DRIVE_STATE_FAULT) || clear_asked);
         check(!(drive.state == DRIVE_STATE_RUN && before != DRIVE_STATE_RUN) ||
               (before == DRIVE_STATE_READY && run_asked));

@@ -20,6 +20,7 @@
 
 #include <cmocka.h>
 
+#include "hal_sim.h"
 #include "sim.h"
 #include "sim_run_state.h"
 #include "sxlink_commission.h"
@@ -220,6 +221,57 @@ static void test_refused_while_running(void **state)
     sim_teardown(&rs, true);
 }
 
+/* fault-open-phase (2 kohm in phase C from 0.25 s): detected; cleared; a run checks the phases
+ * first, finds phase C open and goes back to FAULT OPEN_PHASE without a single period of normal
+ * control, with the outputs off from then on. */
+static void test_open_phase_checked_again_after_clear(void **state)
+{
+    sim_config_t c;
+    sim_result_t r;
+    sim_run_t rs;
+    sim_ctl_status_t st;
+    char err[200] = "";
+    long k, verify_periods = 0;
+    (void)state;
+    sim_config_default(&c);
+    c.fault = SIM_FAULT_OPEN_PHASE;
+    c.duration_s = 1.0;
+    memset(&r, 0, sizeof r);
+    r.fault_time_s = -1.0;
+    assert_int_equal(sim_setup(&rs, &c, err, sizeof err), 0);
+    assert_int_equal(sim_setup_calibrate(&rs, &r, err, sizeof err), 0);
+    for (k = 0; k < 4000 && r.fault_time_s < 0.0; k++) {
+        assert_int_equal(sim_loop_period(&rs, &r, k), 0);
+    }
+    assert_int_equal(r.fault, 15); /* OPEN_PHASE */
+    for (; k < 5000; k++) {        /* the rotor coasts down; clear once it is nearly still */
+        assert_int_equal(sim_loop_period(&rs, &r, k), 0);
+    }
+    rs.ops->request_clear();
+    assert_int_equal(sim_loop_period(&rs, &r, k++), 0);
+    rs.ops->status(&st);
+    assert_true(st.ready);
+    rs.ops->request_run();
+    for (; k < 6000; k++) {
+        assert_int_equal(sim_loop_period(&rs, &r, k), 0);
+        rs.ops->status(&st);
+        assert_false(st.running && !st.phase_verifying); /* never a normal control period */
+        verify_periods += st.phase_verifying ? 1 : 0;
+        if (st.faulted) {
+            break;
+        }
+    }
+    print_message("phase check: %ld periods, then fault %d\n", verify_periods, st.fault);
+    assert_true(st.faulted);
+    assert_int_equal(st.fault, 15);
+    assert_true(verify_periods > 0 && verify_periods < 600);
+    for (k++; k < 6100; k++) {
+        assert_int_equal(sim_loop_period(&rs, &r, k), 0);
+        assert_true(hal_sim_bus.forced_off);
+    }
+    sim_teardown(&rs, true);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -228,6 +280,7 @@ int main(void)
         cmocka_unit_test(test_wrong_pole_pairs_and_swapped_channels),
         cmocka_unit_test(test_refused_with_the_dc_link_low),
         cmocka_unit_test(test_refused_while_running),
+        cmocka_unit_test(test_open_phase_checked_again_after_clear),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -1,0 +1,296 @@
+/*
+ * The drive's COMMISSION state and the phase check before RUN (firmware/app/drive.c,
+ * drive_commission.c), against the mocked HAL and core of test_drive_sm: entered from READY
+ * only, by a request that is checked; refused elsewhere, below the under-voltage limit and
+ * with an encoder error; left to READY (outputs off) on stop, to FAULT on a protection trip;
+ * never enters RUN. After an OPEN_PHASE fault is cleared, a run passes the phase check before
+ * any control step, and a failed check is FAULT OPEN_PHASE again, with a record.
+ */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include <cmocka.h>
+
+#include "ctl_pu.h"
+#include "drive.h"
+#include "drive_commission.h"
+#include "mock_hal_ctl.h"
+
+static drive_t d;
+static uint32_t period; /* control periods run by the test */
+
+static int setup(void **state)
+{
+    ctl_params_t p;
+    (void)state;
+    mock_reset();
+    ctl_params_default(&p);
+    will_return(ctl_init, true);
+    drive_init(&d, &p);
+    period = 0u;
+    return 0;
+}
+
+/* Phase currents in A as the ADC's words (a live converter: the last bit alternates). */
+static void set_currents(const float amps[6])
+{
+    int k;
+    for (k = 0; k < 6; k++) {
+        const float counts = 2048.0f + amps[k] / (40.0f / 4096.0f) + (float)(period & 1u);
+        mock_adc.phase[k] = (uint16_t)(counts + 0.5f);
+    }
+}
+
+static void run_isr(int n)
+{
+    int i;
+    for (i = 0; i < n; i++) {
+        const float zero[6] = {0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f};
+        set_currents(zero);
+        will_return(hal_adc_read, true);
+        drive_control_isr(&d);
+        period++;
+    }
+}
+
+/* A perfect machine for the phase check: each phase carries exactly its share of the x-y
+ * current reference the sequence asks for. */
+static void run_isr_following(int n)
+{
+    int i, k;
+    for (i = 0; i < n; i++) {
+        const float v[4] = {0.0f, 0.0f, d.comm.x.ref_xy[0], d.comm.x.ref_xy[1]};
+        float amps[6];
+        for (k = 0; k < 6; k++) {
+            amps[k] = ident_vsd_phase(v, (int16_t)k);
+        }
+        set_currents(amps);
+        will_return(hal_adc_read, true);
+        drive_control_isr(&d);
+        period++;
+    }
+}
+
+static void calibrate(void) { run_isr(DRIVE_CALIBRATION_SAMPLES); }
+
+static void test_requests_checked_and_refused_outside_ready(void **state)
+{
+    (void)state;
+    /* calibrating */
+    assert_int_equal(drive_request_commission(&d, SXL_COMM_STEPS_ALL, 400u), DRIVE_COMM_REFUSED);
+    assert_int_equal(d.comm.reason, COMM_REASON_NOT_READY);
+    calibrate();
+    /* bad masks and currents */
+    assert_int_equal(drive_request_commission(&d, 0u, 400u), DRIVE_COMM_INVALID);
+    assert_int_equal(drive_request_commission(&d, 0x40u | 0x3Fu, 400u), DRIVE_COMM_INVALID);
+    assert_int_equal(drive_request_commission(&d, 0x3Eu, 400u), DRIVE_COMM_INVALID); /* no phases */
+    assert_int_equal(drive_request_commission(&d, 0x05u, 400u),
+                     DRIVE_COMM_INVALID); /* no encoder */
+    assert_int_equal(drive_request_commission(&d, 0x3Fu, 99u), DRIVE_COMM_INVALID);
+    assert_int_equal(drive_request_commission(&d, 0x3Fu, 801u), DRIVE_COMM_INVALID);
+    /* the DC link low */
+    mock_adc.vdc = 1000u; /* 195 V */
+    run_isr(1);
+    assert_int_equal(drive_request_commission(&d, 0x3Fu, 400u), DRIVE_COMM_REFUSED);
+    assert_int_equal(d.comm.reason, COMM_REASON_UNDERVOLTAGE);
+    mock_adc.vdc = 2765u;
+    run_isr(1);
+    /* an encoder error after its index: refused; no index yet: what the sequence is for */
+    mock_encoder.index_seen = true;
+    mock_encoder.healthy = false;
+    run_isr(1);
+    assert_int_equal(drive_request_commission(&d, 0x3Fu, 400u), DRIVE_COMM_REFUSED);
+    assert_int_equal(d.comm.reason, COMM_REASON_ENCODER_ERROR);
+    mock_encoder.index_seen = false;
+    run_isr(1);
+    /* a leg isolated (open-phase operation, drive_open_phase.h): five legs, refused */
+    d.isolated_leg = 2;
+    assert_int_equal(drive_request_commission(&d, 0x3Fu, 400u), DRIVE_COMM_REFUSED);
+    assert_int_equal(d.comm.reason, COMM_REASON_OPEN_PHASE);
+    d.isolated_leg = -1;
+    assert_int_equal(drive_request_commission(&d, 0x3Fu, 400u), DRIVE_COMM_OK);
+    assert_int_equal(d.state, DRIVE_STATE_READY); /* the ISR takes it */
+    run_isr(1);
+    assert_int_equal(d.state, DRIVE_STATE_COMMISSION);
+    assert_false(mock_rec.pwm_off);
+    assert_int_equal(mock_rec.ctl_step, 0u);
+    assert_int_equal(d.comm.state, COMM_STATE_RUNNING);
+}
+
+static void test_refused_while_running_and_in_fault(void **state)
+{
+    (void)state;
+    calibrate();
+    mock_cmd.enable = true;
+    drive_request_run(&d);
+    run_isr(2);
+    assert_int_equal(d.state, DRIVE_STATE_RUN);
+    assert_int_equal(drive_request_commission(&d, 0x3Fu, 400u), DRIVE_COMM_REFUSED);
+    assert_int_equal(d.comm.reason, COMM_REASON_NOT_READY);
+    run_isr(5);
+    assert_int_equal(d.state, DRIVE_STATE_RUN);
+    /* a request stored before a run started is dropped when the ISR sees RUN */
+    drive_trip(&d, DRIVE_FAULT_OVERRUN);
+    assert_int_equal(drive_request_commission(&d, 0x3Fu, 400u), DRIVE_COMM_REFUSED);
+    run_isr(3);
+    assert_int_equal(d.state, DRIVE_STATE_FAULT);
+    assert_true(mock_rec.pwm_off);
+}
+
+static void test_stop_aborts_with_outputs_off(void **state)
+{
+    uint32_t off;
+    (void)state;
+    calibrate();
+    assert_int_equal(drive_request_commission(&d, 0x3Fu, 400u), DRIVE_COMM_OK);
+    run_isr(20);
+    assert_int_equal(d.state, DRIVE_STATE_COMMISSION);
+    /* a run request in COMMISSION is refused, never deferred */
+    drive_request_run(&d);
+    run_isr(1);
+    assert_int_equal(d.state, DRIVE_STATE_COMMISSION);
+    assert_int_equal(d.run_refusal, DRIVE_RUN_REFUSED_STATE);
+    off = mock_rec.force_off;
+    drive_request_stop(&d);
+    run_isr(1);
+    assert_int_equal(d.state, DRIVE_STATE_READY);
+    assert_true(mock_rec.pwm_off && mock_rec.force_off > off);
+    assert_int_equal(d.comm.state, COMM_STATE_ABORTED);
+    assert_int_equal(d.comm.reason, COMM_REASON_ABORTED);
+    run_isr(20);
+    assert_int_equal(d.state, DRIVE_STATE_READY);
+    assert_int_equal(mock_rec.ctl_step, 0u);
+}
+
+static void test_protection_trip_ends_it_in_fault(void **state)
+{
+    float amps[6] = {20.0f, -20.0f, 0.0f, 0.0f, 0.0f, 0.0f};
+    (void)state;
+    calibrate();
+    assert_int_equal(drive_request_commission(&d, 0x3Fu, 400u), DRIVE_COMM_OK);
+    run_isr(10);
+    assert_int_equal(d.state, DRIVE_STATE_COMMISSION);
+    set_currents(amps); /* beyond the 15 A over-current limit */
+    will_return(hal_adc_read, true);
+    drive_control_isr(&d);
+    assert_int_equal(d.state, DRIVE_STATE_FAULT);
+    assert_int_equal(d.fault, DRIVE_FAULT_OVERCURRENT);
+    assert_true(mock_rec.pwm_off);
+    assert_int_equal(d.comm.state, COMM_STATE_ABORTED);
+    assert_int_equal(d.comm.reason, COMM_REASON_FAULT);
+}
+
+/* With no current flowing (every phase open), the sequence's phase check fails at once and
+ * ends it: READY, outputs off, the reason kept. */
+static void test_failed_step_ends_in_ready(void **state)
+{
+    (void)state;
+    calibrate();
+    assert_int_equal(drive_request_commission(&d, 0x3Fu, 400u), DRIVE_COMM_OK);
+    run_isr(600);
+    assert_int_equal(d.state, DRIVE_STATE_READY);
+    assert_true(mock_rec.pwm_off);
+    assert_int_equal(d.comm.state, COMM_STATE_FAILED);
+    assert_int_equal(d.comm.reason, COMM_REASON_NO_CURRENT);
+    assert_int_equal(d.comm.x.result[COMM_Q_PHASES].quality, COMM_QUALITY_FAILED);
+    assert_int_equal(d.comm.x.result[COMM_Q_R].reason, COMM_REASON_SKIPPED);
+}
+
+/* An OPEN_PHASE fault cleared: the next run checks the phases before any control step. */
+static void open_phase_cleared(void)
+{
+    calibrate();
+    drive_trip(&d, DRIVE_FAULT_OPEN_PHASE);
+    assert_int_equal(d.state, DRIVE_STATE_FAULT);
+    drive_request_clear_fault(&d);
+    run_isr(1);
+    assert_int_equal(d.state, DRIVE_STATE_READY);
+    assert_true(d.phase_check_pending);
+    mock_cmd.enable = true;
+    drive_request_run(&d);
+}
+
+static void test_phase_check_before_run_fails_back_to_open_phase(void **state)
+{
+    ctl_fault_record_t r;
+    int n = 0;
+    (void)state;
+    open_phase_cleared();
+    while (drive_read_fault_record(&d, &r)) { /* the first episode's record */
+        n++;
+    }
+    assert_int_equal(n, 1);
+    run_isr(1);
+    assert_int_equal(d.state, DRIVE_STATE_RUN);
+    assert_true(d.phase_verifying);
+    run_isr(1000);
+    assert_int_equal(d.state, DRIVE_STATE_FAULT);
+    assert_int_equal(d.fault, DRIVE_FAULT_OPEN_PHASE);
+    assert_true(mock_rec.pwm_off);
+    assert_int_equal(mock_rec.ctl_step, 0u); /* not one normal control period */
+    assert_true(drive_read_fault_record(&d, &r));
+    assert_int_equal(r.faults, CTL_FAULT_OPEN_PHASE);
+    assert_true(d.phase_check_pending); /* still to be verified */
+}
+
+static void test_phase_check_before_run_passes_then_controls(void **state)
+{
+    int i;
+    (void)state;
+    open_phase_cleared();
+    run_isr_following(1);
+    assert_true(d.phase_verifying);
+    for (i = 1; i < 1000 && d.phase_verifying; i++) {
+        run_isr_following(1);
+        if (d.phase_verifying) {
+            assert_int_equal(mock_rec.ctl_step, 0u);
+        }
+    }
+    assert_false(d.phase_verifying);
+    assert_false(d.phase_check_pending);
+    assert_int_equal(d.state, DRIVE_STATE_RUN);
+    assert_int_equal(d.comm.x.result[COMM_Q_PHASES].quality, COMM_QUALITY_OK);
+    assert_true(i * 1.0e-4 < 0.06);          /* a few tens of ms */
+    assert_int_equal(mock_rec.ctl_step, 1u); /* control from the period the check passed */
+    run_isr(5);
+    assert_int_equal(mock_rec.ctl_step, 6u);
+    /* the next run needs no check */
+    drive_request_stop(&d);
+    run_isr(1);
+    drive_request_run(&d);
+    run_isr(1);
+    assert_int_equal(d.state, DRIVE_STATE_RUN);
+    assert_false(d.phase_verifying);
+}
+
+static void test_stop_during_the_phase_check(void **state)
+{
+    (void)state;
+    open_phase_cleared();
+    run_isr(10);
+    assert_true(d.phase_verifying);
+    drive_request_stop(&d);
+    run_isr(1);
+    assert_int_equal(d.state, DRIVE_STATE_READY);
+    assert_false(d.phase_verifying);
+    assert_true(d.phase_check_pending);
+    assert_true(mock_rec.pwm_off);
+    assert_int_equal(mock_rec.ctl_step, 0u);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test_setup(test_requests_checked_and_refused_outside_ready, setup),
+        cmocka_unit_test_setup(test_refused_while_running_and_in_fault, setup),
+        cmocka_unit_test_setup(test_stop_aborts_with_outputs_off, setup),
+        cmocka_unit_test_setup(test_protection_trip_ends_it_in_fault, setup),
+        cmocka_unit_test_setup(test_failed_step_ends_in_ready, setup),
+        cmocka_unit_test_setup(test_phase_check_before_run_fails_back_to_open_phase, setup),
+        cmocka_unit_test_setup(test_phase_check_before_run_passes_then_controls, setup),
+        cmocka_unit_test_setup(test_stop_during_the_phase_check, setup),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
