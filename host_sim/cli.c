@@ -488,16 +488,17 @@ static void cli_defaults(sim_cli_t *o)
     o->serve_baud = 115200;
 }
 
-/* serve has no scenario timeline (the host commands the drive) and draws nothing itself. */
+/* serve has no scenario timeline (the host commands the drive) and draws nothing itself;
+ * commission only powers the board up as a new machine (serve_config). */
 static int check_serve(const sim_cli_t *o, unsigned where, char *err, size_t len)
 {
     if ((where & OPT_SERVE) == 0u) {
         return 0;
     }
-    if (o->cfg.scenario != SIM_SCEN_STEADY) {
+    if (o->cfg.scenario != SIM_SCEN_STEADY && o->cfg.scenario != SIM_SCEN_COMMISSION) {
         return cli_fail(err, len,
-                        "serve takes --scenario steady or fault-<name>, not '%s' (the host "
-                        "commands speed and load steps)%s",
+                        "serve takes --scenario steady, commission or fault-<name>, not '%s' (the "
+                        "host commands speed and load steps)%s",
                         sim_scenario_name(o->cfg.scenario), "");
     }
     if (o->plot) {

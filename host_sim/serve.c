@@ -130,11 +130,13 @@ static void serve_pace(double wall0, double t, double rate)
 /* The run's configuration as the virtual board needs it: standstill, nothing commanded (a
  * --speed is the initial speed reference, set in sim_serve), the load passive (0 unless given),
  * served until the duration, a signal or the host's shutdown; with --out, the per-period
- * trace.csv of the whole session (no fine.csv). */
+ * trace.csv of the whole session (no fine.csv). --scenario commission powers the board up as a
+ * machine fresh from assembly: rotor anywhere, index not yet seen. */
 static void serve_config(const sim_config_t *c, sim_config_t *s)
 {
     *s = *c;
-    s->scenario = SIM_SCEN_STEADY;
+    /* commission: the rotor anywhere, the encoder's index not yet seen (a new machine) */
+    s->scenario = (c->scenario == SIM_SCEN_COMMISSION) ? SIM_SCEN_COMMISSION : SIM_SCEN_STEADY;
     s->speed_rpm = 0.0;
     s->load_nm = (c->load_nm > -1e9) ? c->load_nm : 0.0;
     s->passive_load = true;

@@ -9,6 +9,7 @@
 #include <math.h>
 #include <stdio.h>
 
+#include "motor_params_file.h"
 #include "sim_run_state.h"
 #include "sxlink_commission.h"
 
@@ -48,6 +49,44 @@ static void comm_collect(sim_run_t *rs, sim_result_t *r)
     comm_truth(&rs->plant, r->comm.truth);
 }
 
+/* DIR/motor_params.h: the OK results as the firmware's motor parameter file, as `sixphase-link
+ * identify --out` writes it. */
+static int comm_write_params(const sim_run_t *rs, const sim_result_t *r, char *err, size_t err_len)
+{
+    static const motor_param_t file_id[SIM_COMM_QUANTITIES] = {
+        MOTOR_PARAM_COUNT, MOTOR_PARAM_POLE_PAIRS, MOTOR_PARAM_ENCODER_OFFSET,
+        MOTOR_PARAM_R,     MOTOR_PARAM_LD,         MOTOR_PARAM_LQ,
+        MOTOR_PARAM_LXY,   MOTOR_PARAM_PSI_F};
+    const sim_commission_result_t *cr = &r->comm;
+    motor_params_t m;
+    char path[1200];
+    FILE *f;
+    int q, rc;
+    motor_params_clear(&m);
+    for (q = 1; q < SIM_COMM_QUANTITIES; q++) {
+        double v = cr->value[q], s = cr->sigma[q];
+        if (cr->quality[q] != SXL_COMM_QUALITY_OK) {
+            continue;
+        }
+        if (q == SXL_COMM_Q_OFFSET) {
+            v = floor((v / 360.0 - floor(v / 360.0)) * 4294967296.0 + 0.5);
+            s = s / 360.0 * 4294967296.0;
+        } else if (q == SXL_COMM_Q_COUNTS) {
+            v = cr->extra[q];
+            s = 0.0;
+        }
+        motor_params_set(&m, file_id[q], v, s, "ok");
+    }
+    (void)snprintf(path, sizeof path, "%s/motor_params.h", rs->cfg->out_dir);
+    f = fopen(path, "w");
+    rc = f ? motor_params_write(f, &m, "identified by sixphase-sim --scenario commission") : -1;
+    if (!f || fclose(f) != 0 || rc != 0) {
+        (void)snprintf(err, err_len, "cannot write %s", path);
+        return -1;
+    }
+    return 0;
+}
+
 int sim_commission_loop(sim_run_t *rs, sim_result_t *r, char *err, size_t err_len)
 {
     const sim_config_t *c = rs->cfg;
@@ -77,5 +116,5 @@ int sim_commission_loop(sim_run_t *rs, sim_result_t *r, char *err, size_t err_le
     if (r->comm.state == SXL_COMM_STATE_DONE) {
         r->comm.apply_result = rs->ops->commission_apply(&r->comm.applied);
     }
-    return 0;
+    return c->out_dir ? comm_write_params(rs, r, err, err_len) : 0;
 }

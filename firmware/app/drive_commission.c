@@ -106,7 +106,8 @@ void drive_commission_begin(drive_t *d)
     }
     d->comm.start_requested = 0;
     why = drive_comm_refusal(d);
-    if (why != COMM_REASON_NONE) {
+    if (why != COMM_REASON_NONE) { /* conditions changed since the request: IDLE, and why */
+        d->comm.state = COMM_STATE_IDLE;
         d->comm.reason = why;
         return;
     }

@@ -19,9 +19,20 @@
 #define FW_PWM_HZ HAL_BOARD_PWM_HZ
 #define FW_DEAD_TIME_NS HAL_BOARD_DEAD_TIME_NS
 #define FW_SCI_BAUD ((uint32_t)115200u)
-/* Electrical angle of the encoder index relative to the d axis (2^32 = one
- * turn): measure it on the machine (docs/porting.md) and set it here. */
+/* The machine identified by the drive's commissioning (docs/commissioning.md): the parameter
+ * file `sixphase-link identify --out FILE` writes, named at build time with
+ * -DSIXPHASE_MOTOR_PARAMS="FILE" (the CMake builds: -DSIXPHASE_MOTOR_PARAMS_FILE=FILE,
+ * docs/porting.md section 8). Without it the reference machine's values stand. */
+#if defined(SIXPHASE_MOTOR_PARAMS)
+#include SIXPHASE_MOTOR_PARAMS
+#endif
+/* Electrical angle of the encoder index relative to the d axis (2^32 = one turn): the
+ * identified one, else 0 (the commissioning finds it; `identify --apply` sets it at run time). */
+#if defined(SIXPHASE_MOTOR_ENCODER_OFFSET)
+#define FW_ENCODER_OFFSET ((uint32_t)SIXPHASE_MOTOR_ENCODER_OFFSET)
+#else
 #define FW_ENCODER_OFFSET ((uint32_t)0u)
+#endif
 /* Bench images only (docs/porting.md section 8): build with -DFW_BENCH_DC_UNDERVOLTAGE_V=0
  * to check the gate signals with the DC link off, or with a lower value for a bench supply.
  * The default, 350 V, refuses RUN and trips below it (docs/faults.md). */

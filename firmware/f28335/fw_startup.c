@@ -6,7 +6,8 @@
  *      flash wait states set from RAM
  *   4. cycle counter, PIE with every vector on fw_unexpected_isr
  *   5. PWM configured with the outputs tripped off, then ADC, encoder, SCI
- *   6. drive_init: INIT -> CALIBRATE (PWM stays off while offsets average)
+ *   6. drive_init with the parameter set (the reference machine's, or the identified one's
+ *      from the motor parameter file: fw.h): INIT -> CALIBRATE (PWM off while offsets average)
  *   7. ADC SEQ1 interrupt installed and enabled, interrupts on, watchdog on
  */
 #include <stdint.h>
@@ -58,6 +59,30 @@ void fw_ramfuncs_copy(void)
 #endif
 }
 
+/* The identified machine's values (fw.h: the motor parameter file) over the reference's. */
+static void fw_motor_params(ctl_params_t *p)
+{
+#if defined(SIXPHASE_MOTOR_R_OHM)
+    p->resistance_ohm = SIXPHASE_MOTOR_R_OHM;
+#endif
+#if defined(SIXPHASE_MOTOR_LD_H)
+    p->ld_h = SIXPHASE_MOTOR_LD_H;
+#endif
+#if defined(SIXPHASE_MOTOR_LQ_H)
+    p->lq_h = SIXPHASE_MOTOR_LQ_H;
+#endif
+#if defined(SIXPHASE_MOTOR_LXY_H)
+    p->l_xy_h = SIXPHASE_MOTOR_LXY_H;
+#endif
+#if defined(SIXPHASE_MOTOR_PSI_F_WB)
+    p->pm_flux_wb = SIXPHASE_MOTOR_PSI_F_WB;
+#endif
+#if defined(SIXPHASE_MOTOR_POLE_PAIRS)
+    p->pole_pairs = (int16_t)SIXPHASE_MOTOR_POLE_PAIRS;
+#endif
+    (void)p;
+}
+
 bool fw_startup(void)
 {
     ctl_params_t p;
@@ -72,6 +97,7 @@ bool fw_startup(void)
     f28335_pie_init(fw_unexpected_isr);
 
     ctl_params_default(&p);
+    fw_motor_params(&p);
     if (FW_DC_UNDERVOLTAGE_OVERRIDE) {
         p.protect.dc_undervoltage_v = (float)FW_BENCH_DC_UNDERVOLTAGE_V;
     }

@@ -53,9 +53,9 @@
     X(NONE, 0, "none", "none")                                                                     \
     X(ABORTED, 1, "aborted", "stopped by a stop command")                                          \
     X(FAULT, 2, "fault", "a protection fault ended the sequence (the drive is in FAULT)")          \
-    X(NOT_READY, 3, "not_ready", "refused: the drive is not READY")                                \
-    X(UNDERVOLTAGE, 4, "undervoltage", "refused: DC link below the under-voltage limit")           \
-    X(ENCODER_ERROR, 5, "encoder_error", "refused: encoder counter or signal error")               \
+    X(NOT_READY, 3, "not_ready", "the drive is not READY")                                         \
+    X(UNDERVOLTAGE, 4, "undervoltage", "DC link below the under-voltage limit")                    \
+    X(ENCODER_ERROR, 5, "encoder_error", "encoder counter or signal error (after its index)")      \
     X(OPEN_PHASE, 6, "open_phase", "a phase carries less than its share of the test current")      \
     X(CURRENT_LIMIT, 7, "current_limit", "a phase current above twice the test current")           \
     X(NO_CURRENT, 8, "no_current", "the test current was not reached within the voltage limit")    \

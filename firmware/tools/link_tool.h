@@ -27,6 +27,9 @@ int exchange(int fd, const options_t *o, uint16_t cmd, const uint16_t *payload, 
 /* The meaning of a reply's result byte. */
 const char *result_name(uint16_t result);
 
+/* -n: the request's frame on stdout instead of sending it. */
+int print_request(uint16_t cmd, const uint16_t *payload, uint16_t len);
+
 /* capture SIGNALS [options]: firmware/tools/link_capture.c. */
 int cmd_capture(const options_t *o, int argc, char **argv);
 
@@ -36,5 +39,8 @@ int cmd_capture(const options_t *o, int argc, char **argv);
 int link_open_phase_request(int argc, char **argv, uint16_t *cmd, uint16_t *payload, uint16_t *len);
 /* The reply to SXL_CMD_GET_OPEN_PHASE on one line; 0 or an exit status. */
 int link_open_phase_print(const sxl_frame_t *r);
+
+/* identify [options]: firmware/tools/link_identify.c. */
+int cmd_identify(const options_t *o, int argc, char **argv);
 
 #endif /* LINK_TOOL_H */

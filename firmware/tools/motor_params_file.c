@@ -180,15 +180,15 @@ int motor_params_write(FILE *f, const motor_params_t *m, const char *origin)
 {
     char lit[48];
     int id;
-    fprintf(f, "/* Motor parameters of this drive's machine: %s */\n", origin);
-    fprintf(f, "/* Build the firmware with -DSIXPHASE_MOTOR_PARAMS=\\\"<this file>\\\" "
-               "(docs/porting.md section 8). */\n");
+    fprintf(f, "/* Motor parameters of this drive's machine: %s. */\n", origin);
+    fprintf(f, "/* The firmware takes it with -DSIXPHASE_MOTOR_PARAMS_FILE=<path> "
+               "(docs/porting.md). */\n");
     for (id = 0; id < (int)MOTOR_PARAM_COUNT; id++) {
         if ((m->have & (1u << id)) == 0u) {
             continue;
         }
         if (id == (int)MOTOR_PARAM_ENCODER_OFFSET) {
-            fprintf(f, "/* %s: %.3f deg, +- %.3f deg (1 sigma)%s%s */\n", mp_text[id],
+            fprintf(f, "/* encoder index to d axis: %.3f deg +- %.3f (1 sigma)%s%s */\n",
                     m->value[id] * (360.0 / 4294967296.0), m->sigma[id] * (360.0 / 4294967296.0),
                     m->note[id] ? ", " : "", m->note[id] ? m->note[id] : "");
             fprintf(f, "#define " MOTOR_PARAM_PREFIX "%s %.0fu\n", mp_name[id], m->value[id]);

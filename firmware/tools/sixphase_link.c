@@ -6,6 +6,7 @@
  *
  * Commands: ping | status | profile | faults | run | stop | clear | speed RPM |
  *           torque NM | controller ddc|mptc49|mptc13 LAMBDA | decode HEXBYTE... |
+ *           capture ... | identify ... (link_capture.c, link_identify.c) |
  *           open-phase | open-phase-action stop|ride-through [min-loss|max-torque] |
  *           isolate A..F | restore (link_open_phase.c) |
  *           shutdown (the virtual board only: it answers, then stops)
@@ -68,8 +69,8 @@ static int usage(const char *why)
                 "%s (usage: sixphase-link [-d|--port DEVICE] [-b BAUD] [-t MS] [-n] "
                 "ping|status|profile|faults|run|stop|clear|shutdown|speed RPM|torque NM|controller "
                 "ddc|mptc49|mptc13 "
-                "LAMBDA|capture SIGNALS [...]|decode HEX...|open-phase|open-phase-action "
-                "ACTION [STRATEGY]|isolate LEG|restore)",
+                "LAMBDA|capture SIGNALS [...]|identify [...]|decode HEX...|open-phase|"
+                "open-phase-action ACTION [STRATEGY]|isolate LEG|restore)",
                 why);
 }
 
@@ -590,7 +591,9 @@ static int parse_options(int argc, char **argv, options_t *o, int *next)
                 "          controller ddc|mptc49|mptc13 LAMBDA decode HEXBYTE...\n"
                 "          capture SIG[,SIG...] [--length N] [--decimate N] [--pre PCT]\n"
                 "                  [--trigger immediate|fault|rising:SIG:LEVEL|falling:SIG:LEVEL]\n"
-                "                  [--wait S] [--out FILE.csv] [--plot FILE.png]\n");
+                "                  [--wait S] [--out FILE.csv] [--plot FILE.png]\n"
+                "          identify [--steps all|phases,encoder,r,ldq,lxy,psi_f] [--current F]\n"
+                "                   [--apply] [--out FILE.h] [--wait S]\n");
             return 0;
         }
         if (i + 1 >= argc) {
@@ -615,8 +618,7 @@ static int parse_options(int argc, char **argv, options_t *o, int *next)
     return -1;
 }
 
-/* -n: the request's frame on stdout instead of sending it. */
-static int print_request(uint16_t cmd, const uint16_t *payload, uint16_t len)
+int print_request(uint16_t cmd, const uint16_t *payload, uint16_t len)
 {
     uint16_t frame[SXL_MAX_FRAME];
     const uint16_t flen = sxl_encode(cmd, payload, len, frame, (uint16_t)SXL_MAX_FRAME);
@@ -690,6 +692,9 @@ int main(int argc, char **argv)
     }
     if (strcmp(argv[i], "capture") == 0) {
         return cmd_capture(&o, argc - i - 1, &argv[i + 1]);
+    }
+    if (strcmp(argv[i], "identify") == 0) {
+        return cmd_identify(&o, argc - i - 1, &argv[i + 1]);
     }
     if (strcmp(argv[i], "faults") == 0 || strcmp(argv[i], "profile") == 0) {
         const bool faults = strcmp(argv[i], "faults") == 0;

@@ -306,8 +306,9 @@ static void test_bad_arguments_rejected(void **state)
     }
 }
 
-/* serve: the options that make no sense without a scenario timeline are refused, --speed is
- * the initial reference, and --fault-time may go up to the run's duration (not beyond). */
+/* serve: the options that make no sense without a scenario timeline are refused (commission
+ * only sets how the board powers up), --speed is the initial reference, and --fault-time may go up
+ * to the run's duration (not beyond). */
 static void test_serve_and_fault_time_arguments(void **state)
 {
     static const struct {
@@ -316,12 +317,13 @@ static void test_serve_and_fault_time_arguments(void **state)
         int serve;
         const char *must_contain; /* NULL: accepted */
     } cases[] = {
-        {{"--scenario", "accel"}, 2, 1, "steady or fault-<name>"},
-        {{"--scenario", "load-step"}, 2, 1, "steady or fault-<name>"},
-        {{"--scenario", "reversal"}, 2, 1, "steady or fault-<name>"},
+        {{"--scenario", "accel"}, 2, 1, "steady, commission or fault-<name>"},
+        {{"--scenario", "load-step"}, 2, 1, "steady, commission or fault-<name>"},
+        {{"--scenario", "reversal"}, 2, 1, "steady, commission or fault-<name>"},
         {{"--plot"}, 1, 1, "sixphase-sim plot DIR"},
         {{"--out", "/tmp/x", "--plot"}, 3, 1, "sixphase-sim plot DIR"},
         {{"--speed", "800", "--scenario", "steady"}, 4, 1, NULL},
+        {{"--scenario", "commission"}, 2, 1, NULL},
         {{"--scenario", "fault-encoder-jump", "--fault-time", "3000"}, 4, 1, NULL},
         {{"--scenario", "fault-encoder-jump", "--fault-time", "200", "--duration", "100"},
          6,

@@ -1,0 +1,301 @@
+/*
+ * sixphase-link identify: run the drive's commissioning (docs/commissioning.md) over the link.
+ *
+ *   identify [--steps all|LIST] [--current FRACTION] [--apply] [--out FILE] [--wait S]
+ *
+ * Starts the sequence (COMMISSION_START), polls COMMISSION_STATUS with the progress on a
+ * terminal, reads every result (COMMISSION_RESULT) and prints one line per quantity with its
+ * 1-sigma uncertainty and quality; --apply asks the drive to take the identified values
+ * (COMMISSION_APPLY); --out writes them as the firmware's motor parameter file
+ * (motor_params_file.h: OK results only). LIST: phases,encoder,r,ldq,lxy,psi_f (the phase check
+ * and, for r..psi_f, the encoder are required, as the drive requires). FRACTION: the test
+ * current as a fraction of rated, 0.1..0.8 (default 0.4). Exit 0 when the sequence finished
+ * with every step done, 1 when it failed, was refused or timed out, 2 for bad usage.
+ */
+#define _DEFAULT_SOURCE /* usleep */
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "link_tool.h"
+#include "motor_params_file.h"
+
+#define IDENTIFY_POLL_US 200000
+
+typedef struct {
+    uint16_t mask;
+    uint16_t permille;
+    int apply;
+    const char *out;
+    double wait_s;
+} identify_request_t;
+
+/* "all" or a comma list of step names into a mask. */
+static int identify_steps(const char *list, uint16_t *mask)
+{
+    char buf[128];
+    char *tok, *save = NULL;
+    if (strcmp(list, "all") == 0) {
+        *mask = SXL_COMM_STEPS_ALL;
+        return 0;
+    }
+    if (strlen(list) >= sizeof buf) {
+        return -1;
+    }
+    strcpy(buf, list);
+    *mask = 0u;
+    for (tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
+        uint16_t k;
+        for (k = 0u; k < SXL_COMM_STEP_COUNT; k++) {
+            if (strcmp(tok, sxl_comm_step_name(k)) == 0) {
+                break;
+            }
+        }
+        if (k == SXL_COMM_STEP_COUNT) {
+            return -1;
+        }
+        *mask = (uint16_t)(*mask | (1u << k));
+    }
+    return (*mask != 0u) ? 0 : -1;
+}
+
+static int identify_parse(int argc, char **argv, identify_request_t *r)
+{
+    int i;
+    r->mask = SXL_COMM_STEPS_ALL;
+    r->permille = SXL_COMM_CURRENT_DEFAULT_PERMILLE;
+    r->apply = 0;
+    r->out = NULL;
+    r->wait_s = 120.0;
+    for (i = 0; i < argc; i++) {
+        const char *v = (i + 1 < argc) ? argv[i + 1] : NULL;
+        double x;
+        char *end = NULL;
+        if (strcmp(argv[i], "--apply") == 0) {
+            r->apply = 1;
+            continue;
+        }
+        if (!v) {
+            return fail(EXIT_USAGE, "identify: %s needs a value", argv[i]);
+        }
+        if (strcmp(argv[i], "--steps") == 0) {
+            if (identify_steps(v, &r->mask) != 0) {
+                return fail(EXIT_USAGE,
+                            "identify: bad --steps '%s' (all or a list of "
+                            "phases,encoder,r,ldq,lxy,psi_f)",
+                            v);
+            }
+        } else if (strcmp(argv[i], "--current") == 0) {
+            x = strtod(v, &end);
+            if (end == v || *end != '\0' || !(x >= 0.1 && x <= 0.8)) {
+                return fail(EXIT_USAGE,
+                            "identify: bad --current '%s' (a fraction of rated, "
+                            "0.1..0.8)",
+                            v);
+            }
+            r->permille = (uint16_t)floor(x * 1000.0 + 0.5);
+        } else if (strcmp(argv[i], "--wait") == 0) {
+            x = strtod(v, &end);
+            if (end == v || *end != '\0' || !(x >= 1.0 && x <= 3600.0)) {
+                return fail(EXIT_USAGE, "identify: bad --wait '%s' (1..3600 s)", v);
+            }
+            r->wait_s = x;
+        } else if (strcmp(argv[i], "--out") == 0) {
+            r->out = v;
+        } else {
+            return fail(EXIT_USAGE, "identify: unknown option '%s'", argv[i]);
+        }
+        i++;
+    }
+    /* the drive's own rule (comm_mask_valid), said here in one line */
+    if ((r->mask & (1u << SXL_COMM_STEP_PHASES)) == 0u ||
+        ((r->mask & 0x3Cu) != 0u && (r->mask & (1u << SXL_COMM_STEP_ENCODER)) == 0u)) {
+        return fail(EXIT_USAGE, "identify: --steps needs phases, and encoder before r, ldq, lxy "
+                                "or psi_f");
+    }
+    return 0;
+}
+
+/* One status reply; 0 and the fields, or the exit status. */
+static int identify_status(int fd, const options_t *o, uint16_t *st)
+{
+    sxl_frame_t reply;
+    int rc = exchange(fd, o, SXL_CMD_COMMISSION_STATUS, NULL, 0u, &reply);
+    if (rc != 0) {
+        return rc;
+    }
+    if (reply.payload[0] != SXL_OK || reply.len < 1u + SXL_CT_SIZE) {
+        return fail(EXIT_IO, "commissioning status: %s", result_name(reply.payload[0]));
+    }
+    memcpy(st, &reply.payload[1], SXL_CT_SIZE * sizeof st[0]);
+    return 0;
+}
+
+/* Polls until the sequence is no longer running; 0 and the last status, or the exit status. */
+static int identify_wait(int fd, const options_t *o, double wait_s, uint16_t *st)
+{
+    const int tty = isatty(2);
+    double waited = 0.0;
+    int rc;
+    for (;;) {
+        rc = identify_status(fd, o, st);
+        if (rc != 0) {
+            return rc;
+        }
+        if (st[SXL_CT_STATE] != SXL_COMM_STATE_RUNNING) {
+            break;
+        }
+        if (waited > wait_s) {
+            return fail(EXIT_IO, "identify: still running after %.0f s (send stop to end it)",
+                        wait_s);
+        }
+        if (tty) {
+            fprintf(stderr, "\ridentify: %3u %% (%s)   ", (unsigned)st[SXL_CT_PROGRESS],
+                    sxl_comm_step_name(st[SXL_CT_STEP]));
+        }
+        usleep(IDENTIFY_POLL_US);
+        waited += 1e-6 * IDENTIFY_POLL_US;
+    }
+    if (tty) {
+        fprintf(stderr, "\ridentify: %3u %%                    \n", (unsigned)st[SXL_CT_PROGRESS]);
+    }
+    return 0;
+}
+
+/* Reads one result; prints it; files an OK one into m. */
+static int identify_result(int fd, const options_t *o, uint16_t q, motor_params_t *m)
+{
+    static const motor_param_t file_id[SXL_COMM_QUANTITY_COUNT] = {
+        MOTOR_PARAM_COUNT, MOTOR_PARAM_POLE_PAIRS, MOTOR_PARAM_ENCODER_OFFSET,
+        MOTOR_PARAM_R,     MOTOR_PARAM_LD,         MOTOR_PARAM_LQ,
+        MOTOR_PARAM_LXY,   MOTOR_PARAM_PSI_F};
+    uint16_t payload[1];
+    sxl_frame_t reply;
+    const uint16_t *r = &reply.payload[1];
+    double scale, value, sigma, extra;
+    int rc;
+    payload[0] = q;
+    rc = exchange(fd, o, SXL_CMD_COMMISSION_RESULT, payload, 1u, &reply);
+    if (rc == 0 && (reply.payload[0] != SXL_OK || reply.len < 1u + SXL_CR2_SIZE)) {
+        rc = fail(EXIT_IO, "commissioning result %u: %s", (unsigned)q,
+                  result_name(reply.payload[0]));
+    }
+    if (rc != 0) {
+        return rc;
+    }
+    scale = sxl_comm_quantity_scale(q);
+    value = (double)sxl_get_i32(&r[SXL_CR2_VALUE]) / scale;
+    sigma = (double)sxl_get_i32(&r[SXL_CR2_SIGMA]) / scale;
+    extra = (double)sxl_get_i32(&r[SXL_CR2_EXTRA]) / sxl_comm_quantity_extra_scale(q);
+    printf("%-20s %12.6g %-6s +- %-10.3g %-8s %-14s extra %g\n", sxl_comm_quantity_name(q), value,
+           sxl_comm_quantity_unit(q), sigma, sxl_comm_quality_name(r[SXL_CR2_QUALITY]),
+           sxl_comm_reason_name(r[SXL_CR2_REASON]), extra);
+    if (r[SXL_CR2_QUALITY] == SXL_COMM_QUALITY_OK && file_id[q] != MOTOR_PARAM_COUNT) {
+        if (q == SXL_COMM_Q_OFFSET) { /* degrees -> 2^32 per turn */
+            const double turns = value / 360.0 - floor(value / 360.0);
+            motor_params_set(m, MOTOR_PARAM_ENCODER_OFFSET, floor(turns * 4294967296.0 + 0.5),
+                             sigma / 360.0 * 4294967296.0, "ok");
+        } else if (q == SXL_COMM_Q_COUNTS) { /* the pole pairs the count confirmed */
+            motor_params_set(m, MOTOR_PARAM_POLE_PAIRS, extra, 0.0, "checked by the count");
+        } else {
+            motor_params_set(m, file_id[q], value, sigma, "ok");
+        }
+    }
+    return 0;
+}
+
+static int identify_apply(int fd, const options_t *o)
+{
+    sxl_frame_t reply;
+    int rc = exchange(fd, o, SXL_CMD_COMMISSION_APPLY, NULL, 0u, &reply);
+    if (rc != 0) {
+        return rc;
+    }
+    if (reply.payload[0] != SXL_OK || reply.len < 1u + SXL_CA2_SIZE) {
+        return fail(EXIT_IO, "apply: %s", result_name(reply.payload[0]));
+    }
+    printf("applied: quantities 0x%04X (the drive's parameter set and encoder offset)\n",
+           (unsigned)sxl_get_u16(&reply.payload[1 + SXL_CA2_APPLIED]));
+    return 0;
+}
+
+static int identify_write(const char *path, const motor_params_t *m)
+{
+    FILE *f = fopen(path, "w");
+    int rc;
+    if (!f) {
+        return fail(EXIT_IO, "cannot write %s", path);
+    }
+    rc = motor_params_write(f, m, "identified by sixphase-link identify");
+    if (fclose(f) != 0 || rc != 0) {
+        return fail(EXIT_IO, "cannot write %s", path);
+    }
+    printf("wrote %s\n", path);
+    return 0;
+}
+
+/* The sequence after a start that was accepted: wait, read, apply, write. */
+static int identify_finish(int fd, const options_t *o, const identify_request_t *req)
+{
+    uint16_t st[SXL_CT_SIZE];
+    motor_params_t m;
+    uint16_t q;
+    int rc = identify_wait(fd, o, req->wait_s, st);
+    motor_params_clear(&m);
+    if (rc != 0) {
+        return rc;
+    }
+    printf("commissioning %s (%s), %.1f s\n", sxl_comm_state_name(st[SXL_CT_STATE]),
+           sxl_comm_reason_name(st[SXL_CT_REASON]),
+           (double)sxl_get_u32(&st[SXL_CT_PERIODS]) * 1e-4);
+    for (q = 0u; q < SXL_COMM_QUANTITY_COUNT && rc == 0; q++) {
+        rc = identify_result(fd, o, q, &m);
+    }
+    if (rc == 0 && req->apply && st[SXL_CT_STATE] == SXL_COMM_STATE_DONE) {
+        rc = identify_apply(fd, o);
+    }
+    if (rc == 0 && req->out) {
+        rc = identify_write(req->out, &m);
+    }
+    if (rc == 0 && st[SXL_CT_STATE] != SXL_COMM_STATE_DONE) {
+        rc = fail(EXIT_IO, "commissioning %s: %s", sxl_comm_state_name(st[SXL_CT_STATE]),
+                  sxl_comm_reason_text(st[SXL_CT_REASON]));
+    }
+    return rc;
+}
+
+int cmd_identify(const options_t *o, int argc, char **argv)
+{
+    identify_request_t req;
+    uint16_t payload[SXL_CC_SIZE];
+    uint16_t st[SXL_CT_SIZE] = {0u};
+    sxl_frame_t reply;
+    int fd = -1;
+    int rc = identify_parse(argc, argv, &req);
+    if (rc != 0) {
+        return rc;
+    }
+    payload[SXL_CC_MASK] = req.mask;
+    sxl_put_u16(&payload[SXL_CC_CURRENT], req.permille);
+    if (o->print_only) {
+        return print_request(SXL_CMD_COMMISSION_START, payload, SXL_CC_SIZE);
+    }
+    rc = open_port(o, &fd);
+    if (rc == 0) {
+        rc = exchange(fd, o, SXL_CMD_COMMISSION_START, payload, SXL_CC_SIZE, &reply);
+    }
+    if (rc == 0 && reply.payload[0] == SXL_ERR_REFUSED && identify_status(fd, o, st) == 0) {
+        rc = fail(EXIT_IO, "commissioning refused: %s", sxl_comm_reason_text(st[SXL_CT_REASON]));
+    } else if (rc == 0 && reply.payload[0] != SXL_OK) {
+        rc = fail(EXIT_IO, "commissioning start: %s", result_name(reply.payload[0]));
+    } else if (rc == 0) {
+        rc = identify_finish(fd, o, &req);
+    }
+    if (fd >= 0) {
+        close(fd);
+    }
+    return rc;
+}
