@@ -17,6 +17,7 @@
 #include "batch.h"
 #include "plots.h"
 #include "reproduce_cases.h"
+#include "reproduce_commission.h"
 #include "reproduce_postfault.h"
 #include "reproduce_report.h"
 #include "sim.h"
@@ -76,7 +77,7 @@ int sim_reproduce(const char *out_dir, int jobs, bool plots, int quiet)
     rep_progress_t progress;
     const double t0 = rep_now();
     rep_case_t *cases;
-    int n = 0, n1, failures, rc, round;
+    int n = 0, n1, n2, failures, rc, round;
     double wall;
     char err[1400];
     if (sim_check_out_dir(out_dir, err, sizeof err) != 0) {
@@ -91,6 +92,7 @@ int sim_reproduce(const char *out_dir, int jobs, bool plots, int quiet)
     rep_cases_first_batch(cases, &n, out_dir);
     rep_cases_improvement_sweep(cases, &n, out_dir);
     rep_cases_postfault(cases, &n, out_dir);
+    rep_cases_commission(cases, &n);
     n1 = n;
     if (!quiet) {
         fprintf(stderr, "reproduce: %d runs, %d workers\n", n1, jobs);
@@ -105,6 +107,9 @@ int sim_reproduce(const char *out_dir, int jobs, bool plots, int quiet)
         }
         failures += sim_batch_run(cases, from, n, jobs, rep_case_done, &progress);
     }
+    n2 = n; /* the controller set the commissioning identified (section 10) */
+    rep_cases_commission_identified(cases, &n);
+    failures += sim_batch_run(cases, n2, n, jobs, rep_case_done, &progress);
     wall = rep_now() - t0;
     rc = rep_write_all(out_dir, cases, n, wall, jobs);
     if (rc == 0 && plots) {

@@ -1,6 +1,8 @@
 /* The reproduce report, summary and timings, see reproduce_report.h. */
 #include "reproduce_report.h"
 
+#include "reproduce_commission.h"
+
 #include <math.h>
 #include <stdbool.h>
 #include <stdio.h>
@@ -580,6 +582,7 @@ int rep_write_report(const char *dir, const rep_case_t *cases, int n)
     rep_section_all_runs(f, cases, n);
     rep_section_improvements(f, cases, n);
     rep_section_postfault(f, cases, n);
+    rep_write_commission_section(f, cases, n);
     return (fclose(f) == 0) ? 0 : -1;
 }
 

@@ -138,6 +138,7 @@ typedef struct {
     double torque_ripple_pp_nm;
     double torque_ripple_sampled_nm; /* std of plant torque at the control samples */
     double torque_mean_nm;
+    double torque_ref_mean_nm; /* the controller's reference, mean over the analysis window */
     double speed_mean_rpm;
     double xy_current_rms_a;
     double phase_current_rms_a; /* six-phase mean, without DC */

@@ -142,6 +142,7 @@ static void sim_print_results_json(FILE *f, const sim_config_t *c, const sim_res
     json_num(f, "torque_ripple_pp_nm", r->torque_ripple_pp_nm, true);
     json_num(f, "torque_ripple_sampled_nm", r->torque_ripple_sampled_nm, true);
     json_num(f, "torque_mean_nm", r->torque_mean_nm, true);
+    json_num(f, "torque_ref_mean_nm", r->torque_ref_mean_nm, true);
     json_num(f, "speed_mean_rpm", r->speed_mean_rpm, true);
     json_num(f, "xy_current_rms_a", r->xy_current_rms_a, true);
     json_num(f, "phase_current_rms_a", r->phase_current_rms_a, true);

@@ -85,6 +85,8 @@ void sim_metrics_add_period(sim_metrics_t *m, const sim_trace_row_t *row, bool i
         m->t_ctl[m->n_ctl] = row->t;
         m->te_ctl[m->n_ctl] = row->te;
         m->n_ctl++;
+        m->tref_sum += row->tref;
+        m->tref_n++;
         for (k = 0; k < 6; k++) {
             m->phase_peak_a = fmax(m->phase_peak_a, fabs(row->i_phase[k]));
         }
@@ -155,6 +157,7 @@ void sim_metrics_finish(const sim_metrics_t *m, sim_result_t *r)
     }
     sim_metrics_window_stats(m, first, r);
     r->phase_current_peak_a = m->phase_peak_a;
+    r->torque_ref_mean_nm = (m->tref_n > 0) ? m->tref_sum / (double)m->tref_n : 0.0;
     r->transient_ms = -1.0;
     if (m->track_settle && metrics_settle_result(&m->settle) >= 0.0) {
         r->transient_ms = 1e3 * (metrics_settle_result(&m->settle) - m->t_event);

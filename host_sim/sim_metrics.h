@@ -23,6 +23,8 @@ typedef struct {
     size_t n_ctl, cap_ctl;
     double *t_ctl, *te_ctl;
     double phase_peak_a;
+    double tref_sum; /* the controller's torque reference over the window's control periods */
+    long tref_n;
     /* transients over the whole run */
     bool track_settle, track_reach;
     double t_event;
