@@ -6,6 +6,9 @@
 #define COMM_BANDWIDTH_RAD_S 942.0f /* current regulator, 150 Hz */
 #define COMM_LIMIT_DQ 0.35f         /* |u_dq| limit, of the DC link */
 #define COMM_LIMIT_XY 0.10f         /* |u_x|, |u_y| limit */
+/* Every step's time bound: this times its nominal duration, plus COMM_TIMEOUT_MARGIN_S. */
+#define COMM_TIMEOUT_FACTOR 3.0f
+#define COMM_TIMEOUT_MARGIN_S 2.0f
 
 static const float step_seconds[SXL_COMM_STEP_COUNT] = {
     IDENT_PHASE_SECONDS,      IDENT_ENCODER_SECONDS,    IDENT_RESISTANCE_SECONDS,
@@ -177,8 +180,15 @@ static void comm_end(comm_t *c, int16_t state, int16_t reason)
     for (k = c->step; k < (int16_t)COMM_STEP_END; k++) {
         const uint16_t quantities = ((c->mask & (1u << k)) != 0u) ? comm_step_quantities(k) : 0u;
         for (q = 0; q < COMM_Q_COUNT; q++) {
-            if ((quantities & (1u << q)) != 0u && c->x.result[q].quality == COMM_QUALITY_NOT_RUN) {
-                c->x.result[q].reason = COMM_REASON_SKIPPED;
+            ident_result_t *r = &c->x.result[q];
+            if ((quantities & (1u << q)) == 0u || r->quality != COMM_QUALITY_NOT_RUN) {
+                continue;
+            }
+            if (k == c->step && reason == COMM_REASON_TIMEOUT) {
+                r->quality = COMM_QUALITY_FAILED; /* the step ran out of time on it */
+                r->reason = COMM_REASON_TIMEOUT;
+            } else {
+                r->reason = COMM_REASON_SKIPPED;
             }
         }
     }
@@ -219,6 +229,11 @@ bool comm_period(comm_t *c, const ident_input_t *in, float u[4])
     c->periods++;
     ident_measure(&c->x, in);
     status = comm_run_step(c, in);
+    if (status == IDENT_RUNNING &&
+        (float)(c->periods - c->step_start) * c->x.m.ts >
+            COMM_TIMEOUT_FACTOR * step_seconds[c->step] + COMM_TIMEOUT_MARGIN_S) {
+        status = ident_fail(&c->x, COMM_REASON_TIMEOUT);
+    }
     if (status != IDENT_RUNNING && !comm_advance(c, status)) {
         return false;
     }

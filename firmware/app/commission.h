@@ -2,9 +2,10 @@
  * The commissioning sequence (docs/commissioning.md): the drive identifies its motor and
  * aligns its encoder in the state COMMISSION, one call per control period from the ISR. The
  * steps run in order (sxlink_commission.h): phase check, encoder, resistance, L_d and L_q,
- * L_xy, magnet flux; each leaves the machine as the next expects it, each has its own time
- * bound and result checks. A failed step ends the sequence (the later ones are SKIPPED); the
- * results so far stay readable. The drive forces the outputs off whenever the sequence ends.
+ * L_xy, magnet flux; each leaves the machine as the next expects it, each has its own result
+ * checks and a time bound (three times its nominal duration plus 2 s: TIMEOUT). A failed
+ * step ends the sequence (the later ones are SKIPPED); the results so far stay readable. The
+ * drive forces the outputs off whenever the sequence ends.
  *
  * The background asks for a start (comm_request); the ISR starts it from READY (comm_start).
  */

@@ -20,7 +20,10 @@
 #define ENC_DAMPING_RATIO 0.7f
 #define ENC_POOR_SIGMA_TURNS 0.0028f /* 1 electrical degree */
 
-enum { EN_ALIGN, EN_ALIGN2, EN_SPIN, EN_FWD, EN_TURN, EN_BWD, EN_STOP };
+#define ENC_CURRENT_RAMP_S 0.2f    /* test current to half and back, for the load check */
+#define ENC_LOAD_LAG_TURNS 0.0056f /* 2 electrical degrees of lag that a load torque causes */
+
+enum { EN_ALIGN, EN_ALIGN2, EN_SPIN, EN_FWD, EN_TURN, EN_BWD, EN_STOP, EN_HALF, EN_FWD2, EN_STOP2 };
 
 void ident_encoder_begin(ident_ctx_t *x, ident_encoder_t *s)
 {
@@ -165,10 +168,14 @@ static ident_status_t enc_finish(ident_ctx_t *x, ident_encoder_t *s)
 {
     const float mf = ident_blocks_mean(&s->fwd);
     const float mb = ident_blocks_mean(&s->bwd);
+    /* forward at I: offset + a + b, backward: offset + a - b, forward at I / 2: offset + 2 a +
+     * 2 b, with b friction's lag and a a load's */
+    const float load_lag = ident_blocks_mean(&s->fwd2) - mf - 0.5f * (mf - mb);
     const float sf = ident_blocks_sigma(&s->fwd);
     const float sb = ident_blocks_sigma(&s->bwd);
     const float sigma = 0.5f * ctl_sqrtf(sf * sf + sb * sb);
     float absolute;
+    const bool loaded = load_lag > ENC_LOAD_LAG_TURNS || load_lag < -ENC_LOAD_LAG_TURNS;
     x->offset_turns = 0.5f * (mf + mb);
     x->offset_known = true;
     x->offset_abs = x->m.hal_offset +
@@ -177,6 +184,11 @@ static ident_status_t enc_finish(ident_ctx_t *x, ident_encoder_t *s)
     absolute -= (float)(int32_t)absolute;
     if (absolute < 0.0f) {
         absolute += 1.0f;
+    }
+    if (loaded) { /* the offset is off by the load's lag, and every later step with it */
+        ident_set_result(x, COMM_Q_OFFSET, 360.0f * absolute, 360.0f * sigma, 360.0f * load_lag,
+                         COMM_QUALITY_FAILED, COMM_REASON_LOAD_TORQUE);
+        return ident_fail(x, COMM_REASON_LOAD_TORQUE);
     }
     ident_set_result(x, COMM_Q_OFFSET, 360.0f * absolute, 360.0f * sigma, 360.0f * 0.5f * (mf - mb),
                      (sigma > ENC_POOR_SIGMA_TURNS) ? COMM_QUALITY_POOR : COMM_QUALITY_OK,
@@ -216,6 +228,45 @@ static ident_status_t enc_sweep(ident_ctx_t *x, ident_encoder_t *s, const ident_
         if (x->traj.speed != 0.0f) {
             x->t = 0u;
         } else if (x->t >= ident_periods(x, ENC_STOP_HOLD_S)) {
+            ident_goto(x, EN_HALF);
+        }
+        break;
+    }
+    return IDENT_RUNNING;
+}
+
+/* The load check: forward again at half the current. A lag that does not change sign with
+ * the direction (a load torque) doubles at half the current, as friction's does. */
+static ident_status_t enc_half(ident_ctx_t *x, ident_encoder_t *s, const ident_input_t *in)
+{
+    const uint32_t ramp = ident_periods(x, ENC_CURRENT_RAMP_S);
+    switch (x->phase) {
+    case EN_HALF:
+        x->ref_dq[0] = x->i_test * (1.0f - 0.5f * ident_ramp(x->t, ramp));
+        if (x->t == ramp) {
+            x->traj.target = ENC_SPEED;
+        }
+        if (x->traj.speed < ENC_SPEED) {
+            s->travel_start = x->traj.travel;
+        } else if (x->traj.travel >= s->travel_start + ENC_SETTLE_TURNS) {
+            s->travel_start = x->traj.travel;
+            ident_blocks_init(&s->fwd2, s->fwd.length);
+            ident_goto(x, EN_FWD2);
+        }
+        break;
+    case EN_FWD2:
+        ident_blocks_add(&s->fwd2, enc_offset_sample(s, x, in));
+        if (x->traj.travel >= s->travel_start + ENC_OFFSET_TURNS) {
+            x->traj.target = 0.0f;
+            ident_goto(x, EN_STOP2);
+        }
+        break;
+    default: /* EN_STOP2: stop, the current back up */
+        if (x->traj.speed != 0.0f) {
+            x->t = 0u;
+        }
+        x->ref_dq[0] = x->i_test * (0.5f + 0.5f * ident_ramp(x->t, ramp));
+        if (x->t >= ramp + ident_periods(x, ENC_STOP_HOLD_S)) {
             return enc_finish(x, s);
         }
         break;
@@ -257,5 +308,5 @@ ident_status_t ident_encoder_step(ident_ctx_t *x, ident_encoder_t *s, const iden
     if (x->phase == EN_SPIN) {
         return enc_spin(x, s, in);
     }
-    return enc_sweep(x, s, in);
+    return (x->phase >= EN_HALF) ? enc_half(x, s, in) : enc_sweep(x, s, in);
 }

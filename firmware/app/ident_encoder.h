@@ -15,8 +15,12 @@
  *   offset the angle keeps turning forward two turns, then backward two turns, at the same
  *          speed after a settling half turn; the commanded angle minus the HAL's angle is
  *          averaged in quarter-turn blocks each way. The mean of the two directions is the
- *          offset (friction and the swing cancel); half their difference is the lag.
- * The HAL's angle is the floor of the count: half a count is added. About 12 s.
+ *          offset (friction and the swing cancel); half their difference is the lag;
+ *   load   forward again at half the current: a lag that does not change sign with the
+ *          direction (a load torque on the shaft, which friction's does) doubles there; beyond
+ *          2 electrical degrees the step fails (LOAD_TORQUE: the offset, and psi_f with it,
+ *          would be off by the lag; the result's extra is the load's lag).
+ * The HAL's angle is the floor of the count: half a count is added. About 15 s.
  */
 #ifndef IDENT_ENCODER_H
 #define IDENT_ENCODER_H
@@ -24,16 +28,17 @@
 #include "ident.h"
 
 typedef struct {
-    int32_t p0;         /* position at the spin's start */
-    int32_t p_mark;     /* position at the start of a measuring quarter turn */
-    float travel_mark;  /* commanded travel there, turns */
-    float travel_index; /* commanded travel when the index was first seen; < 0: not yet */
-    float travel_known; /* commanded travel when the direction was found */
-    bool measuring;     /* counts per electrical turn being measured */
-    ident_blocks_t cpe; /* counts per electrical turn, quarter-turn blocks */
-    ident_blocks_t fwd; /* offset turning forward, turns, quarter-turn blocks */
-    ident_blocks_t bwd; /* and backward */
-    float ref;          /* the offset's unwrapping reference, turns */
+    int32_t p0;          /* position at the spin's start */
+    int32_t p_mark;      /* position at the start of a measuring quarter turn */
+    float travel_mark;   /* commanded travel there, turns */
+    float travel_index;  /* commanded travel when the index was first seen; < 0: not yet */
+    float travel_known;  /* commanded travel when the direction was found */
+    bool measuring;      /* counts per electrical turn being measured */
+    ident_blocks_t cpe;  /* counts per electrical turn, quarter-turn blocks */
+    ident_blocks_t fwd;  /* offset turning forward, turns, quarter-turn blocks */
+    ident_blocks_t bwd;  /* and backward */
+    ident_blocks_t fwd2; /* forward again at half the current (the load check) */
+    float ref;           /* the offset's unwrapping reference, turns */
     bool have_ref;
     float travel_start; /* travel at the start of the running direction's part */
 } ident_encoder_t;
@@ -41,6 +46,6 @@ typedef struct {
 void ident_encoder_begin(ident_ctx_t *x, ident_encoder_t *s);
 ident_status_t ident_encoder_step(ident_ctx_t *x, ident_encoder_t *s, const ident_input_t *in);
 
-#define IDENT_ENCODER_SECONDS 12.0f
+#define IDENT_ENCODER_SECONDS 15.5f
 
 #endif /* IDENT_ENCODER_H */

@@ -29,7 +29,7 @@
       "smallest phase current over its share (value); the phase that failed, 0..5 = A..F, or -1")  \
     X(COUNTS, 1, "counts_per_elec_turn", "counts", 1000.0, 1.0, "pole pairs the count implies")    \
     X(OFFSET, 2, "encoder_offset", "deg", 1000.0, 1000.0,                                          \
-      "half the forward-backward difference (the lag), deg")                                       \
+      "friction's lag (half the forward-backward difference), or a load's, deg")                   \
     X(R, 3, "r", "ohm", 1.0e6, 1.0, "-")                                                           \
     X(LD, 4, "ld", "H", 1.0e9, 1.0, "rotor motion during the test, encoder counts")                \
     X(LQ, 5, "lq", "H", 1.0e9, 1.0, "rotor motion during the test, encoder counts")                \
@@ -69,9 +69,12 @@
     X(SCATTER, 15, "scatter", "the blocks disagree: uncertainty above the quality limit")          \
     X(SKIPPED, 16, "skipped", "not run: an earlier step failed")                                   \
     X(OUT_OF_RANGE, 17, "out_of_range",                                                            \
-      "the estimate lies outside the range the controller accepts")
+      "the estimate lies outside the range the controller accepts")                                \
+    X(TIMEOUT, 18, "timeout", "the step ran past its time bound (a stalled rotor, a load)")        \
+    X(LOAD_TORQUE, 19, "load_torque",                                                              \
+      "a load torque on the shaft biases the offset: commission with the shaft free")
 
-#define SXL_COMM_REASON_COUNT 18u
+#define SXL_COMM_REASON_COUNT 20u
 
 /* State of the sequence (COMMISSION_STATUS): X(id, number, name, meaning). */
 #define SXL_COMM_STATE_LIST(X)                                                                     \

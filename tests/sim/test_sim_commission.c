@@ -22,6 +22,7 @@
 
 #include "hal_sim.h"
 #include "sim.h"
+#include "sxlink.h"
 #include "sim_run_state.h"
 #include "sxlink_commission.h"
 
@@ -168,6 +169,27 @@ static void test_wrong_pole_pairs_and_swapped_channels(void **state)
     check_encoder_error(3, 3, true, false, SXL_COMM_REASON_REVERSED, 0);
     check_encoder_error(4, 3, true, false, SXL_COMM_REASON_REVERSED, 0);
     check_encoder_error(3, 3, false, true, SXL_COMM_REASON_NO_MOTION, 0);
+}
+
+/* A load torque on the shaft (0.5 N m against the 2.8 N m the test current holds): the offset
+ * would be off by its lag (about 10 electrical degrees); the load check finds it, the sequence
+ * stops there with the outputs off. */
+static void test_load_torque_found(void **state)
+{
+    sim_config_t c;
+    sim_result_t r;
+    (void)state;
+    config(&c, &plants[1], 0);
+    c.load_nm = 0.5;
+    run(&c, &r);
+    print_message("load 0.5 N m: %s, load lag %.2f deg\n",
+                  sxl_comm_reason_name((uint16_t)r.comm.reason), r.comm.extra[SXL_COMM_Q_OFFSET]);
+    assert_int_equal(r.comm.state, SXL_COMM_STATE_FAILED);
+    assert_int_equal(r.comm.reason, SXL_COMM_REASON_LOAD_TORQUE);
+    assert_int_equal(r.comm.quality[SXL_COMM_Q_OFFSET], SXL_COMM_QUALITY_FAILED);
+    assert_true(fabs(r.comm.extra[SXL_COMM_Q_OFFSET]) > 2.0);
+    assert_int_equal(r.comm.reason_q[SXL_COMM_Q_PSI_F], SXL_COMM_REASON_SKIPPED);
+    assert_int_equal(r.final_state, 2);
 }
 
 /* The DC link below the under-voltage limit (300 V against 350 V): refused, nothing runs. */
@@ -336,6 +358,7 @@ int main(void)
         cmocka_unit_test(test_five_plants_float),
         cmocka_unit_test(test_closed_loop_after_commissioning),
         cmocka_unit_test(test_wrong_pole_pairs_and_swapped_channels),
+        cmocka_unit_test(test_load_torque_found),
         cmocka_unit_test(test_refused_with_the_dc_link_low),
         cmocka_unit_test(test_refused_while_running),
         cmocka_unit_test(test_open_phase_checked_again_after_clear),
