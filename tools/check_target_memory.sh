@@ -47,9 +47,15 @@ for arith in float fixed; do
   # The fixed (Q24) image leaves the MPTC-49/13 search in flash (F28335_flash.cmd, the
   # SIXPHASE_FW_Q24 branch; docs/porting.md section 7): the linker's define and what it moves.
   # Both leave the open-phase step in flash (it runs only with an isolated leg; in RAM it would
-  # take L0..L3 to 93 %), and what runs once when a leg is isolated or restored.
+  # take L0..L3 to 93 %), and what runs once when a leg is isolated or restored; and the
+  # commissioning, which runs in the interrupt instead of the control step: its entry points
+  # from the period, and what only they reach (docs/porting.md section 7).
   link=()
   from_flash=ctl_postfault_step,drive_open_phase_faults,drive_isolate,hal_pwm_restore_legs
+  from_flash+=,drive_commission_begin,drive_commission_period,drive_commission_angle
+  from_flash+=,drive_phase_verify_start,drive_phase_verify_period,comm_abort
+  # and a fault's latching, once in the period that latches it
+  from_flash+=,drive_latch_fault,drive_enter_fault,drive_report_overrun
   if [ $arith = float ]; then
     flags+=(-DCTL_MATH_FLOAT=1)
   else

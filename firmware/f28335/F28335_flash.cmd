@@ -127,14 +127,16 @@ SECTIONS
                    /* firmware/app/drive.c */
                    *(.text:_drive_calibrate) *(.text:_drive_clear_blockers)
                    *(.text:_drive_control_isr) *(.text:_drive_control_step)
-                   *(.text:_drive_duty_to_hal) *(.text:_drive_enter_fault)
-                   *(.text:_drive_fault_from_mask) *(.text:_drive_fault_step)
-                   *(.text:_drive_fault_to_mask) *(.text:_drive_latch_fault)
+                   *(.text:_drive_duty_to_hal) *(.text:_drive_fault_from_mask)
+                   *(.text:_drive_fault_step) *(.text:_drive_fault_to_mask)
                    *(.text:_drive_limits) *(.text:_drive_omega_scale) *(.text:_drive_protect)
                    *(.text:_drive_ready_step) *(.text:_drive_refuse_run)
-                   *(.text:_drive_report_overrun) *(.text:_drive_run_check)
+                   *(.text:_drive_run_check)
                    *(.text:_drive_run_step) *(.text:_drive_scale_measurements)
-                   *(.text:_drive_start_calibration) *(.text:_drive_trip)
+                   *(.text:_drive_start_calibration)
+                   /* a fault's latching (drive_latch_fault, drive_enter_fault, drive_trip,
+                      drive_report_overrun) runs from flash: once, in the
+                      period that latches it, after the outputs are off (docs/porting.md 7) */
                    /* firmware/app/drive_open_phase.c */
                    *(.text:_drive_open_phase_gate) *(.text:_drive_open_phase_gate_update)
                    *(.text:_drive_open_phase_in_force) *(.text:_drive_open_phase_period)
@@ -151,6 +153,7 @@ SECTIONS
                    /* hal/f28335/src/f28335_eqep.c */
                    *(.text:_abs32) *(.text:_f28335_qep_angle) *(.text:_f28335_qep_speed_capture)
                    *(.text:_f28335_qep_speed_unit) *(.text:_hal_encoder_rehome)
+                   *(.text:_qep_count_step) *(.text:_qep_track_position)
                    *(.text:_qep_unit_period)
                    /* hal/f28335/src/f28335_gpio.c */
                    *(.text:_f28335_gpio_read)
