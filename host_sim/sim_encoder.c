@@ -188,12 +188,11 @@ static int32_t enc_window_speed(sim_encoder_t *enc, int64_t count, double edge_t
     return speed;
 }
 
+/* pos: the shaft in counts (enc_shaft_counts), count: its floor. */
 static void enc_quantised(sim_encoder_t *enc, const plant_params_t *p, const plant_state_t *s,
-                          double t, double ts, hal_encoder_sample_t *e)
+                          double pos, int64_t count, double t, double ts, hal_encoder_sample_t *e)
 {
     const double cpr = 4.0 * (double)p->encoder_lines;
-    const double pos = enc_shaft_counts(p, s->theta_m);
-    const int64_t count = (int64_t)floor(pos);
     const int64_t cpr_i = (int64_t)(4u * p->encoder_lines);
     int64_t in_turn = (enc->index_seen ? count : count - enc->count0) % cpr_i;
     double edge_t;
@@ -238,18 +237,20 @@ void sim_encoder_sample(sim_encoder_t *enc, const plant_params_t *p, const plant
 {
     plant_state_t seen = *x; /* the shaft as the encoder interface sees it */
     hal_encoder_sample_t e;
+    double pos;
     int64_t count;
     seen.theta_m = sim_fault_encoder_angle(fs, p->encoder_stuck ? enc->theta_stuck : x->theta_m);
     if (p->encoder_stuck) {
         seen.omega_m = 0.0;
     }
-    count = (int64_t)floor(enc_shaft_counts(p, seen.theta_m));
+    pos = enc_shaft_counts(p, seen.theta_m);
+    count = (int64_t)floor(pos);
     enc_index(enc, p, count, fs);
     e.healthy = true;
     if (!p->encoder_quant_on) {
         enc_exact(enc, p, &seen, &e);
     } else {
-        enc_quantised(enc, p, &seen, t, ts, &e);
+        enc_quantised(enc, p, &seen, pos, count, t, ts, &e);
     }
     /* before the index the eQEP reports unhealthy (QEPSTS.FIMF clear: the drive refuses RUN) */
     e.healthy = e.healthy && enc->index_seen;
