@@ -24,8 +24,10 @@
 #define SXL_MAX_FRAME (SXL_MAX_PAYLOAD + 5u)
 /* Protocol version. 2: fault fields in the status, SXL_CMD_GET_FAULT_RECORD; 3: why the last
  * run or clear was refused, in the status, and the result SXL_ERR_BUSY; 4: the capture buffer
- * (SXL_CMD_CAPTURE_*, SXL_ERR_NO_ROOM). */
-#define SXL_VERSION 4u
+ * (SXL_CMD_CAPTURE_*, SXL_ERR_NO_ROOM); 5: commissioning (SXL_CMD_COMMISSION_*, the drive state
+ * COMMISSION) and open-phase operation (SXL_CMD_GET_OPEN_PHASE .. SXL_CMD_RESTORE_LEGS, status
+ * flag bit 3). */
+#define SXL_VERSION 5u
 
 /* Commands (host -> drive). A reply carries CMD | SXL_REPLY and starts with
  * a result byte. */
