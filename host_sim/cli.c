@@ -532,10 +532,36 @@ static int check_open_phase_options(const sim_config_t *c, const int *seen, char
     if (seen[G_ISOLATE_TIME] && !seen[G_ISOLATE_LEG]) {
         return cli_fail(err, len, "%s needs --isolate-leg%s", "--isolate-time", "");
     }
-    if (seen[G_ISOLATE_LEG] && c->fault != SIM_FAULT_NONE) {
+    if (seen[G_ISOLATE_LEG] && c->fault != SIM_FAULT_NONE && !open_fault) {
         return cli_fail(err, len,
                         "%s runs on a healthy machine, not with a fault-<name> scenario%s",
                         "--isolate-leg", "");
+    }
+    if (seen[G_ISOLATE_LEG] && open_fault && c->isolate_leg != first) {
+        (void)snprintf(err, len, "--isolate-leg with fault-open-phase names the open phase (%c)",
+                       'A' + first);
+        return -1;
+    }
+    return 0;
+}
+
+/* In a run the strategy and the hand-off act only in five-leg operation, and after a stop the
+ * second fault finds the drive off; serve takes them (the host may turn the ride-through on). */
+static int check_ride_through_options(const sim_config_t *c, const int *seen, unsigned where,
+                                      char *err, size_t len)
+{
+    const bool five_legs = c->open_phase_action == 1 || seen[G_ISOLATE_LEG];
+    if ((where & OPT_SERVE) != 0u) {
+        return 0;
+    }
+    if ((seen[G_POSTFAULT] || seen[G_HANDOFF_DELAY]) && !five_legs) {
+        return cli_fail(err, len, "%s needs --ride-through or --isolate-leg%s",
+                        seen[G_POSTFAULT] ? "--postfault" : "--handoff-delay", "");
+    }
+    if (seen[G_SECOND_FAULT] && c->open_phase_action != 1) {
+        return cli_fail(err, len,
+                        "%s needs --ride-through (with stop the first open phase ends the run)%s",
+                        "--second-fault", "");
     }
     return 0;
 }
@@ -600,7 +626,8 @@ static int check_combination(const sim_cli_t *o, const int *seen, unsigned where
     if (seen[G_FAULT_TIME] && check_fault_time(c, where, err, len) != 0) {
         return -1;
     }
-    if (check_open_phase_options(c, seen, err, len) != 0) {
+    if (check_open_phase_options(c, seen, err, len) != 0 ||
+        check_ride_through_options(c, seen, where, err, len) != 0) {
         return -1;
     }
     /* Both switches of a leg are off for the dead time at every edge: it must leave room for

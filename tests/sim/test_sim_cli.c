@@ -358,6 +358,84 @@ static void test_serve_and_fault_time_arguments(void **state)
     }
 }
 
+/* The open-phase options that only act in five-leg operation need it to happen in a run: the
+ * post-fault strategy and the hand-off delay need --ride-through or --isolate-leg, a second
+ * open phase needs --ride-through (with stop the first one ends the run). An isolation command
+ * may name the phase the scenario opens (the test of five legs on a disconnected phase, the one
+ * way to run MPTC-49 post-fault, whose healthy currents trip the protection), no other. serve
+ * takes them all: the host may turn the ride-through on over the link. */
+static void test_open_phase_option_combinations(void **state)
+{
+    static const struct {
+        const char *args[10];
+        int n;
+        int serve;
+        const char *must_contain; /* NULL: accepted */
+    } cases[] = {
+        {{"--controller", "ddc", "--scenario", "fault-open-phase", "--postfault", "max-torque"},
+         6,
+         0,
+         "--postfault needs --ride-through or --isolate-leg"},
+        {{"--controller", "ddc", "--scenario", "steady", "--postfault", "min-loss"},
+         6,
+         0,
+         "--postfault needs --ride-through or --isolate-leg"},
+        {{"--controller", "ddc", "--scenario", "fault-open-phase", "--handoff-delay", "0.01"},
+         6,
+         0,
+         "--handoff-delay needs --ride-through or --isolate-leg"},
+        {{"--controller", "ddc", "--scenario", "fault-open-phase", "--second-fault", "E"},
+         6,
+         0,
+         "--second-fault needs --ride-through"},
+        {{"--controller", "ddc", "--scenario", "fault-open-phase", "--isolate-leg", "D"},
+         6,
+         0,
+         "names the open phase (C)"},
+        {{"--controller", "ddc", "--scenario", "fault-open-phase", "--open-phase", "E",
+          "--isolate-leg", "C"},
+         8,
+         0,
+         "names the open phase (E)"},
+        {{"--controller", "mptc49", "--scenario", "fault-open-phase", "--open-phase", "E",
+          "--isolate-leg", "E", "--no-protect"},
+         9,
+         0,
+         NULL},
+        {{"--controller", "ddc", "--scenario", "steady", "--isolate-leg", "B", "--postfault",
+          "max-torque", "--handoff-delay", "0.003"},
+         10,
+         0,
+         NULL},
+        {{"--controller", "ddc", "--scenario", "fault-open-phase", "--ride-through",
+          "--second-fault", "E", "--handoff-delay", "0"},
+         9,
+         0,
+         NULL},
+        {{"--scenario", "fault-open-phase", "--second-fault", "E", "--postfault", "max-torque"},
+         6,
+         1,
+         NULL},
+    };
+    size_t i;
+    (void)state;
+    for (i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        sim_cli_t o;
+        char err[256] = "";
+        char **a = (char **)(uintptr_t)cases[i].args;
+        const int rc = cases[i].serve ? sim_cli_parse_serve(cases[i].n, a, &o, err, sizeof err)
+                                      : sim_cli_parse_run(cases[i].n, a, &o, err, sizeof err);
+        print_message("case %u: %s\n", (unsigned)i, rc ? err : "accepted");
+        if (!cases[i].must_contain) {
+            assert_int_equal(rc, 0);
+            continue;
+        }
+        assert_int_not_equal(rc, 0);
+        assert_non_null(strstr(err, cases[i].must_contain));
+        assert_null(strchr(err, '\n'));
+    }
+}
+
 /* Run the executable; return exit status, capture stderr. */
 static int run_exe(const char *const *args, char *err_out, size_t len)
 {
@@ -458,6 +536,7 @@ int main(void)
         cmocka_unit_test(test_plant_and_controller_apart),
         cmocka_unit_test(test_ctl_params_file),
         cmocka_unit_test(test_bad_arguments_rejected),
+        cmocka_unit_test(test_open_phase_option_combinations),
         cmocka_unit_test(test_serve_and_fault_time_arguments),
         cmocka_unit_test(test_open_phase_arguments),
         cmocka_unit_test(test_executable_writes_nothing_on_bad_argument),

@@ -188,6 +188,36 @@ static void test_isolation_command_on_a_connected_phase(void **state)
     assert_true(r.phase_rms_a[2] > 1.0);
 }
 
+/* MPTC-49 post-fault in closed loop: its healthy x-y currents trip the protection (faults.md),
+ * so with the protection out of reach the open phase is isolated by command as it opens (a
+ * contactor's test) and the 20 + 1 post-fault candidates hold the speed on five legs. */
+static void test_mptc49_on_five_legs(void **state)
+{
+    int phase;
+    (void)state;
+    for (phase = 1; phase < 6; phase += 2) {
+        sim_config_t c;
+        sim_result_t r;
+        ride_config(&c, phase);
+        c.controller = 1;
+        c.protect = false;
+        c.open_model = 1;
+        c.isolate_leg = phase;
+        run(&c, &r);
+        print_message("MPTC-49, %c opened and isolated: five legs from %.1f ms, dip %.1f r/min, "
+                      "mean %.1f r/min, torque %.2f N m, ripple %.2f N m, i rms %.3f A\n",
+                      'A' + phase, r.postfault_start_ms, r.speed_dip_rpm, r.speed_mean_rpm,
+                      r.torque_mean_nm, r.torque_ripple_nm, r.phase_rms_a[phase]);
+        assert_int_equal(r.final_state, 3);
+        assert_int_equal(r.isolated_leg, phase);
+        assert_true(r.postfault_start_ms >= 0.0 && r.postfault_start_ms < 1.0);
+        assert_true(r.speed_dip_rpm < 30.0);
+        assert_true(fabs(r.speed_mean_rpm - 1500.0) < 15.0);
+        assert_true(fabs(r.torque_mean_nm - RIDE_LOAD_NM) < 0.3);
+        assert_true(r.phase_rms_a[phase] < 0.01);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -197,6 +227,7 @@ int main(void)
         cmocka_unit_test(test_second_open_phase_stops),
         cmocka_unit_test(test_rated_load_exceeds_the_derated_limit),
         cmocka_unit_test(test_isolation_command_on_a_connected_phase),
+        cmocka_unit_test(test_mptc49_on_five_legs),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
