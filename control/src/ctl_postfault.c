@@ -180,31 +180,27 @@ static inline void pf_forced(const pf_horizon_t *p, const ctl_vsd_t *v, ctl_q *d
                    ctl_mul_add(p->kq[2], v->x, p->kq[3], v->y));
 }
 
-/* Levels [*first, *last] that compete, and the torque error bound of the flux tie band, as the
- * healthy DDC (ctl_ddc.c, docs/improvements.md): all levels, or with the torque guard the
- * level that best meets the torque reference and its neighbours; with the tie band only the
- * levels within a fraction of one level's torque step of the best. */
+/* Levels [*first, *last] that compete, and the torque error bound of the flux tie band: the
+ * level that best meets the torque reference and its neighbours (the healthy DDC's torque
+ * guard, ctl_ddc.c, docs/improvements.md, here always on: without it the flux term chose the
+ * levels on the five legs' weaker voltages and the torque was lost, the paper's DDC with C open
+ * at 3.5 N m falling to 570 r/min); with the tie band only the levels within a fraction of one
+ * level's torque step of the best. */
 static void pf_competing_levels(const ctl_ddc_config_t *cfg, const ctl_q *torque,
                                 const ctl_q *torque_err, int16_t *first, int16_t *last,
                                 ctl_q *bound)
 {
     int16_t best = 0;
     int16_t k;
-    *first = 0;
     *last = (int16_t)(cfg->n_levels - 1);
     *bound = CTL_Q_MAX;
-    if (!cfg->torque_guard && cfg->tie_per_span == CTL_Q(0.0)) {
-        return;
-    }
     for (k = 1; k < cfg->n_levels; k++) {
         if (torque_err[k] < torque_err[best]) {
             best = k;
         }
     }
-    if (cfg->torque_guard) {
-        *first = (best > 0) ? (int16_t)(best - 1) : 0;
-        *last = (best < *last) ? (int16_t)(best + 1) : *last;
-    }
+    *first = (best > 0) ? (int16_t)(best - 1) : 0;
+    *last = (best < *last) ? (int16_t)(best + 1) : *last;
     if (cfg->tie_per_span != CTL_Q(0.0)) { /* levels 1 first, 0 last */
         const ctl_q span = ctl_abs(ctl_sub(torque[0], torque[cfg->n_levels - 1]));
         *bound = ctl_add(torque_err[best], ctl_mul(span, cfg->tie_per_span));

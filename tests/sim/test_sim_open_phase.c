@@ -188,6 +188,22 @@ static void test_isolation_command_on_a_connected_phase(void **state)
     assert_true(r.phase_rms_a[2] > 1.0);
 }
 
+/* The paper's DDC (no torque guard, no tie band, pulses by ones) rides through as the product's:
+ * its post-fault duty search keeps the guard (without it the speed fell to 570 r/min). */
+static void test_paper_ddc_rides_through(void **state)
+{
+    sim_config_t c;
+    sim_result_t r;
+    (void)state;
+    ride_config(&c, 2);
+    c.ddc_torque_guard = 0;
+    c.mid_period_angle = 0;
+    c.flux_tie_band = 0.0;
+    c.pulse_pattern = 0;
+    run(&c, &r);
+    check_ride_through(&c, &r, 2);
+}
+
 /* MPTC-49 post-fault in closed loop: its healthy x-y currents trip the protection (faults.md),
  * so with the protection out of reach the open phase is isolated by command as it opens (a
  * contactor's test) and the 20 + 1 post-fault candidates hold the speed on five legs. */
@@ -228,6 +244,7 @@ int main(void)
         cmocka_unit_test(test_rated_load_exceeds_the_derated_limit),
         cmocka_unit_test(test_isolation_command_on_a_connected_phase),
         cmocka_unit_test(test_mptc49_on_five_legs),
+        cmocka_unit_test(test_paper_ddc_rides_through),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
