@@ -116,5 +116,8 @@ int sim_commission_loop(sim_run_t *rs, sim_result_t *r, char *err, size_t err_le
     if (r->comm.state == SXL_COMM_STATE_DONE) {
         r->comm.apply_result = rs->ops->commission_apply(&r->comm.applied);
     }
-    return c->out_dir ? comm_write_params(rs, r, err, err_len) : 0;
+    /* a failed or refused sequence writes no file: it would hold nothing worth building */
+    return (c->out_dir && r->comm.state == SXL_COMM_STATE_DONE)
+               ? comm_write_params(rs, r, err, err_len)
+               : 0;
 }

@@ -7,10 +7,12 @@
  * terminal, reads every result (COMMISSION_RESULT) and prints one line per quantity with its
  * 1-sigma uncertainty and quality; --apply asks the drive to take the identified values
  * (COMMISSION_APPLY); --out writes them as the firmware's motor parameter file
- * (motor_params_file.h: OK results only). LIST: phases,encoder,r,ldq,lxy,psi_f (the phase check
- * and, for r..psi_f, the encoder are required, as the drive requires). FRACTION: the test
- * current as a fraction of rated, 0.1..0.8 (default 0.4). Exit 0 when the sequence finished
- * with every step done, 1 when it failed, was refused or timed out, 2 for bad usage.
+ * (motor_params_file.h: OK results only) once the sequence is done; after a failure it leaves
+ * the file as it was, and a file that cannot be written is refused before the start. LIST:
+ * phases,encoder,r,ldq,lxy,psi_f (the phase check and, for r..psi_f, the encoder are required, as
+ * the drive requires). FRACTION: the test current as a fraction of rated, 0.1..0.8 (default 0.4).
+ * Exit 0 when the sequence finished with every step done, 1 when it failed, was refused or timed
+ * out, 2 for bad usage.
  */
 #define _DEFAULT_SOURCE /* usleep */
 
@@ -78,6 +80,10 @@ static int identify_parse(int argc, char **argv, identify_request_t *r)
             r->apply = 1;
             continue;
         }
+        if (strcmp(argv[i], "--steps") != 0 && strcmp(argv[i], "--current") != 0 &&
+            strcmp(argv[i], "--wait") != 0 && strcmp(argv[i], "--out") != 0) {
+            return fail(EXIT_USAGE, "identify: unknown option '%s'", argv[i]);
+        }
         if (!v) {
             return fail(EXIT_USAGE, "identify: %s needs a value", argv[i]);
         }
@@ -103,10 +109,8 @@ static int identify_parse(int argc, char **argv, identify_request_t *r)
                 return fail(EXIT_USAGE, "identify: bad --wait '%s' (1..3600 s)", v);
             }
             r->wait_s = x;
-        } else if (strcmp(argv[i], "--out") == 0) {
-            r->out = v;
         } else {
-            return fail(EXIT_USAGE, "identify: unknown option '%s'", argv[i]);
+            r->out = v;
         }
         i++;
     }
@@ -257,14 +261,32 @@ static int identify_finish(int fd, const options_t *o, const identify_request_t 
     if (rc == 0 && req->apply && st[SXL_CT_STATE] == SXL_COMM_STATE_DONE) {
         rc = identify_apply(fd, o);
     }
+    if (rc == 0 && st[SXL_CT_STATE] != SXL_COMM_STATE_DONE) {
+        /* an earlier, good file stays: a failed sequence's file would hold nothing useful */
+        return fail(EXIT_IO, "commissioning %s: %s%s%s", sxl_comm_state_name(st[SXL_CT_STATE]),
+                    sxl_comm_reason_text(st[SXL_CT_REASON]), req->out ? "; not written: " : "",
+                    req->out ? req->out : "");
+    }
     if (rc == 0 && req->out) {
         rc = identify_write(req->out, &m);
     }
-    if (rc == 0 && st[SXL_CT_STATE] != SXL_COMM_STATE_DONE) {
-        rc = fail(EXIT_IO, "commissioning %s: %s", sxl_comm_state_name(st[SXL_CT_STATE]),
-                  sxl_comm_reason_text(st[SXL_CT_REASON]));
-    }
     return rc;
+}
+
+/* An --out that cannot be written is found before the sequence runs, and an existing file is
+ * neither truncated nor removed by the check. */
+static int identify_out_writable(const char *path)
+{
+    const int existed = access(path, F_OK) == 0;
+    FILE *probe = fopen(path, "a");
+    if (!probe) {
+        return fail(EXIT_IO, "cannot write %s", path);
+    }
+    (void)fclose(probe);
+    if (!existed) {
+        (void)remove(path);
+    }
+    return 0;
 }
 
 int cmd_identify(const options_t *o, int argc, char **argv)
@@ -283,7 +305,10 @@ int cmd_identify(const options_t *o, int argc, char **argv)
     if (o->print_only) {
         return print_request(SXL_CMD_COMMISSION_START, payload, SXL_CC_SIZE);
     }
-    rc = open_port(o, &fd);
+    rc = req.out ? identify_out_writable(req.out) : 0;
+    if (rc == 0) {
+        rc = open_port(o, &fd);
+    }
     if (rc == 0) {
         rc = exchange(fd, o, SXL_CMD_COMMISSION_START, payload, SXL_CC_SIZE, &reply);
     }

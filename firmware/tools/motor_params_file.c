@@ -160,6 +160,14 @@ int motor_params_read(const char *path, motor_params_t *m, char *err, size_t err
                      : mp_fail(err, err_len, path, line, "only #define lines and comments");
         }
     }
+    if (rc == 0 && ferror(f)) { /* a directory, an I/O error: not an empty file */
+        rc = -1;
+        (void)snprintf(err, err_len, "cannot read %s: %s", path, strerror(errno));
+    }
+    if (rc == 0 && m->have == 0u) { /* a set of nothing is a wrong or truncated file */
+        rc = -1;
+        (void)snprintf(err, err_len, "%s: no " MOTOR_PARAM_PREFIX "* entry", path);
+    }
     (void)fclose(f);
     return rc;
 }

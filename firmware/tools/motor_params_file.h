@@ -7,7 +7,8 @@
  *
  * The file holds only full-line comments ("/ * ... * /" on one line), blank lines and lines
  * "#define NAME VALUE" with a name of MOTOR_PARAM_LIST; every entry is optional (a missing
- * one keeps the reference machine's value). The reader refuses anything else: another line,
+ * one keeps the reference machine's value), but not all of them (a file without any is the
+ * wrong file or a truncated one). The reader refuses anything else: another line,
  * an unknown or repeated name, a value that is not a plain number of its kind (a float with
  * an optional f suffix, an unsigned integer with an optional u suffix) or outside its range.
  * Host code only.

@@ -212,11 +212,54 @@ static void test_identify_refused_with_the_dc_link_low(void **state)
     assert_true(strchr(err, '\n')[1] == '\0'); /* one line */
 }
 
+/* A sequence that fails (A and B swapped) leaves an earlier parameter file as it was: before,
+ * the tool wrote a file of nothing over it, which the firmware build took as the reference
+ * machine. */
+static void test_identify_failure_keeps_the_file(void **state)
+{
+    static const char earlier[] = "/* an earlier, good identification */\n"
+                                  "#define SIXPHASE_MOTOR_R_OHM 2.5f\n";
+    char *reversed[] = {(char *)"--encoder-reversed", NULL};
+    char path[] = "/tmp/sixphase-identify-keep-XXXXXX";
+    char pty[160], out[4096], err[1024], back[256];
+    size_t n;
+    FILE *f;
+    pid_t board;
+    int rc, fd;
+    (void)state;
+    fd = mkstemp(path);
+    assert_true(fd >= 0);
+    assert_int_equal(write(fd, earlier, sizeof earlier - 1u), (ssize_t)(sizeof earlier - 1u));
+    (void)close(fd);
+    board = serve(reversed, pty, sizeof pty);
+    {
+        char *const argv[] = {
+            (char *)SIXPHASE_LINK_EXE, (char *)"-d",    pty,  (char *)"-t", (char *)"2000",
+            (char *)"identify",        (char *)"--out", path, NULL};
+        sleep(1);
+        rc = run_cmd(argv, out, sizeof out, err, sizeof err);
+    }
+    stop(board);
+    print_message("exit %d: %s", rc, err);
+    assert_int_equal(rc, 1);
+    assert_non_null(strstr(err, "commissioning failed: "));
+    assert_non_null(strstr(err, "not written"));
+    assert_true(strchr(err, '\n')[1] == '\0'); /* one line */
+    f = fopen(path, "r");
+    assert_non_null(f);
+    n = fread(back, 1, sizeof back - 1u, f);
+    (void)fclose(f);
+    back[n] = '\0';
+    assert_string_equal(back, earlier);
+    (void)remove(path);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_identify_apply_and_file),
         cmocka_unit_test(test_identify_refused_with_the_dc_link_low),
+        cmocka_unit_test(test_identify_failure_keeps_the_file),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -200,6 +200,16 @@ static void test_ctl_params_file(void **state)
         assert_non_null(strstr(err, "line "));
         assert_null(strchr(err, '\n'));
     }
+    /* a file that sets nothing (a failed identify's, a truncated one) and a directory: refused,
+     * not taken as the reference machine */
+    write_file(path, "/* Motor parameters of this drive's machine: identified by ... */\n\n");
+    assert_int_not_equal(parse(args, 6, &o, err, sizeof err), 0);
+    assert_non_null(strstr(err, "no SIXPHASE_MOTOR_* entry"));
+    args[5] = "/tmp";
+    assert_int_not_equal(parse(args, 6, &o, err, sizeof err), 0);
+    assert_non_null(strstr(err, "cannot read /tmp"));
+    assert_null(strchr(err, '\n'));
+    args[5] = path;
     (void)remove(path);
     assert_int_not_equal(parse(args, 6, &o, err, sizeof err), 0);
     assert_non_null(strstr(err, "cannot read"));

@@ -11,12 +11,17 @@
  *   - refusals: a stuck encoder (NO_MOTION), the DC link below the under-voltage limit, a
  *     request while the drive runs.
  */
+#define _POSIX_C_SOURCE 200809L /* mkdtemp, rmdir */
+
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include <cmocka.h>
 
@@ -169,6 +174,35 @@ static void test_wrong_pole_pairs_and_swapped_channels(void **state)
     check_encoder_error(3, 3, true, false, SXL_COMM_REASON_REVERSED, 0);
     check_encoder_error(4, 3, true, false, SXL_COMM_REASON_REVERSED, 0);
     check_encoder_error(3, 3, false, true, SXL_COMM_REASON_NO_MOTION, 0);
+}
+
+/* A failed sequence writes no motor parameter file into --out DIR: one of nothing would be
+ * built as the reference machine. */
+static void test_failed_sequence_writes_no_file(void **state)
+{
+    char dir[] = "/tmp/sixphase-comm-fail-XXXXXX";
+    char path[64];
+    sim_config_t c;
+    sim_result_t r;
+    FILE *f;
+    (void)state;
+    assert_non_null(mkdtemp(dir));
+    config(&c, &plants[4], 0);
+    c.plant.encoder_reversed = true;
+    c.out_dir = dir;
+    c.write_trace = false;
+    c.write_fine = false;
+    run(&c, &r);
+    assert_int_equal(r.comm.state, SXL_COMM_STATE_FAILED);
+    (void)snprintf(path, sizeof path, "%s/motor_params.h", dir);
+    f = fopen(path, "r");
+    if (f) {
+        (void)fclose(f);
+    }
+    assert_null(f);
+    (void)snprintf(path, sizeof path, "%s/metrics.json", dir);
+    (void)remove(path);
+    assert_int_equal(rmdir(dir), 0); /* nothing else was written */
 }
 
 /* A load torque on the shaft (0.5 N m against the 2.8 N m the test current holds): the offset
@@ -359,6 +393,7 @@ int main(void)
         cmocka_unit_test(test_closed_loop_after_commissioning),
         cmocka_unit_test(test_wrong_pole_pairs_and_swapped_channels),
         cmocka_unit_test(test_load_torque_found),
+        cmocka_unit_test(test_failed_sequence_writes_no_file),
         cmocka_unit_test(test_refused_with_the_dc_link_low),
         cmocka_unit_test(test_refused_while_running),
         cmocka_unit_test(test_open_phase_checked_again_after_clear),
