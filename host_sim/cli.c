@@ -12,6 +12,7 @@
 
 #include "motor_params_file.h"
 #include "scenario.h"
+#include "sxlink_commission.h"
 
 #define CLI_DEG_TO_RAD (3.14159265358979323846 / 180.0)
 
@@ -614,6 +615,12 @@ static int check_combination(const sim_cli_t *o, const int *seen, unsigned where
     }
     if ((seen[G_COMM_STEPS] || seen[G_COMM_CURRENT]) && c->scenario != SIM_SCEN_COMMISSION) {
         return cli_fail(err, len, "%s needs --scenario commission%s", "--commission-...", "");
+    }
+    if (seen[G_COMM_STEPS] && !SXL_COMM_STEPS_VALID((unsigned)c->commission_steps)) {
+        return cli_fail(err, len,
+                        "%s needs bit 0 (phases), and bit 1 (encoder) with any of bits "
+                        "2..5%s",
+                        "--commission-steps", "");
     }
     if (seen[G_FAULT_TIME] && c->fault == SIM_FAULT_NONE) {
         return cli_fail(err, len, "%s needs a fault-<name> scenario%s", "--fault-time", "");

@@ -55,14 +55,7 @@ void comm_init(comm_t *c)
     }
 }
 
-bool comm_mask_valid(uint16_t mask)
-{
-    const uint16_t need_encoder = (uint16_t)(SXL_COMM_STEPS_ALL & ~0x3u);
-    if ((mask & ~SXL_COMM_STEPS_ALL) != 0u || (mask & (1u << COMM_STEP_PHASES)) == 0u) {
-        return false;
-    }
-    return (mask & need_encoder) == 0u || (mask & (1u << COMM_STEP_ENCODER)) != 0u;
-}
+bool comm_mask_valid(uint16_t mask) { return SXL_COMM_STEPS_VALID((uint16_t)mask); }
 
 bool comm_current_valid(uint16_t permille)
 {

@@ -20,7 +20,11 @@
 #define SXL_COMM_STEP_COUNT 6u
 #define SXL_COMM_STEPS_ALL 0x3Fu
 /* The phase check always runs first, and every step after the encoder's needs it: a mask
- * without bit PHASES, or with any of bits 2..5 but not ENCODER, is refused. */
+ * without bit PHASES, or with any of bits 2..5 but not ENCODER, is refused. The rule, for the
+ * drive (comm_mask_valid) and the host tools alike; mask an unsigned value. */
+#define SXL_COMM_STEPS_VALID(mask)                                                                 \
+    (((mask) & ~SXL_COMM_STEPS_ALL) == 0u && ((mask)&0x1u) != 0u &&                                \
+     (((mask)&0x3Cu) == 0u || ((mask)&0x2u) != 0u))
 
 /* Quantities: X(id, number, name, unit, scale, extra scale, extra's meaning). The reply carries
  * value and uncertainty as int32 of the SI value times scale, the extra times its own scale. */

@@ -114,9 +114,7 @@ static int identify_parse(int argc, char **argv, identify_request_t *r)
         }
         i++;
     }
-    /* the drive's own rule (comm_mask_valid), said here in one line */
-    if ((r->mask & (1u << SXL_COMM_STEP_PHASES)) == 0u ||
-        ((r->mask & 0x3Cu) != 0u && (r->mask & (1u << SXL_COMM_STEP_ENCODER)) == 0u)) {
+    if (!SXL_COMM_STEPS_VALID((unsigned)r->mask)) { /* the drive's own rule */
         return fail(EXIT_USAGE, "identify: --steps needs phases, and encoder before r, ldq, lxy "
                                 "or psi_f");
     }

@@ -238,6 +238,13 @@ static const bad_case_t bad_cases[] = {
     {{"--controller", "ddc", "--scenario", "steady", "--trip-current", "-5"}, 6, "'-5'"},
     {{"--controller", "ddc", "--scenario", "steady", "--frobnicate", "1"}, 6, "'--frobnicate'"},
     {{"--controller", "ddc", "--scenario", "fault-gremlins"}, 4, "'fault-gremlins'"},
+    /* masks the drive refuses: before, run with nothing started, state idle, exit 0 */
+    {{"--controller", "ddc", "--scenario", "commission", "--commission-steps", "2"},
+     6,
+     "bit 0 (phases)"},
+    {{"--controller", "ddc", "--scenario", "commission", "--commission-steps", "5"},
+     6,
+     "bit 1 (encoder)"},
     {{"--controller", "ddc", "--scenario", "steady", "--fault-time", "0.1"}, 6, "fault-<name>"},
     {{"--controller", "ddc", "--scenario", "fault-overrun", "--fault-time", "0"}, 6, "'0'"},
     {{"--controller", "ddc", "--scenario", "fault-adc-offset", "--fault-time", "0.1"},
