@@ -120,6 +120,7 @@ typedef struct {
     double truth[SIM_COMM_QUANTITIES]; /* the plant's (NaN where there is none) */
     int apply_result;                  /* drive_commission_apply's, after a DONE sequence */
     unsigned applied;                  /* quantities applied */
+    double phase_peak_a; /* largest |phase current| of the plant, at each period's end */
 } sim_commission_result_t;
 
 typedef struct {

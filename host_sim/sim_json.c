@@ -102,9 +102,11 @@ static void sim_print_commission_json(FILE *f, const sim_result_t *r)
     }
     fprintf(f,
             "  \"commission\": {\"state\": \"%s\", \"reason\": \"%s\", \"last_step\": \"%s\", "
-            "\"duration_s\": %.6g, \"apply_result\": %d, \"applied_mask\": %u, \"results\": {\n",
+            "\"duration_s\": %.6g, \"apply_result\": %d, \"applied_mask\": %u, "
+            "\"phase_current_peak_a\": %.4g, \"results\": {\n",
             sxl_comm_state_name((uint16_t)cr->state), sxl_comm_reason_name((uint16_t)cr->reason),
-            sxl_comm_step_name((uint16_t)cr->step), cr->duration_s, cr->apply_result, cr->applied);
+            sxl_comm_step_name((uint16_t)cr->step), cr->duration_s, cr->apply_result, cr->applied,
+            cr->phase_peak_a);
     for (q = 0; q < SIM_COMM_QUANTITIES; q++) {
         sim_print_comm_quantity(f, cr, q, q + 1 < SIM_COMM_QUANTITIES);
     }

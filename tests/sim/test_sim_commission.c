@@ -176,6 +176,32 @@ static void test_wrong_pole_pairs_and_swapped_channels(void **state)
     check_encoder_error(3, 3, false, true, SXL_COMM_REASON_NO_MOTION, 0);
 }
 
+/* The amplitude limit: the test current is at most a quarter of the software over-current
+ * limit (15 A); the first alignment's swing, i_q beside i_d in the psi_f step and the x-y
+ * harmonics take the phase peak to 1.3..1.65 times it. A weak magnet in plant and
+ * controller (0.1 Wb: rated 7.8 A) at 80 % of rated asks for 6.2 A and gets 3.75 A; the
+ * plant's phase currents stay below 40 % of the limit, and the sequence is still done. */
+static void test_current_within_a_fraction_of_the_trip_level(void **state)
+{
+    sim_config_t c;
+    sim_result_t r;
+    (void)state;
+    config(&c, &plants[4], 0);
+    c.plant.psi_f_wb = 0.1;
+    c.ctl.psi_f_wb = 0.1;
+    c.commission_permille = 800;
+    run(&c, &r);
+    print_message("weak magnet, 80 %%: phase peak %.2f A (%.1f %% of 15 A)\n", r.comm.phase_peak_a,
+                  100.0 * r.comm.phase_peak_a / 15.0);
+    assert_int_equal(r.comm.state, SXL_COMM_STATE_DONE);
+    assert_true(r.comm.phase_peak_a > 0.25 * 15.0); /* the cap's current flowed */
+    assert_true(r.comm.phase_peak_a < 0.40 * 15.0);
+    config(&c, &plants[4], 0); /* the default current: 40 % of 3.46 A, peaks below the cap */
+    run(&c, &r);
+    print_message("default: phase peak %.2f A\n", r.comm.phase_peak_a);
+    assert_true(r.comm.phase_peak_a > 0.4 * 3.46 && r.comm.phase_peak_a < 0.25 * 15.0);
+}
+
 /* A failed sequence writes no motor parameter file into --out DIR: one of nothing would be
  * built as the reference machine. */
 static void test_failed_sequence_writes_no_file(void **state)
@@ -394,6 +420,7 @@ int main(void)
         cmocka_unit_test(test_wrong_pole_pairs_and_swapped_channels),
         cmocka_unit_test(test_load_torque_found),
         cmocka_unit_test(test_failed_sequence_writes_no_file),
+        cmocka_unit_test(test_current_within_a_fraction_of_the_trip_level),
         cmocka_unit_test(test_refused_with_the_dc_link_low),
         cmocka_unit_test(test_refused_while_running),
         cmocka_unit_test(test_open_phase_checked_again_after_clear),
