@@ -25,6 +25,13 @@
  * docs/porting.md section 8). Without it the reference machine's values stand. */
 #if defined(SIXPHASE_MOTOR_PARAMS)
 #include SIXPHASE_MOTOR_PARAMS
+/* a file that sets nothing is the wrong one or a truncated one, not the reference machine */
+#if !defined(SIXPHASE_MOTOR_R_OHM) && !defined(SIXPHASE_MOTOR_LD_H) &&                             \
+    !defined(SIXPHASE_MOTOR_LQ_H) && !defined(SIXPHASE_MOTOR_LXY_H) &&                             \
+    !defined(SIXPHASE_MOTOR_PSI_F_WB) && !defined(SIXPHASE_MOTOR_POLE_PAIRS) &&                    \
+    !defined(SIXPHASE_MOTOR_ENCODER_OFFSET)
+#error "SIXPHASE_MOTOR_PARAMS names a file without any SIXPHASE_MOTOR_ entry"
+#endif
 #endif
 /* Electrical angle of the encoder index relative to the d axis (2^32 = one turn): the
  * identified one, else 0 (the commissioning finds it; `identify --apply` sets it at run time). */
