@@ -49,9 +49,9 @@ void plant_params_default(plant_params_t *p)
     p->dead_time_on = true;
     p->harmonics_on = true;
     p->adc_offset_on = true;
-    p->adc_offset_counts = 20.0;
+    p->adc_offset_counts = HAL_BOARD_ADC_OFFSET_TOLERANCE_COUNTS;
     p->adc_gain_on = true;
-    p->adc_gain_error = 0.005;
+    p->adc_gain_error = HAL_BOARD_ADC_GAIN_TOLERANCE;
     p->adc_noise_on = true;
     p->adc_noise_counts = 1.0;
     p->current_sensor_span_a = 0.5 * HAL_BOARD_CURRENT_FULL_SPAN_A;

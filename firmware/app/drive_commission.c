@@ -45,6 +45,19 @@ drive_comm_result_t drive_request_commission(drive_t *d, uint16_t mask, uint16_t
     return DRIVE_COMM_OK;
 }
 
+/* The board's tolerances as standard uncertainties (an error anywhere within +-t: t / sqrt 3):
+ * each current channel's gain; the DC link's gain and, at the link's voltage, its offset. */
+static void drive_commission_tolerances(ident_machine_t *m)
+{
+    const float inv_sqrt3 = 0.57735027f;
+    const float gain = (float)HAL_BOARD_ADC_GAIN_TOLERANCE;
+    const float offset_v =
+        (float)HAL_BOARD_ADC_OFFSET_TOLERANCE_COUNTS * (float)HAL_BOARD_VDC_V_PER_COUNT;
+    const float offset = offset_v / ((m->vdc > offset_v) ? m->vdc : offset_v);
+    m->u_current = gain * inv_sqrt3;
+    m->u_vdc = ctl_sqrtf(gain * gain + offset * offset) * inv_sqrt3;
+}
+
 void drive_commission_machine(const drive_t *d, ident_machine_t *m)
 {
     const ctl_params_t *p = ctl_params(&d->ctl);
@@ -65,6 +78,7 @@ void drive_commission_machine(const drive_t *d, ident_machine_t *m)
     m->hal_offset = hal_encoder_offset();
     m->vdc = ctl_to_float(d->meas.vdc) * CTL_BASE_VOLTAGE_V_F;
     m->dead_time_s = (float)HAL_BOARD_DEAD_TIME_NS * 1.0e-9f;
+    drive_commission_tolerances(m);
 }
 
 /* This period's measurements as the identification takes them (SI). */

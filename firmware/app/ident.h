@@ -59,7 +59,9 @@ typedef struct {
     float vdc;                            /* DC link at the start, V */
     float dead_time_s;                    /* the board's dead time (its voltage is fed forward) */
     float open_ratio;                     /* the protection's open-phase ratio */
-    uint32_t hal_offset;                  /* the encoder HAL's offset at the start */
+    float u_current, u_vdc; /* relative 1-sigma uncertainty of the current channels' scale and
+                             * of the DC link's measurement (the board's tolerances) */
+    uint32_t hal_offset;    /* the encoder HAL's offset at the start */
 } ident_machine_t;
 
 /* One identified quantity. */
@@ -115,7 +117,8 @@ void ident_goto(ident_ctx_t *x, int16_t phase);
 /* Fail the running step: the reason, IDENT_FAILED. */
 ident_status_t ident_fail(ident_ctx_t *x, int16_t reason);
 
-/* Record a quantity's result. */
+/* Record a quantity's result: sigma is the scatter of its blocks; the result's uncertainty adds
+ * the share of the measurement's scale, which is the same in every block. */
 void ident_set_result(ident_ctx_t *x, comm_quantity_t q, float value, float sigma, float extra,
                       int16_t quality, int16_t reason);
 

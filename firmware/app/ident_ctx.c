@@ -1,6 +1,8 @@
 /* What the identification steps share, see ident.h. */
 #include "ident.h"
 
+#include "ctl_q.h"
+
 /* Electrical turns the output is applied after the sample, in periods: the command written in
  * period k is in force during period k + 1, on average 1.5 periods after the sample. */
 #define IDENT_OUTPUT_DELAY_PERIODS 1.5f
@@ -23,12 +25,31 @@ ident_status_t ident_fail(ident_ctx_t *x, int16_t reason)
     return IDENT_FAILED;
 }
 
+/* The measurement scale's share of a quantity's relative uncertainty: R and the inductances
+ * are a commanded voltage (a duty times the measured DC link) over measured currents; psi_f a
+ * voltage over the speed, which the encoder counts exactly; the encoder's quantities are counts. */
+static float ident_scale_uncertainty(const ident_machine_t *m, comm_quantity_t q)
+{
+    switch (q) {
+    case COMM_Q_R:
+    case COMM_Q_LD:
+    case COMM_Q_LQ:
+    case COMM_Q_LXY:
+        return ctl_sqrtf(m->u_vdc * m->u_vdc + m->u_current * m->u_current);
+    case COMM_Q_PSI_F:
+        return m->u_vdc;
+    default:
+        return 0.0f;
+    }
+}
+
 void ident_set_result(ident_ctx_t *x, comm_quantity_t q, float value, float sigma, float extra,
                       int16_t quality, int16_t reason)
 {
     ident_result_t *r = &x->result[q];
+    const float scale = value * ident_scale_uncertainty(&x->m, q);
     r->value = value;
-    r->sigma = sigma;
+    r->sigma = ctl_sqrtf(sigma * sigma + scale * scale);
     r->extra = extra;
     r->quality = quality;
     r->reason = reason;

@@ -46,7 +46,7 @@
 #define SXL_COMM_QUALITY_LIST(X)                                                                   \
     X(NOT_RUN, 0, "not_run", "not selected, or an earlier step failed")                            \
     X(OK, 1, "ok", "within its quality limit")                                                     \
-    X(POOR, 2, "poor", "a number, but its uncertainty or a check is beyond the limit")             \
+    X(POOR, 2, "poor", "a number, but its scatter or a check is beyond the limit")                 \
     X(FAILED, 3, "failed", "no number: the reason says why")
 
 #define SXL_COMM_QUALITY_COUNT 4u
@@ -70,7 +70,7 @@
     X(NO_INDEX, 12, "no_index", "no index pulse within the search")                                \
     X(ROTOR_MOVED, 13, "rotor_moved", "the rotor turned during a standstill test")                 \
     X(NO_SPEED, 14, "no_speed", "the speed did not settle at its reference")                       \
-    X(SCATTER, 15, "scatter", "the blocks disagree: uncertainty above the quality limit")          \
+    X(SCATTER, 15, "scatter", "the blocks disagree: their scatter above the quality limit")        \
     X(SKIPPED, 16, "skipped", "not run: an earlier step failed")                                   \
     X(OUT_OF_RANGE, 17, "out_of_range",                                                            \
       "the estimate lies outside the range the controller accepts")                                \

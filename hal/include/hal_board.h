@@ -19,4 +19,11 @@
 #define HAL_BOARD_PWM_HZ 10000u
 #define HAL_BOARD_DEAD_TIME_NS 2000u
 
+/* Accuracy of the front end (the board's limits: each channel's error lies within +-these).
+ * The phase currents' offsets are measured at power-up (the drive's calibration); the channels'
+ * gain errors and the DC link's offset are not. The simulator's ADC model draws its errors
+ * within these; the commissioning states its uncertainty from them. */
+#define HAL_BOARD_ADC_GAIN_TOLERANCE 0.005 /* relative, each channel */
+#define HAL_BOARD_ADC_OFFSET_TOLERANCE_COUNTS 20.0
+
 #endif /* HAL_BOARD_H */

@@ -83,6 +83,30 @@ static double offset_error_deg(const sim_result_t *r)
         180.0);
 }
 
+/* The error in units of the reported 1-sigma uncertainty (the offset's in degrees). */
+static double error_sigmas(const sim_result_t *r, int q)
+{
+    const double e =
+        (q == SXL_COMM_Q_OFFSET) ? offset_error_deg(r) : fabs(r->comm.value[q] - r->comm.truth[q]);
+    return e / r->comm.sigma[q];
+}
+
+/* The reported uncertainty means what it says: each error within 3 sigma. */
+static void check_uncertainty(const sim_result_t *r)
+{
+    static const int quantities[] = {SXL_COMM_Q_OFFSET, SXL_COMM_Q_R,   SXL_COMM_Q_LD,
+                                     SXL_COMM_Q_LQ,     SXL_COMM_Q_LXY, SXL_COMM_Q_PSI_F};
+    size_t k;
+    print_message("      error / sigma: offset %.2f R %.2f Ld %.2f Lq %.2f Lxy %.2f psi %.2f\n",
+                  error_sigmas(r, SXL_COMM_Q_OFFSET), error_sigmas(r, SXL_COMM_Q_R),
+                  error_sigmas(r, SXL_COMM_Q_LD), error_sigmas(r, SXL_COMM_Q_LQ),
+                  error_sigmas(r, SXL_COMM_Q_LXY), error_sigmas(r, SXL_COMM_Q_PSI_F));
+    for (k = 0; k < sizeof quantities / sizeof quantities[0]; k++) {
+        assert_true(r->comm.sigma[quantities[k]] > 0.0);
+        assert_true(error_sigmas(r, quantities[k]) < 3.0);
+    }
+}
+
 static void check_plant(const plant_t *p, int arith)
 {
     sim_config_t c;
@@ -111,6 +135,7 @@ static void check_plant(const plant_t *p, int arith)
     assert_true(rel_error(&r, SXL_COMM_Q_PSI_F) < 0.03);
     assert_true(offset_error_deg(&r) < 2.0);
     assert_true(rel_error(&r, SXL_COMM_Q_COUNTS) < 0.01);
+    check_uncertainty(&r);
     /* the serial APPLY's call: the machine and the offset taken */
     assert_int_equal(r.comm.apply_result, 0);
     assert_int_equal(r.comm.applied, (1u << SXL_COMM_Q_OFFSET) | (1u << SXL_COMM_Q_R) |
