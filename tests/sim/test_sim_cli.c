@@ -323,17 +323,40 @@ static void test_bad_arguments_rejected(void **state)
     }
 }
 
+/* A command line for `run` or `serve`, accepted or refused in one line naming the reason. */
+typedef struct {
+    const char *args[10];
+    int n;
+    int serve;
+    const char *must_contain; /* NULL: accepted */
+} parse_case_t;
+
+static void check_parse_cases(const parse_case_t *cases, size_t count)
+{
+    size_t i;
+    for (i = 0; i < count; i++) {
+        sim_cli_t o;
+        char err[256] = "";
+        char **a = (char **)(uintptr_t)cases[i].args;
+        const int rc = cases[i].serve ? sim_cli_parse_serve(cases[i].n, a, &o, err, sizeof err)
+                                      : sim_cli_parse_run(cases[i].n, a, &o, err, sizeof err);
+        print_message("case %u: %s\n", (unsigned)i, rc ? err : "accepted");
+        if (!cases[i].must_contain) {
+            assert_int_equal(rc, 0);
+            continue;
+        }
+        assert_int_not_equal(rc, 0);
+        assert_non_null(strstr(err, cases[i].must_contain));
+        assert_null(strchr(err, '\n'));
+    }
+}
+
 /* serve: the options that make no sense without a scenario timeline are refused (commission
  * only sets how the board powers up), --speed is the initial reference, and --fault-time may go up
  * to the run's duration (not beyond). */
 static void test_serve_and_fault_time_arguments(void **state)
 {
-    static const struct {
-        const char *args[8];
-        int n;
-        int serve;
-        const char *must_contain; /* NULL: accepted */
-    } cases[] = {
+    static const parse_case_t cases[] = {
         {{"--scenario", "accel"}, 2, 1, "steady, commission or fault-<name>"},
         {{"--scenario", "load-step"}, 2, 1, "steady, commission or fault-<name>"},
         {{"--scenario", "reversal"}, 2, 1, "steady, commission or fault-<name>"},
@@ -356,23 +379,8 @@ static void test_serve_and_fault_time_arguments(void **state)
          0,
          NULL},
     };
-    size_t i;
     (void)state;
-    for (i = 0; i < sizeof cases / sizeof cases[0]; i++) {
-        sim_cli_t o;
-        char err[256] = "";
-        char **a = (char **)(uintptr_t)cases[i].args;
-        const int rc = cases[i].serve ? sim_cli_parse_serve(cases[i].n, a, &o, err, sizeof err)
-                                      : sim_cli_parse_run(cases[i].n, a, &o, err, sizeof err);
-        print_message("case %u: %s\n", (unsigned)i, rc ? err : "accepted");
-        if (!cases[i].must_contain) {
-            assert_int_equal(rc, 0);
-            continue;
-        }
-        assert_int_not_equal(rc, 0);
-        assert_non_null(strstr(err, cases[i].must_contain));
-        assert_null(strchr(err, '\n'));
-    }
+    check_parse_cases(cases, sizeof cases / sizeof cases[0]);
 }
 
 /* The open-phase options that only act in five-leg operation need it to happen in a run: the
@@ -383,12 +391,7 @@ static void test_serve_and_fault_time_arguments(void **state)
  * takes them all: the host may turn the ride-through on over the link. */
 static void test_open_phase_option_combinations(void **state)
 {
-    static const struct {
-        const char *args[10];
-        int n;
-        int serve;
-        const char *must_contain; /* NULL: accepted */
-    } cases[] = {
+    static const parse_case_t cases[] = {
         {{"--controller", "ddc", "--scenario", "fault-open-phase", "--postfault", "max-torque"},
          6,
          0,
@@ -434,23 +437,8 @@ static void test_open_phase_option_combinations(void **state)
          1,
          NULL},
     };
-    size_t i;
     (void)state;
-    for (i = 0; i < sizeof cases / sizeof cases[0]; i++) {
-        sim_cli_t o;
-        char err[256] = "";
-        char **a = (char **)(uintptr_t)cases[i].args;
-        const int rc = cases[i].serve ? sim_cli_parse_serve(cases[i].n, a, &o, err, sizeof err)
-                                      : sim_cli_parse_run(cases[i].n, a, &o, err, sizeof err);
-        print_message("case %u: %s\n", (unsigned)i, rc ? err : "accepted");
-        if (!cases[i].must_contain) {
-            assert_int_equal(rc, 0);
-            continue;
-        }
-        assert_int_not_equal(rc, 0);
-        assert_non_null(strstr(err, cases[i].must_contain));
-        assert_null(strchr(err, '\n'));
-    }
+    check_parse_cases(cases, sizeof cases / sizeof cases[0]);
 }
 
 /* Run the executable; return exit status, capture stderr. */
