@@ -22,6 +22,13 @@
 
 #define ENC_CURRENT_RAMP_S 0.2f    /* test current to half and back, for the load check */
 #define ENC_LOAD_LAG_TURNS 0.0056f /* 2 electrical degrees of lag that a load torque causes */
+/* A dragged rotor (ident_encoder.h). Until the counts per electrical turn are measured: any
+ * plant's rotor (Pn >= 1) follows the field from at most half a turn away, plus the
+ * quarter-turn move, less than this many mechanical turns beyond the commanded travel (the
+ * first turn's count is too rough for more: 11 % off at 10 % current). Then: beyond half an
+ * electrical turn from where it was, the rotor has passed the field's unstable point. */
+#define ENC_DRAG_MECH_TURNS 1.0f
+#define ENC_SLIP_TURNS 0.5f
 
 enum { EN_ALIGN, EN_ALIGN2, EN_SPIN, EN_FWD, EN_TURN, EN_BWD, EN_STOP, EN_HALF, EN_FWD2, EN_STOP2 };
 
@@ -41,6 +48,8 @@ void ident_encoder_begin(ident_ctx_t *x, ident_encoder_t *s)
     s->travel_index = -1.0f;
     s->measuring = false;
     s->have_ref = false;
+    s->have_begin = false;
+    s->have_slip_ref = false;
     ident_goto(x, EN_ALIGN);
 }
 
@@ -298,8 +307,51 @@ static void enc_align(ident_ctx_t *x, ident_encoder_t *s, const ident_input_t *i
     }
 }
 
+/* A load the field cannot hold drags the rotor through its poles (ident_encoder.h): the slip
+ * in electrical turns beyond what the field can have pulled, > 0 when dragged. */
+static float enc_slip(const ident_ctx_t *x, const ident_encoder_t *s, const ident_input_t *in)
+{
+    float slip;
+    if (!s->have_slip_ref) { /* counts per electrical turn not yet measured */
+        const int32_t moved = in->position - s->p_begin;
+        const float travel = (x->traj.travel < 0.0f) ? -x->traj.travel : x->traj.travel;
+        slip = (float)((moved < 0) ? -moved : moved) / x->m.counts_per_turn - travel -
+               ENC_DRAG_MECH_TURNS;
+        return slip * (float)x->m.pole_pairs;
+    }
+    slip = x->traj.travel - s->travel_slip - (float)(in->position - s->p_slip) / x->cpe;
+    return ((slip < 0.0f) ? -slip : slip) - ENC_SLIP_TURNS;
+}
+
+/* The first period of the step and the first with the counts measured: the references. */
+static void enc_slip_refs(const ident_ctx_t *x, ident_encoder_t *s, const ident_input_t *in)
+{
+    if (!s->have_begin) {
+        s->p_begin = in->position;
+        s->have_begin = true;
+    }
+    if (!s->have_slip_ref && x->phase >= EN_FWD) {
+        s->p_slip = in->position;
+        s->travel_slip = x->traj.travel;
+        s->have_slip_ref = true;
+    }
+}
+
+static ident_status_t enc_dragged(ident_ctx_t *x, const ident_encoder_t *s, const ident_input_t *in)
+{
+    const float limit =
+        s->have_slip_ref ? ENC_SLIP_TURNS : ENC_DRAG_MECH_TURNS * (float)x->m.pole_pairs;
+    ident_set_result(x, COMM_Q_OFFSET, 0.0f, 0.0f, 360.0f * (enc_slip(x, s, in) + limit),
+                     COMM_QUALITY_FAILED, COMM_REASON_LOAD_TORQUE);
+    return ident_fail(x, COMM_REASON_LOAD_TORQUE);
+}
+
 ident_status_t ident_encoder_step(ident_ctx_t *x, ident_encoder_t *s, const ident_input_t *in)
 {
+    enc_slip_refs(x, s, in);
+    if (enc_slip(x, s, in) > 0.0f) {
+        return enc_dragged(x, s, in);
+    }
     if (x->phase == EN_ALIGN || x->phase == EN_ALIGN2) {
         enc_align(x, s, in);
         return IDENT_RUNNING;

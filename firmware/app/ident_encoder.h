@@ -20,6 +20,12 @@
  *          direction (a load torque on the shaft, which friction's does) doubles there; beyond
  *          2 electrical degrees the step fails (LOAD_TORQUE: the offset, and psi_f with it,
  *          would be off by the lag; the result's extra is the load's lag).
+ * Throughout, a load the field cannot hold drags the rotor through its poles: a rotor that
+ * turns more than the field can have pulled it (a mechanical turn beyond the commanded travel
+ * until the counts per electrical turn are measured, then half an electrical turn away from
+ * the field's travel) fails the step at once with LOAD_TORQUE (the extra: the slip,
+ * electrical degrees), before the protection's open-phase check, which sees a standing
+ * current vector under a turning rotor, takes the phase across the vector for an open one.
  * The HAL's angle is the floor of the count: half a count is added. About 15 s.
  */
 #ifndef IDENT_ENCODER_H
@@ -41,6 +47,11 @@ typedef struct {
     float ref;           /* the offset's unwrapping reference, turns */
     bool have_ref;
     float travel_start; /* travel at the start of the running direction's part */
+    int32_t p_begin;    /* position at the step's first period (the slip check's reference) */
+    bool have_begin;
+    int32_t p_slip; /* position and commanded travel when the counts were measured */
+    float travel_slip;
+    bool have_slip_ref;
 } ident_encoder_t;
 
 void ident_encoder_begin(ident_ctx_t *x, ident_encoder_t *s);

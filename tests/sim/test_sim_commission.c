@@ -278,6 +278,36 @@ static void test_load_torque_found(void **state)
     assert_int_equal(r.final_state, 2);
 }
 
+/* A load the test current cannot hold (2.8 N m at the default current; 1.4 N m at the load
+ * check's half current) drags the rotor through its poles while the field stands or turns
+ * slowly. The open-phase check then sees a current vector that stands while the rotor turns
+ * and found the phase across it open (OPEN_PHASE at 2 and 3 N m, OVERSPEED at 7 N m, REVERSED
+ * or POLE_PAIRS at 5 N m before the slip check): the sequence must find the load itself, stop
+ * with LOAD_TORQUE, the outputs off and the drive READY. */
+static void test_dragged_rotor_is_a_load(void **state)
+{
+    static const double loads_nm[] = {2.0, 3.0, 5.0, 7.0, -3.0};
+    size_t k;
+    (void)state;
+    for (k = 0; k < sizeof loads_nm / sizeof loads_nm[0]; k++) {
+        sim_config_t c;
+        sim_result_t r;
+        config(&c, NULL, 0);
+        c.load_nm = loads_nm[k];
+        run(&c, &r);
+        print_message("load %+.1f N m: %s / %s after %.3f s, fault %d, slip %.0f deg\n",
+                      loads_nm[k], sxl_comm_state_name((uint16_t)r.comm.state),
+                      sxl_comm_reason_name((uint16_t)r.comm.reason), r.comm.duration_s, r.fault,
+                      r.comm.extra[SXL_COMM_Q_OFFSET]);
+        assert_int_equal(r.fault, 0);
+        assert_int_equal(r.comm.state, SXL_COMM_STATE_FAILED);
+        assert_int_equal(r.comm.reason, SXL_COMM_REASON_LOAD_TORQUE);
+        assert_int_equal(r.comm.quality[SXL_COMM_Q_OFFSET], SXL_COMM_QUALITY_FAILED);
+        assert_int_equal(r.comm.reason_q[SXL_COMM_Q_PSI_F], SXL_COMM_REASON_SKIPPED);
+        assert_int_equal(r.final_state, 2);
+    }
+}
+
 /* The DC link below the under-voltage limit (300 V against 350 V): refused, nothing runs. */
 static void test_refused_with_the_dc_link_low(void **state)
 {
@@ -445,6 +475,7 @@ int main(void)
         cmocka_unit_test(test_closed_loop_after_commissioning),
         cmocka_unit_test(test_wrong_pole_pairs_and_swapped_channels),
         cmocka_unit_test(test_load_torque_found),
+        cmocka_unit_test(test_dragged_rotor_is_a_load),
         cmocka_unit_test(test_failed_sequence_writes_no_file),
         cmocka_unit_test(test_current_within_a_fraction_of_the_trip_level),
         cmocka_unit_test(test_refused_with_the_dc_link_low),
