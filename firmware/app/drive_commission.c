@@ -13,6 +13,16 @@ static bool drive_encoder_error(const drive_t *d)
     return d->encoder.index_seen && !d->encoder.healthy;
 }
 
+/* A rotor still coasting (after a STOP, or turned by hand or by a load) faster than the
+ * encoder step's spin, one electrical turn per second: the alignment would drag it and the
+ * sequence would blame a load, so the start is refused. */
+static bool drive_rotor_turning(const drive_t *d)
+{
+    const int32_t speed = d->encoder.mech_speed_q16; /* 65536 = 1 rev/s */
+    const int32_t limit = (int32_t)65536 / (int32_t)ctl_params(&d->ctl)->pole_pairs;
+    return speed > limit || speed < -limit;
+}
+
 static int16_t drive_comm_refusal(const drive_t *d)
 {
     if (d->state != DRIVE_STATE_READY) {
@@ -26,6 +36,9 @@ static int16_t drive_comm_refusal(const drive_t *d)
     }
     if (d->isolated_leg >= 0) { /* five legs (drive_open_phase.h): restore them first */
         return COMM_REASON_OPEN_PHASE;
+    }
+    if (drive_rotor_turning(d)) {
+        return COMM_REASON_ROTOR_TURNING;
     }
     return COMM_REASON_NONE;
 }

@@ -76,9 +76,11 @@
       "the estimate lies outside the range the controller accepts")                                \
     X(TIMEOUT, 18, "timeout", "the step ran past its time bound (a stalled rotor, a load)")        \
     X(LOAD_TORQUE, 19, "load_torque",                                                              \
-      "a load torque on the shaft biases the offset: commission with the shaft free")
+      "a load torque on the shaft biases the offset: commission with the shaft free")              \
+    X(ROTOR_TURNING, 20, "rotor_turning",                                                          \
+      "the rotor turns faster than the sequence's spin: wait until it stands still")
 
-#define SXL_COMM_REASON_COUNT 20u
+#define SXL_COMM_REASON_COUNT 21u
 
 /* State of the sequence (COMMISSION_STATUS): X(id, number, name, meaning). */
 #define SXL_COMM_STATE_LIST(X)                                                                     \

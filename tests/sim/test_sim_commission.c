@@ -326,6 +326,42 @@ static void test_refused_with_the_dc_link_low(void **state)
     assert_int_equal(r.final_state, 2);
 }
 
+/* A rotor still turning (here 30 r/min, 1.5 electrical turns/s) when the sequence is asked
+ * for: refused with rotor_turning, the drive stays READY with its outputs off; once the rotor
+ * stands, the same request is taken. */
+static void test_refused_with_the_rotor_turning(void **state)
+{
+    sim_config_t c;
+    sim_result_t r;
+    sim_run_t rs;
+    sim_ctl_status_t st;
+    sim_comm_status_t cs;
+    char err[200] = "";
+    long k;
+    (void)state;
+    config(&c, NULL, 0);
+    memset(&r, 0, sizeof r);
+    assert_int_equal(sim_setup(&rs, &c, err, sizeof err), 0);
+    assert_int_equal(sim_setup_calibrate(&rs, &r, err, sizeof err), 0);
+    rs.x.omega_m = 0.5 * 2.0 * 3.14159265358979323846;
+    for (k = 0; k < 200; k++) {
+        assert_int_equal(sim_loop_period(&rs, &r, k), 0);
+    }
+    assert_int_not_equal(rs.ops->commission_start(SXL_COMM_STEPS_ALL, 400u), 0);
+    rs.ops->commission_status(&cs);
+    assert_int_equal(cs.reason, SXL_COMM_REASON_ROTOR_TURNING);
+    assert_int_equal(cs.state, SXL_COMM_STATE_IDLE);
+    rs.ops->status(&st);
+    assert_true(st.ready && !st.commissioning);
+    assert_true(hal_sim_bus.forced_off);
+    rs.x.omega_m = 0.0;
+    for (; k < 400; k++) {
+        assert_int_equal(sim_loop_period(&rs, &r, k), 0);
+    }
+    assert_int_equal(rs.ops->commission_start(SXL_COMM_STEPS_ALL, 400u), 0);
+    sim_teardown(&rs, true);
+}
+
 /* A request while the drive runs (the steady scenario): refused, the drive keeps running. */
 static void test_refused_while_running(void **state)
 {
@@ -479,6 +515,7 @@ int main(void)
         cmocka_unit_test(test_failed_sequence_writes_no_file),
         cmocka_unit_test(test_current_within_a_fraction_of_the_trip_level),
         cmocka_unit_test(test_refused_with_the_dc_link_low),
+        cmocka_unit_test(test_refused_with_the_rotor_turning),
         cmocka_unit_test(test_refused_while_running),
         cmocka_unit_test(test_open_phase_checked_again_after_clear),
     };
