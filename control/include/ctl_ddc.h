@@ -43,6 +43,13 @@ typedef struct {
 void ctl_ddc_config_init(ctl_ddc_config_t *cfg, int16_t direction, int16_t n_levels,
                          bool torque_guard, float tie_band);
 
+/* The k+2 state under the zero vector: torque and flux components (the root on demand). */
+typedef struct {
+    ctl_q torque;
+    ctl_q psi_d;
+    ctl_q psi_q;
+} ctl_ddc_state_t;
+
 /* stage_hook (profiling, 0: none) is told when the table stage ends. */
 void ctl_ddc_select(const ctl_horizon_t *h, const ctl_ddc_flux_t *flux, const ctl_ddc_config_t *cfg,
                     void (*stage_hook)(int16_t stage), ctl_choice_t *out);

@@ -1,6 +1,7 @@
 #include "ctl_postfault.h"
 
 #include "ctl_angle.h"
+#include "ctl_ddc_levels.h"
 #include "ctl_pulse.h"
 #include "ctl_search.h"
 #include "ctl_tables.h"
@@ -28,13 +29,6 @@ typedef struct {
     ctl_q kq[4]; /* and i_q */
     pf_currents_t i1; /* the state at k+1, projected */
 } pf_horizon_t;
-
-/* The k+2 state under the zero vector. */
-typedef struct {
-    ctl_q torque;
-    ctl_q psi_d;
-    ctl_q psi_q;
-} pf_zero_t;
 
 static void pf_constraint_at(const ctl_model_t *mdl, const ctl_postfault_config_t *pf, ctl_q s,
                              ctl_q co, pf_constraint_t *k)
@@ -129,21 +123,19 @@ static void pf_forced_coefficients(pf_horizon_t *p, const pf_constraint_t *k2)
     const ctl_q cd = ctl_mul(mdl->c_d, p->h.vdc);
     const ctl_q cq = ctl_mul(mdl->c_q, p->h.vdc);
     const ctl_q cxy = ctl_mul(mdl->c_xy, p->h.vdc);
-    const ctl_q fd[4] = {ctl_mul(cd, p->h.cos1), ctl_mul(cd, p->h.sin1), CTL_Q(0.0), CTL_Q(0.0)};
-    const ctl_q fq[4] = {ctl_sub(CTL_Q(0.0), ctl_mul(cq, p->h.sin1)), ctl_mul(cq, p->h.cos1),
-                         CTL_Q(0.0), CTL_Q(0.0)};
+    const ctl_q fd[2] = {ctl_mul(cd, p->h.cos1), ctl_mul(cd, p->h.sin1)};
+    const ctl_q fq[2] = {ctl_sub(CTL_Q(0.0), ctl_mul(cq, p->h.sin1)), ctl_mul(cq, p->h.cos1)};
+    const ctl_q cxy_along[2] = {ctl_mul(k2->cx, cxy), ctl_mul(k2->cy, cxy)};
     int16_t j;
-    for (j = 0; j < 4; j++) {
-        /* c . forced response to voltage component j, over c . g */
-        ctl_q along = ctl_mul_add(k2->cd, fd[j], k2->cq, fq[j]);
-        if (j == 2) {
-            along = ctl_mul_acc(along, k2->cx, cxy);
-        } else if (j == 3) {
-            along = ctl_mul_acc(along, k2->cy, cxy);
-        }
-        along = ctl_mul(along, k2->inv_cg);
+    for (j = 0; j < 2; j++) {
+        /* c . forced response to voltage component j, over c . g: alpha and beta drive d-q,
+         * x and y only x-y (no d-q part to keep) */
+        const ctl_q along = ctl_mul(ctl_mul_add(k2->cd, fd[j], k2->cq, fq[j]), k2->inv_cg);
+        const ctl_q along_xy = ctl_mul(cxy_along[j], k2->inv_cg);
         p->kd[j] = ctl_mul_dec(fd[j], k2->gd, along);
         p->kq[j] = ctl_mul_dec(fq[j], k2->gq, along);
+        p->kd[2 + j] = ctl_mul_dec(CTL_Q(0.0), k2->gd, along_xy);
+        p->kq[2 + j] = ctl_mul_dec(CTL_Q(0.0), k2->gq, along_xy);
     }
 }
 
@@ -180,82 +172,6 @@ static inline void pf_forced(const pf_horizon_t *p, const ctl_vsd_t *v, ctl_q *d
                    ctl_mul_add(p->kq[2], v->x, p->kq[3], v->y));
 }
 
-/* Levels [*first, *last] that compete, and the torque error bound of the flux tie band: the
- * level that best meets the torque reference and its neighbours (the healthy DDC's torque
- * guard, ctl_ddc.c, docs/improvements.md, here always on: without it the flux term chose the
- * levels on the five legs' weaker voltages and the torque was lost, the paper's DDC with C open
- * at 3.5 N m falling to 570 r/min); with the tie band only the levels within a fraction of one
- * level's torque step of the best. */
-static void pf_competing_levels(const ctl_ddc_config_t *cfg, const ctl_q *torque,
-                                const ctl_q *torque_err, int16_t *first, int16_t *last,
-                                ctl_q *bound)
-{
-    int16_t best = 0;
-    int16_t k;
-    *last = (int16_t)(cfg->n_levels - 1);
-    *bound = CTL_Q_MAX;
-    for (k = 1; k < cfg->n_levels; k++) {
-        if (torque_err[k] < torque_err[best]) {
-            best = k;
-        }
-    }
-    *first = (best > 0) ? (int16_t)(best - 1) : 0;
-    *last = (best < *last) ? (int16_t)(best + 1) : *last;
-    if (cfg->tie_per_span != CTL_Q(0.0)) { /* levels 1 first, 0 last */
-        const ctl_q span = ctl_abs(ctl_sub(torque[0], torque[cfg->n_levels - 1]));
-        *bound = ctl_add(torque_err[best], ctl_mul(span, cfg->tie_per_span));
-    }
-}
-
-/* Best duty of one vector over the levels, the zero vector's state for duty 0. */
-static void pf_duty_search(const ctl_config_t *cfg, const pf_horizon_t *p, int16_t vector,
-                           const pf_zero_t *zero, ctl_choice_t *out)
-{
-    ctl_q torque[CTL_DUTY_LEVELS_MAX];
-    ctl_q torque_err[CTL_DUTY_LEVELS_MAX];
-    ctl_q psi_d[CTL_DUTY_LEVELS_MAX];
-    ctl_q psi_q[CTL_DUTY_LEVELS_MAX];
-    ctl_q did;
-    ctl_q diq;
-    int16_t first;
-    int16_t last;
-    ctl_q bound;
-    int16_t k;
-    pf_forced(p, &ctl_vector_vsd[vector], &did, &diq);
-    for (k = 0; k < cfg->ddc.n_levels; k++) {
-        const ctl_q d = cfg->ddc.levels[k];
-        torque[k] = zero->torque;
-        psi_d[k] = zero->psi_d;
-        psi_q[k] = zero->psi_q;
-        if (d != CTL_Q(0.0)) {
-            torque[k] = ctl_torque_psi(p->h.model, ctl_mul_acc(p->h.id2_free, d, did),
-                                       ctl_mul_acc(p->h.iq2_free, d, diq), &psi_d[k], &psi_q[k]);
-        }
-        torque_err[k] = ctl_abs(ctl_sub(torque[k], p->h.torque_ref));
-    }
-    pf_competing_levels(&cfg->ddc, torque, torque_err, &first, &last, &bound);
-    out->vector = vector;
-    out->cost = CTL_Q_MAX;
-    out->duty = CTL_Q(0.0);
-    out->torque = zero->torque;
-    out->flux = ctl_flux_magnitude(zero->psi_d, zero->psi_q);
-    for (k = first; k <= last; k++) {
-        ctl_q flux;
-        ctl_q cost;
-        if (torque_err[k] > bound) {
-            continue;
-        }
-        flux = ctl_flux_magnitude(psi_d[k], psi_q[k]);
-        cost = ctl_horizon_cost_of(&p->h, torque[k], flux);
-        if (cost < out->cost) {
-            out->cost = cost;
-            out->duty = cfg->ddc.levels[k];
-            out->torque = torque[k];
-            out->flux = flux;
-        }
-    }
-}
-
 /* Index of the free x-y voltage sign the DDC table needs: 1 (negative) while the free x-y
  * current at k+1 is above its reference (free_ref . i_ab, zero for minimum loss). */
 static int16_t pf_free_sign(const ctl_postfault_config_t *pf, const pf_horizon_t *p)
@@ -279,7 +195,10 @@ static void pf_select_ddc(const ctl_t *c, const ctl_config_t *cfg, const pf_hori
     const ctl_q flux_ref = p->h.flux_ref;
     ctl_q psi_alpha;
     ctl_q psi_beta;
-    pf_zero_t zero;
+    ctl_ddc_state_t zero;
+    ctl_q did;
+    ctl_q diq;
+    int16_t vector;
     int16_t sector;
     int16_t half;
     int16_t lower;
@@ -290,8 +209,12 @@ static void pf_select_ddc(const ctl_t *c, const ctl_config_t *cfg, const pf_hori
     half = (zero.torque > p->h.torque_ref) ? 1 : 0;
     lower = (ctl_mul_add(psi_d1, psi_d1, psi_q1, psi_q1) >= ctl_mul(flux_ref, flux_ref)) ? 1 : 0;
     sign = pf_free_sign(p->pf, p);
+    vector = p->pf->ddc_table[sector][half][lower][sign];
     CTL_STAGE_MARK(c->stage_hook, CTL_STAGE_TABLE);
-    pf_duty_search(cfg, p, p->pf->ddc_table[sector][half][lower][sign], &zero, out);
+    /* the healthy search on the projected forced response (the torque guard is always on with
+     * an open phase: ctl_config.c) */
+    pf_forced(p, &ctl_vector_vsd[vector], &did, &diq);
+    ctl_ddc_levels_search(&p->h, &cfg->ddc, vector, did, diq, &zero, out);
     out->candidates = cfg->params.duty_levels;
     out->flux_sector = sector;
     out->xy_sector = sign;
@@ -454,7 +377,7 @@ static void pf_command_off(ctl_cmd_t *cmd)
 void ctl_postfault_step(ctl_t *c, const ctl_meas_t *m, ctl_cmd_t *cmd)
 {
     const ctl_config_t *cfg = ctl_config(c);
-    pf_horizon_t p = {0};
+    pf_horizon_t p;
     pf_currents_t i0;
     ctl_choice_t choice;
     ctl_vsd_t vsd;

@@ -94,8 +94,9 @@ SECTIONS
                    *(.text:_ctl_reset_command) *(.text:_ctl_step) *(.text:_mid_period_angles)
                    *(.text:_predict) *(.text:_record_diag) *(.text:_select_ddc)
                    *(.text:_use_config)
-                   /* control/src/ctl_ddc.c */
-                   *(.text:_competing_levels) *(.text:_ctl_ddc_select) *(.text:_duty_search)
+                   /* control/src/ctl_ddc.c, ctl_ddc_levels.h */
+                   *(.text:_ctl_ddc_competing_levels) *(.text:_ctl_ddc_levels_search)
+                   *(.text:_ctl_ddc_select)
                    /* control/src/ctl_flux_ref.c */
                    *(.text:_ctl_flux_ref_run)
 #ifndef SIXPHASE_FW_Q24   /* the Q24 image runs the MPTC-49/13 search from flash */

@@ -10,8 +10,10 @@
  * CTL_COUNT_OPS, when it prints the worst step's primitive operations priced as
  * tools/bench/run_benchmark.py prices them for the F28335.
  */
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "ctl.h"
 #include "ctl_pu.h"
@@ -99,6 +101,11 @@ int main(int argc, char **argv)
         ctl_step(&ctl, &meas[i], &cmd);
 #endif
         checksum = checksum * 31u + (unsigned long)cmd.vector;
+        for (int leg = 0; leg < CTL_PHASES; leg++) { /* the duties too, bit for bit */
+            uint32_t bits;
+            memcpy(&bits, &cmd.leg_duty[leg], sizeof bits);
+            checksum = checksum * 31u + bits;
+        }
     }
     printf("steps %d checksum %lu", n, checksum);
     if (worst > 0.0) {
