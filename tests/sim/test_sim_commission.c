@@ -326,6 +326,18 @@ static void test_refused_with_the_dc_link_low(void **state)
     assert_int_equal(r.final_state, 2);
 }
 
+/* The run set up and the drive calibrated, for a test that steps it period by period. */
+static void start_stepwise(sim_run_t *rs, const sim_config_t *c, sim_result_t *r)
+{
+    char err[200] = "";
+    memset(r, 0, sizeof *r);
+    if (sim_setup(rs, c, err, sizeof err) != 0 ||
+        sim_setup_calibrate(rs, r, err, sizeof err) != 0) {
+        print_error("set-up failed: %s\n", err);
+        fail();
+    }
+}
+
 /* A rotor still turning (here 30 r/min, 1.5 electrical turns/s) when the sequence is asked
  * for: refused with rotor_turning, the drive stays READY with its outputs off; once the rotor
  * stands, the same request is taken. */
@@ -336,13 +348,10 @@ static void test_refused_with_the_rotor_turning(void **state)
     sim_run_t rs;
     sim_ctl_status_t st;
     sim_comm_status_t cs;
-    char err[200] = "";
     long k;
     (void)state;
     config(&c, NULL, 0);
-    memset(&r, 0, sizeof r);
-    assert_int_equal(sim_setup(&rs, &c, err, sizeof err), 0);
-    assert_int_equal(sim_setup_calibrate(&rs, &r, err, sizeof err), 0);
+    start_stepwise(&rs, &c, &r);
     rs.x.omega_m = 0.5 * 2.0 * 3.14159265358979323846;
     for (k = 0; k < 200; k++) {
         assert_int_equal(sim_loop_period(&rs, &r, k), 0);
@@ -370,14 +379,11 @@ static void test_refused_while_running(void **state)
     sim_run_t rs;
     sim_ctl_status_t st;
     sim_comm_status_t cs;
-    char err[200] = "";
     long k;
     (void)state;
     sim_config_default(&c);
     c.duration_s = 0.05;
-    memset(&r, 0, sizeof r);
-    assert_int_equal(sim_setup(&rs, &c, err, sizeof err), 0);
-    assert_int_equal(sim_setup_calibrate(&rs, &r, err, sizeof err), 0);
+    start_stepwise(&rs, &c, &r);
     for (k = 0; k < 100; k++) {
         assert_int_equal(sim_loop_period(&rs, &r, k), 0);
     }
