@@ -9,7 +9,10 @@ usage: ram_budget.py --linker F28335_flash.cmd [--define NAME=VALUE]... --object
 The linker command file is read as TI's linker reads it, preprocessed with the build's
 --define macros (#if / #ifdef / #ifndef / #else / #endif). What it copies to RAM:
   - ramfuncs: the code of the per-period path, one `*(.text:_NAME)` line per function (cl2000
-    --gen_func_subsections puts each function in a subsection of that name), plus every function
+    --gen_func_subsections puts each function in a subsection of that name), or
+    `*OBJECT.*obj(.text:_NAME)` for a static inline function of a shared private header that
+    only one object's copy must run from RAM (the others' may stay in flash; the placement check
+    goes by name, the sizes by object), plus every function
     marked F28335_RAMFUNC (`*(ramfuncs)`) and the run-time library (`-l...lib(.text)`);
   - ramconsts: constant tables, one `*NAME.*obj(.econst)` line per object;
 and the blocks they and `.ebss` run in.
@@ -97,13 +100,15 @@ def parse_linker(path, defines):
         fail("%s: no .ebss placement" % path)
     code, code_region = copied_section(text, "ramfuncs")
     functions = re.findall(r"\*\(\.text:_(\w+)\)", code)
+    only_in = {fn: obj for obj, fn in re.findall(r"\*(\w+)\.\*obj\(\.text:_(\w+)\)", code)}
     if not functions or "*(ramfuncs)" not in code.replace(" ", ""):
         fail("ramfuncs lists no `*(.text:_NAME)` function or lacks `*(ramfuncs)`")
     tables, tables_region = copied_section(text, "ramconsts")
     placed = re.findall(r"\*(\w+)\.\*obj\((\.\w+)\)", tables)
     if not placed:
         fail("no object list in ramconsts")
-    return regions, (set(functions), code_region), (placed, tables_region), ebss.group(1)
+    code_listing = (set(functions) | set(only_in), only_in, code_region)
+    return regions, code_listing, (placed, tables_region), ebss.group(1)
 
 
 def section_sizes(size_tool, obj):
@@ -167,14 +172,17 @@ def check_placement(a, listed):
     return missing
 
 
-def measure(a, listed, placed):
+def measure(a, listed, only_in, placed):
+    """Proxy bytes of the listed code (a function listed for one object: that object's copy
+    only), of the copied tables and of all static data."""
     objs = {os.path.basename(o)[:-2]: section_sizes(a.size, o)
             for o in sorted(glob.glob(os.path.join(a.objects, "*.o")))
             if not os.path.basename(o).startswith("ti_link_stubs")}
     if not objs:
         fail("no objects in %s" % a.objects)
-    code = sum(n for sizes in objs.values() for name, n in sizes.items()
-               if name.startswith(".text.") and stack_depth.c_name(name[6:]) in listed)
+    code = sum(n for obj, sizes in objs.items() for name, n in sizes.items()
+               if name.startswith(".text.") and stack_depth.c_name(name[6:]) in listed
+               and only_in.get(stack_depth.c_name(name[6:]), obj) == obj)
     tables = 0
     for name, section in placed:
         if name not in objs:
@@ -198,10 +206,10 @@ def main():
     ap.add_argument("--summary", help="write the figures as JSON")
     a = ap.parse_args()
     defines = dict(d.split("=", 1) if "=" in d else (d, "1") for d in a.define)
-    regions, (listed, code_region), (placed, tables_region), ebss_region = \
+    regions, (listed, only_in, code_region), (placed, tables_region), ebss_region = \
         parse_linker(a.linker, defines)
     missing = check_placement(a, listed)
-    code_bytes, table_bytes, ebss_bytes = measure(a, listed, placed)
+    code_bytes, table_bytes, ebss_bytes = measure(a, listed, only_in, placed)
     code_words = int(math.ceil(MARGIN * code_bytes / 2.0)) + RTS_RESERVE_WORDS
     table_words = (table_bytes + 1) // 2
     ebss_words = int(math.ceil(MARGIN * ebss_bytes / 2.0))

@@ -94,8 +94,10 @@ SECTIONS
                    *(.text:_ctl_reset_command) *(.text:_ctl_step) *(.text:_mid_period_angles)
                    *(.text:_predict) *(.text:_record_diag) *(.text:_select_ddc)
                    *(.text:_use_config)
-                   /* control/src/ctl_ddc.c, ctl_ddc_levels.h */
-                   *(.text:_ctl_ddc_competing_levels) *(.text:_ctl_ddc_levels_search)
+                   /* control/src/ctl_ddc.c, and its copy of ctl_ddc_levels.h (the open-phase
+                    * step's copy, if not inlined, stays in flash with that step) */
+                   *ctl_ddc.*obj(.text:_ctl_ddc_competing_levels)
+                   *ctl_ddc.*obj(.text:_ctl_ddc_levels_search)
                    *(.text:_ctl_ddc_select)
                    /* control/src/ctl_flux_ref.c */
                    *(.text:_ctl_flux_ref_run)

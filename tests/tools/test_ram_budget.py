@@ -37,7 +37,7 @@ SECTIONS
 {
    ramfuncs   : {
                    *(ramfuncs)
-                   *(.text:_control) %s
+                   %s %s
 #ifndef SIXPHASE_FW_Q24
                    *(.text:_search)
 #endif
@@ -59,7 +59,8 @@ SECTIONS
 
 @unittest.skipUnless(shutil.which("gcc") and shutil.which("size"), "needs gcc and binutils")
 class RamBudget(unittest.TestCase):
-    def run_tool(self, listed_step, ram_words=0x4000, q24=False, from_flash=""):
+    def run_tool(self, listed_step, ram_words=0x4000, q24=False, from_flash="",
+                 control_entry="*(.text:_control)"):
         with tempfile.TemporaryDirectory() as d:
             src = os.path.join(d, "prog.c")
             with open(src, "w") as f:
@@ -72,7 +73,8 @@ class RamBudget(unittest.TestCase):
                                check=True)
             cmd = os.path.join(d, "link.cmd")
             with open(cmd, "w") as f:
-                f.write(LINKER % (ram_words, "*(.text:_step)" if listed_step else ""))
+                f.write(LINKER % (ram_words, control_entry,
+                                  "*(.text:_step)" if listed_step else ""))
             args = [sys.executable, TOOL, "--linker", cmd, "--objects", os.path.join(d, "o2"),
                     "--callgraph", os.path.join(d, "noinline"), "--size", "size"]
             if q24:
@@ -105,6 +107,20 @@ class RamBudget(unittest.TestCase):
         r = self.run_tool(listed_step=True, from_flash="search")
         self.assertNotEqual(r.returncode, 0)
         self.assertIn("search is listed in ramfuncs and named --from-flash", r.stderr)
+
+    def test_an_entry_for_one_object_counts_that_objects_copy(self):
+        # *OBJECT.*obj(.text:_NAME): placed for the path, measured in that object only
+        def code_bytes(r):
+            self.assertEqual(r.returncode, 0, r.stderr)
+            line = [l for l in r.stdout.splitlines() if l.startswith("| ramfuncs")][0]
+            return int(line.split("|")[2])
+        everywhere = code_bytes(self.run_tool(listed_step=True))
+        here = code_bytes(self.run_tool(listed_step=True,
+                                        control_entry="*prog.*obj(.text:_control)"))
+        elsewhere = code_bytes(self.run_tool(listed_step=True,
+                                             control_entry="*other.*obj(.text:_control)"))
+        self.assertEqual(here, everywhere)
+        self.assertLess(elsewhere, here)
 
     def test_a_full_block_fails(self):
         # 1024 words of library reserve alone fill more than 90 % of 0x460 words
