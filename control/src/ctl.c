@@ -3,6 +3,7 @@
 #include "ctl_barrier.h"
 #include "ctl_constants.h"
 #include "ctl_ddc.h"
+#include "ctl_diag_record.h"
 #include "ctl_mptc.h"
 #include "ctl_postfault.h"
 #include "ctl_pulse.h"
@@ -237,26 +238,6 @@ static void select_ddc(const ctl_t *c, const ctl_config_t *cfg, const ctl_horizo
 #endif
 }
 
-static void record_diag(ctl_t *c, const ctl_config_t *cfg, const ctl_sample_t *smp,
-                        const ctl_horizon_t *h, const ctl_choice_t *choice)
-{
-    ctl_diag_t *dg = &c->diag;
-    dg->i_d = smp->id;
-    dg->i_q = smp->iq;
-    dg->i_x = smp->vsd.x;
-    dg->i_y = smp->vsd.y;
-    dg->torque_est = ctl_torque_psi(&cfg->model, smp->id, smp->iq, &dg->psi_d_est, &dg->psi_q_est);
-    dg->torque_ref = h->torque_ref;
-    dg->flux_ref = h->flux_ref;
-    dg->torque_pred = choice->torque;
-    dg->flux_pred = choice->flux;
-    dg->cost = choice->cost;
-    dg->flux_sector = choice->flux_sector;
-    dg->xy_sector = choice->xy_sector;
-    dg->candidates = choice->candidates;
-    dg->braking = choice->braking;
-}
-
 void ctl_step(ctl_t *c, const ctl_meas_t *m, ctl_cmd_t *cmd)
 {
     const ctl_config_t *cfg;
@@ -304,6 +285,6 @@ void ctl_step(ctl_t *c, const ctl_meas_t *m, ctl_cmd_t *cmd)
                         &c->applied_edges);
     c->applied_vector = cmd->vector;
     c->applied_duty = cmd->duty;
-    record_diag(c, cfg, &smp, &h, &choice);
+    ctl_diag_record(c, cfg, smp.id, smp.iq, smp.vsd.x, smp.vsd.y, &h, &choice);
     CTL_STAGE_MARK(c->stage_hook, CTL_STAGE_SEARCH);
 }

@@ -2,6 +2,7 @@
 
 #include "ctl_angle.h"
 #include "ctl_ddc_levels.h"
+#include "ctl_diag_record.h"
 #include "ctl_pulse.h"
 #include "ctl_search.h"
 #include "ctl_tables.h"
@@ -342,26 +343,6 @@ static void pf_command(ctl_t *c, const ctl_config_t *cfg, const ctl_postfault_co
     c->applied_duty = cmd->duty;
 }
 
-static void pf_record_diag(ctl_t *c, const ctl_config_t *cfg, const pf_currents_t *i0,
-                           const pf_horizon_t *p, const ctl_choice_t *choice)
-{
-    ctl_diag_t *dg = &c->diag;
-    dg->i_d = i0->d;
-    dg->i_q = i0->q;
-    dg->i_x = i0->x;
-    dg->i_y = i0->y;
-    dg->torque_est = ctl_torque_psi(&cfg->model, i0->d, i0->q, &dg->psi_d_est, &dg->psi_q_est);
-    dg->torque_ref = p->h.torque_ref;
-    dg->flux_ref = p->h.flux_ref;
-    dg->torque_pred = choice->torque;
-    dg->flux_pred = choice->flux;
-    dg->cost = choice->cost;
-    dg->flux_sector = choice->flux_sector;
-    dg->xy_sector = choice->xy_sector;
-    dg->candidates = choice->candidates;
-    dg->braking = choice->braking;
-}
-
 /* All switches off: no valid parameter set was ever in force. */
 static void pf_command_off(ctl_cmd_t *cmd)
 {
@@ -410,6 +391,6 @@ void ctl_postfault_step(ctl_t *c, const ctl_meas_t *m, ctl_cmd_t *cmd)
         pf_select_mptc(cfg, &p, &choice);
     }
     pf_command(c, cfg, p.pf, &choice, cmd);
-    pf_record_diag(c, cfg, &i0, &p, &choice);
+    ctl_diag_record(c, cfg, i0.d, i0.q, i0.x, i0.y, &p.h, &choice);
     CTL_STAGE_MARK(c->stage_hook, CTL_STAGE_SEARCH);
 }

@@ -92,8 +92,10 @@ SECTIONS
                    *(.text:_ctl_postfault_config) *(.text:_ctl_pulse_arrange)
                    *(.text:_ctl_pulse_set_difference) *(.text:_ctl_reset)
                    *(.text:_ctl_reset_command) *(.text:_ctl_step) *(.text:_mid_period_angles)
-                   *(.text:_predict) *(.text:_record_diag) *(.text:_select_ddc)
+                   *(.text:_predict) *(.text:_select_ddc)
                    *(.text:_use_config)
+                   /* ctl.c's copy of ctl_diag_record.h (the open-phase step's stays in flash) */
+                   *ctl.*obj(.text:_ctl_diag_record)
                    /* control/src/ctl_ddc.c, and its copy of ctl_ddc_levels.h (the open-phase
                     * step's copy, if not inlined, stays in flash with that step) */
                    *ctl_ddc.*obj(.text:_ctl_ddc_competing_levels)
