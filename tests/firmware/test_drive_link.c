@@ -218,15 +218,11 @@ static const uint16_t *get_record(void)
 
 #define OVER_LIMIT_COUNTS 1700 /* 16.60 A: above the 15 A limit */
 
-/* An over-current while running, then an overrun reported in the next period: the status
- * carries the first code, both latched bits and the two unread records; the records come
- * back oldest first, scaled, then the log reads empty. */
-static void test_fault_status_and_records(void **state)
+/* Running, then an over-current (with the controller's state the record should report) and
+ * an overrun in the next period; the over-current's period. */
+static uint32_t trip_overcurrent_then_overrun(void)
 {
-    const uint16_t *st;
-    const uint16_t *fr;
     uint32_t period;
-    (void)state;
     mock_encoder.elec_angle = 0x40000000u; /* 0.25 turn, steady: no encoder jump */
     calibrate();
     mock_cmd.enable = true;
@@ -250,18 +246,12 @@ static void test_fault_status_and_records(void **state)
     will_return(hal_adc_read, true);
     drive_control_isr(&d); /* still over the limit: already latched, no new record */
     drive_trip(&d, DRIVE_FAULT_OVERRUN);
+    return period;
+}
 
-    assert_int_equal(send(SXL_CMD_GET_STATUS), SXL_OK);
-    assert_int_equal(rep.len, 1u + SXL_ST_SIZE);
-    assert_reply_bytes();
-    st = &rep.payload[1];
-    assert_int_equal(st[SXL_ST_STATE], DRIVE_STATE_FAULT);
-    assert_int_equal(st[SXL_ST_FAULT], DRIVE_FAULT_OVERCURRENT);
-    assert_string_equal(sxl_fault_name(st[SXL_ST_FAULT]), "OVERCURRENT");
-    assert_int_equal(sxl_get_u16(&st[SXL_ST_FAULTS]), CTL_FAULT_OVERCURRENT | CTL_FAULT_OVERRUN);
-    assert_int_equal(sxl_get_u16(&st[SXL_ST_RECORDS]), 2u);
-
-    fr = get_record(); /* the over-current, oldest */
+/* The over-current's record: period, scaled measurements, the controller's state. */
+static void check_overcurrent_record(const uint16_t *fr, uint32_t period)
+{
     assert_int_equal(rep.len, 1u + SXL_FR_SIZE);
     assert_int_equal(fr[SXL_FR_PRESENT], 1u);
     assert_int_equal(sxl_get_u16(&fr[SXL_FR_PENDING]), 1u);
@@ -279,6 +269,29 @@ static void test_fault_status_and_records(void **state)
     assert_near(sxl_get_i32(&fr[SXL_FR_TORQUE_REF]), -8400, 1);
     assert_int_equal(sxl_get_i16(&fr[SXL_FR_VECTOR]), 45);
     assert_near(sxl_get_u16(&fr[SXL_FR_DUTY]), 19661, 1); /* 0.6 in Q15 */
+}
+
+/* An over-current while running, then an overrun reported in the next period: the status
+ * carries the first code, both latched bits and the two unread records; the records come
+ * back oldest first, scaled, then the log reads empty. */
+static void test_fault_status_and_records(void **state)
+{
+    const uint16_t *st;
+    const uint16_t *fr;
+    const uint32_t period = trip_overcurrent_then_overrun();
+    (void)state;
+    assert_int_equal(send(SXL_CMD_GET_STATUS), SXL_OK);
+    assert_int_equal(rep.len, 1u + SXL_ST_SIZE);
+    assert_reply_bytes();
+    st = &rep.payload[1];
+    assert_int_equal(st[SXL_ST_STATE], DRIVE_STATE_FAULT);
+    assert_int_equal(st[SXL_ST_FAULT], DRIVE_FAULT_OVERCURRENT);
+    assert_string_equal(sxl_fault_name(st[SXL_ST_FAULT]), "OVERCURRENT");
+    assert_int_equal(sxl_get_u16(&st[SXL_ST_FAULTS]), CTL_FAULT_OVERCURRENT | CTL_FAULT_OVERRUN);
+    assert_int_equal(sxl_get_u16(&st[SXL_ST_RECORDS]), 2u);
+
+    fr = get_record(); /* the over-current, oldest */
+    check_overcurrent_record(fr, period);
 
     fr = get_record(); /* the overrun, raised outside the periodic check */
     assert_int_equal(fr[SXL_FR_PRESENT], 1u);
