@@ -89,6 +89,7 @@ set(SIXPHASE_TARGET_INCLUDE_DIRS
     hal/f28335/include
     hal/f28335/src
     control/include
+    control/platform
     control/src)
 
 # Everything the TI image links, C first.

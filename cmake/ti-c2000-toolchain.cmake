@@ -5,7 +5,7 @@
 #   cmake -S firmware/f28335 -B build/ti \
 #         -DCMAKE_TOOLCHAIN_FILE=cmake/ti-c2000-toolchain.cmake \
 #         -DTI_CGT_C2000_ROOT=/opt/ti/ti-cgt-c2000_22.6.1.LTS \
-#         [-DSIXPHASE_FW_MEMORY=ram] [-DSIXPHASE_FW_FLOAT=ON]
+#         [-DSIXPHASE_FW_FLOAT=ON]
 #   cmake --build build/ti
 #
 # TI_CGT_C2000_ROOT is the compiler's install directory (the one holding bin/,
@@ -43,8 +43,9 @@ set(CMAKE_TRY_COMPILE_TARGET_TYPE STATIC_LIBRARY)
 set(TI_C2000_TARGET_FLAGS
     "--silicon_version=28 --large_memory_model --unified_memory --float_support=fpu32 --abi=coffabi")
 
-# --gen_func_subsections=on: each function in its own subsection (.text:_name), which the
-# flash linker file's ramfuncs list places one by one (F28335_flash.cmd).
+# --gen_func_subsections=on: each function in its own subsection (.text:_name), so the link
+# keeps only what is called; what runs from RAM is marked in the sources
+# (control/platform/sixphase_placement.h) and collected by F28335_flash.cmd's ramfuncs.
 set(CMAKE_C_FLAGS_INIT
     "${TI_C2000_TARGET_FLAGS} --c99 --gen_func_subsections=on --display_error_number --diag_wrap=off --diag_warning=225")
 set(CMAKE_ASM_FLAGS_INIT "${TI_C2000_TARGET_FLAGS}")

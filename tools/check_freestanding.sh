@@ -12,7 +12,7 @@ gcc_inc=$("$cc" -print-file-name=include)
 flags=(-std=c99 -ffreestanding -nostdinc -isystem "$gcc_inc" -mcpu=cortex-m4 -mthumb -O2
        -Wall -Wextra -Wpedantic -Wconversion -Wsign-conversion -Wdouble-promotion -Wshadow
        -Wstrict-prototypes -Wmissing-prototypes -Wundef -Wcast-qual -Wvla -Werror
-       -I "$here/control/include")
+       -I "$here/control/include" -I "$here/control/platform")
 mkdir -p "$out"
 for arith in 0 1; do
   objs=()

@@ -2,15 +2,17 @@
 # Memory of the F28335 image, checked without TI's compiler (CI runs this), for both builds:
 #   - stack: the deepest background path plus a nested control interrupt must fit the stack
 #     the TI link reserves (--stack_size in cmake/ti-c2000-toolchain.cmake), with margin;
-#   - placement: every function the control interrupt can reach runs from RAM (the flash linker
-#     file's ramfuncs list), except what the build leaves in flash on purpose;
-#   - RAM: that code (L0..L3), its constant tables and all static data (L4..L7) must fit their
-#     blocks with margin.
+#   - the image (tools/image_check.py, a model of TI's linker applied to the proxy build's
+#     sections): the boot path runs where it is loaded, the control period's code, tables and
+#     jump tables run from RAM and nothing else does, every memory range holds its sections.
 # Compiles exactly the target's C sources (cmake/sources.cmake, target code paths as in the
-# host link check) with arm-none-eabi-gcc, a 32-bit proxy for cl2000, twice per build: -O2
-# with one section per function and -fcallgraph-info=su (sizes, stack frames), and -O2
-# -fno-inline (the complete call graph of the period, whatever cl2000 inlines).
-# tools/stack_depth.py and tools/ram_budget.py do the sums; tools/target_memory_doc.py puts the
+# host link check) with arm-none-eabi-gcc, a 32-bit proxy for cl2000, three times per build:
+# Cortex-M4 -O2 with one section per function, the sources' RAM placement
+# (SIXPHASE_PLACEMENT_PROXY) and -fcallgraph-info=su (sizes, stack frames); Cortex-M4 -O2
+# -fno-inline (the complete call graph of the period, whatever cl2000 inlines); and Cortex-M0
+# -O2 -fno-inline (no divide instruction and no FPU: every division and 64-bit operation is a
+# library call, as on the C28x, so the run-time library members the image needs show).
+# tools/stack_depth.py and tools/image_check.py do the sums; tools/target_memory_doc.py puts the
 # figures into docs/porting.md section 7 (--write-doc) or checks that they are there
 # (--check-doc, CI).
 # usage: tools/check_target_memory.sh [--write-doc | --check-doc] [OUTDIR]
@@ -42,8 +44,7 @@ compile() { # dir, extra flags...
 
 for arith in float fixed; do
   dir="$out/$arith"
-  flags=(-std=c99 -ffreestanding -mcpu=cortex-m4 -mthumb -O2 -DF28335_LINK_PROXY=1
-         --param=min-pagesize=0)
+  flags=(-std=c99 -ffreestanding -mthumb -O2 -DF28335_LINK_PROXY=1 --param=min-pagesize=0)
   # The fixed (Q24) image leaves the MPTC-49/13 search in flash (F28335_flash.cmd, the
   # SIXPHASE_FW_Q24 branch; docs/porting.md section 7): the linker's define and what it moves.
   # Both leave the open-phase step in flash (it runs only with an isolated leg; in RAM it would
@@ -64,14 +65,18 @@ for arith in float fixed; do
     from_flash=ctl_mptc_select,$from_flash
   fi
   for inc in "${includes[@]}"; do flags+=(-I "$here/$inc"); done
-  compile "$dir/o2" -ffunction-sections -fdata-sections -fcallgraph-info=su
-  compile "$dir/noinline" -fno-inline -fcallgraph-info
-  rm "$dir/noinline/ti_link_stubs.ci" # the stand-ins of cl2000's intrinsics: no code of the image
+  compile "$dir/o2" -mcpu=cortex-m4 -ffunction-sections -fdata-sections -fcallgraph-info=su \
+    -DSIXPHASE_PLACEMENT_PROXY=1
+  compile "$dir/noinline" -mcpu=cortex-m4 -fno-inline -fcallgraph-info
+  compile "$dir/m0" -mcpu=cortex-m0 -fno-inline -fcallgraph-info
+  # the stand-ins of cl2000's intrinsics: no code of the image
+  rm "$dir/noinline/ti_link_stubs.ci" "$dir/m0/ti_link_stubs.ci" "$dir/o2/ti_link_stubs.o"
   echo "== $arith build"
   python3 "$here/tools/stack_depth.py" --background main --isr fw_adc_isr \
     --stack-words "$((stack_words))" --summary "$dir/stack.json" "$dir"/o2/*.ci
-  python3 "$here/tools/ram_budget.py" --linker "$linker" "${link[@]}" --objects "$dir/o2" \
-    --callgraph "$dir/noinline" --from-flash "$from_flash" --summary "$dir/ram.json"
+  python3 "$here/tools/image_check.py" --linker "$linker" "${link[@]}" --objects "$dir/o2" \
+    --callgraph "$dir/m0" --asm "$here/firmware/f28335/codestart.asm" \
+    --stack-words "$((stack_words))" --from-flash "$from_flash" --summary "$dir/ram.json"
 done
 if [ -n "$doc_mode" ]; then
   python3 "$here/tools/target_memory_doc.py" "$doc_mode" "$here/docs/porting.md" \

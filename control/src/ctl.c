@@ -10,14 +10,15 @@
 #include "ctl_search.h"
 #include "ctl_vectors.h"
 #include "ctl_vsd.h"
+#include "ctl_placement.h"
 
-void ctl_reset(ctl_t *c)
+SIXPHASE_RAMFUNC void ctl_reset(ctl_t *c)
 {
     ctl_speed_pi_reset(&c->speed_pi);
     ctl_reset_command(c);
 }
 
-void ctl_reset_command(ctl_t *c)
+SIXPHASE_RAMFUNC void ctl_reset_command(ctl_t *c)
 {
     c->applied_vector = 0;
     c->applied_duty = CTL_Q(0.0);
@@ -26,7 +27,7 @@ void ctl_reset_command(ctl_t *c)
 
 /* The speed loop's gains follow the configuration in force; its integrator is kept across a
  * change, held inside the new torque limit. */
-static void use_config(ctl_t *c, const ctl_config_t *cfg)
+SIXPHASE_RAMFUNC static void use_config(ctl_t *c, const ctl_config_t *cfg)
 {
     c->speed_pi.kp = cfg->speed_kp;
     c->speed_pi.ki_ts = cfg->speed_ki_ts;
@@ -88,7 +89,7 @@ ctl_param_error_t ctl_request_params(ctl_t *c, const ctl_params_t *p)
     return CTL_PARAM_OK;
 }
 
-bool ctl_config_take(ctl_t *c)
+SIXPHASE_RAMFUNC bool ctl_config_take(ctl_t *c)
 {
     if (c->config_ready == 0) {
         return false;
@@ -101,9 +102,12 @@ bool ctl_config_take(ctl_t *c)
     return true;
 }
 
-const ctl_config_t *ctl_config(const ctl_t *c) { return &c->config[c->config_active]; }
+SIXPHASE_RAMFUNC const ctl_config_t *ctl_config(const ctl_t *c)
+{
+    return &c->config[c->config_active];
+}
 const ctl_params_t *ctl_params(const ctl_t *c) { return &ctl_config(c)->params; }
-const ctl_postfault_config_t *ctl_postfault_config(const ctl_t *c)
+SIXPHASE_RAMFUNC const ctl_postfault_config_t *ctl_postfault_config(const ctl_t *c)
 {
     return &c->postfault[c->config_active];
 }
@@ -113,7 +117,7 @@ void ctl_set_loop_mode(ctl_t *c, ctl_loop_mode_t mode) { c->loop_mode = mode; }
 void ctl_set_speed_ref(ctl_t *c, ctl_q omega_e_pu) { c->speed_ref = omega_e_pu; }
 void ctl_set_torque_ref(ctl_t *c, ctl_q torque_pu) { c->torque_ref_direct = torque_pu; }
 const ctl_diag_t *ctl_diag(const ctl_t *c) { return &c->diag; }
-ctl_q ctl_diag_flux_est(const ctl_diag_t *d)
+SIXPHASE_RAMFUNC ctl_q ctl_diag_flux_est(const ctl_diag_t *d)
 {
     return ctl_flux_magnitude(d->psi_d_est, d->psi_q_est);
 }
@@ -121,8 +125,9 @@ void ctl_set_stage_hook(ctl_t *c, ctl_stage_hook_t hook) { c->stage_hook = hook;
 
 /* Leg duties of the choice, the zero vector arranged as ctl_pulse.h says, and the legs'
  * states at the period boundary. */
-static void command_from_choice(int16_t vector, ctl_q duty, const ctl_t *c,
-                                ctl_pulse_pattern_t pattern, ctl_cmd_t *cmd, int16_t *edges)
+SIXPHASE_RAMFUNC static void command_from_choice(int16_t vector, ctl_q duty, const ctl_t *c,
+                                                 ctl_pulse_pattern_t pattern, ctl_cmd_t *cmd,
+                                                 int16_t *edges)
 {
     int16_t leg;
     const ctl_q d = ctl_clamp(duty, CTL_Q(0.0), CTL_Q(1.0));
@@ -151,7 +156,8 @@ static void command_from_choice(int16_t vector, ctl_q duty, const ctl_t *c,
 /* The sample angle advanced by delta (rad). For |delta| <= 0.5 rad (7 times rated speed at
  * 10 kHz) rotate its sine and cosine by short series of sin/cos delta (error < 2e-5 there,
  * < 1e-8 at rated speed); beyond that look the angle up again. */
-static inline void advance_angle(ctl_q theta_e, ctl_q s0, ctl_q c0, ctl_q delta, ctl_q *s, ctl_q *c)
+SIXPHASE_RAMFUNC static inline void advance_angle(ctl_q theta_e, ctl_q s0, ctl_q c0, ctl_q delta,
+                                                  ctl_q *s, ctl_q *c)
 {
     if (ctl_abs(delta) <= CTL_Q(0.5)) {
         const ctl_q d2 = ctl_mul(delta, delta);
@@ -175,8 +181,9 @@ typedef struct {
 /* The option ctl_params_t.mid_period_angle: each period's voltage enters the prediction at
  * the rotor angle of the period's middle, for the command in force (k -> k+1) and for the
  * candidates (k+1 -> k+2). Off the default path. */
-static void mid_period_angles(const ctl_meas_t *m, const ctl_sample_t *smp, ctl_q delta,
-                              ctl_q *s_in_force, ctl_q *c_in_force, ctl_horizon_t *h)
+SIXPHASE_RAMFUNC static void mid_period_angles(const ctl_meas_t *m, const ctl_sample_t *smp,
+                                               ctl_q delta, ctl_q *s_in_force, ctl_q *c_in_force,
+                                               ctl_horizon_t *h)
 {
     advance_angle(m->theta_e, smp->s0, smp->c0, ctl_mul(delta, CTL_Q(0.5)), s_in_force, c_in_force);
     advance_angle(m->theta_e, smp->s0, smp->c0, ctl_mul(delta, CTL_Q(1.5)), &h->sin1, &h->cos1);
@@ -184,9 +191,9 @@ static void mid_period_angles(const ctl_meas_t *m, const ctl_sample_t *smp, ctl_
 
 /* Delay compensation k -> k+1 under the command already in force (period average), then the
  * horizon k+1 -> k+2 up to the free response. Fills the x-y currents at k+1. */
-static void predict(const ctl_t *c, const ctl_config_t *cfg, const ctl_meas_t *m,
-                    const ctl_sample_t *smp, ctl_horizon_t *h, ctl_q *ix1, ctl_q *iy1, ctl_q *id1,
-                    ctl_q *iq1)
+SIXPHASE_RAMFUNC static void predict(const ctl_t *c, const ctl_config_t *cfg, const ctl_meas_t *m,
+                                     const ctl_sample_t *smp, ctl_horizon_t *h, ctl_q *ix1,
+                                     ctl_q *iy1, ctl_q *id1, ctl_q *iq1)
 {
     const ctl_vsd_t *applied = &ctl_vector_vsd[c->applied_vector];
     const ctl_q delta = ctl_mul(m->omega_e, cfg->model.ts); /* rotation over one period */
@@ -220,8 +227,9 @@ static void predict(const ctl_t *c, const ctl_config_t *cfg, const ctl_meas_t *m
     ctl_horizon_prepare(h);
 }
 
-static void select_ddc(const ctl_t *c, const ctl_config_t *cfg, const ctl_horizon_t *h, ctl_q id1,
-                       ctl_q iq1, ctl_q ix1, ctl_q iy1, ctl_choice_t *choice)
+SIXPHASE_RAMFUNC static void select_ddc(const ctl_t *c, const ctl_config_t *cfg,
+                                        const ctl_horizon_t *h, ctl_q id1, ctl_q iq1, ctl_q ix1,
+                                        ctl_q iy1, ctl_choice_t *choice)
 {
     ctl_ddc_flux_t f;
     const ctl_q psi_d1 = ctl_flux_d(&cfg->model, id1);
@@ -238,7 +246,7 @@ static void select_ddc(const ctl_t *c, const ctl_config_t *cfg, const ctl_horizo
 #endif
 }
 
-void ctl_step(ctl_t *c, const ctl_meas_t *m, ctl_cmd_t *cmd)
+SIXPHASE_RAMFUNC void ctl_step(ctl_t *c, const ctl_meas_t *m, ctl_cmd_t *cmd)
 {
     const ctl_config_t *cfg;
     ctl_sample_t smp;

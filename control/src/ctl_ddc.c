@@ -3,6 +3,7 @@
 #include "ctl_ddc_levels.h"
 #include "ctl_tables.h"
 #include "ctl_vectors.h"
+#include "ctl_placement.h"
 
 void ctl_ddc_config_init(ctl_ddc_config_t *cfg, int16_t direction, int16_t n_levels,
                          bool torque_guard, float tie_band)
@@ -20,8 +21,9 @@ void ctl_ddc_config_init(ctl_ddc_config_t *cfg, int16_t direction, int16_t n_lev
     }
 }
 
-void ctl_ddc_select(const ctl_horizon_t *h, const ctl_ddc_flux_t *flux, const ctl_ddc_config_t *cfg,
-                    void (*stage_hook)(int16_t stage), ctl_choice_t *out)
+SIXPHASE_RAMFUNC void ctl_ddc_select(const ctl_horizon_t *h, const ctl_ddc_flux_t *flux,
+                                     const ctl_ddc_config_t *cfg, void (*stage_hook)(int16_t stage),
+                                     ctl_choice_t *out)
 {
     /* Flux sector s spans [30s - 15, 30s + 15) deg, i.e. the 15-degree sectors 2s - 1, 2s. */
     const int16_t sector =

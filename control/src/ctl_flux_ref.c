@@ -1,6 +1,7 @@
 #include "ctl_flux_ref.h"
 
 #include "ctl_pu.h"
+#include "ctl_placement.h"
 
 /* MTPA operating point for a current magnitude i (SI): the d-axis current that maximises
  * torque per ampere for a salient machine (L_d < L_q gives i_d < 0). */
@@ -61,7 +62,7 @@ void ctl_flux_ref_init(ctl_flux_ref_t *f, ctl_flux_ref_mode_t mode, float consta
     }
 }
 
-ctl_q ctl_flux_ref_run(const ctl_flux_ref_t *f, ctl_q torque_ref_pu)
+SIXPHASE_RAMFUNC ctl_q ctl_flux_ref_run(const ctl_flux_ref_t *f, ctl_q torque_ref_pu)
 {
     ctl_q pos;
     int16_t k;

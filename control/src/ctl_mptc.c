@@ -1,9 +1,10 @@
 #include "ctl_mptc.h"
 
 #include "ctl_vectors.h"
+#include "ctl_placement.h"
 
-void ctl_mptc_select(const ctl_horizon_t *h, const int16_t *candidates, int16_t count,
-                     int16_t vector_in_force, ctl_choice_t *out)
+CTL_RAMFUNC_FLOAT void ctl_mptc_select(const ctl_horizon_t *h, const int16_t *candidates,
+                                       int16_t count, int16_t vector_in_force, ctl_choice_t *out)
 {
     int16_t i;
     out->cost = CTL_Q_MAX;

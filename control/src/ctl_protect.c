@@ -3,6 +3,7 @@
 #include "ctl_barrier.h"
 #include "ctl_constants.h"
 #include "ctl_pu.h"
+#include "ctl_placement.h"
 
 static void open_phase_restart(ctl_protect_t *p);
 
@@ -89,7 +90,7 @@ void ctl_protect_limits_build(ctl_protect_limits_t *l, const ctl_protect_setting
     l->open_phase_ratio = ctl_from_float(s->open_phase_ratio);
 }
 
-static void reset_filters(ctl_protect_t *p)
+SIXPHASE_RAMFUNC static void reset_filters(ctl_protect_t *p)
 {
     int16_t k;
     p->n_overcurrent = 0;
@@ -129,7 +130,7 @@ void ctl_protect_init(ctl_protect_t *p)
 }
 
 /* Count consecutive periods a condition holds; true once it held for `periods`. */
-static bool filtered(bool condition, int16_t *count, int16_t periods)
+SIXPHASE_RAMFUNC static bool filtered(bool condition, int16_t *count, int16_t periods)
 {
     if (!condition) {
         *count = 0;
@@ -141,7 +142,7 @@ static bool filtered(bool condition, int16_t *count, int16_t periods)
     return *count >= periods;
 }
 
-static bool any_nan(const ctl_protect_input_t *in)
+SIXPHASE_RAMFUNC static bool any_nan(const ctl_protect_input_t *in)
 {
 #if CTL_MATH_FLOAT
     int16_t k;
@@ -158,13 +159,13 @@ static bool any_nan(const ctl_protect_input_t *in)
 }
 
 /* Signed angle difference in turns, in [-0.5, 0.5). */
-static ctl_q turn_difference(ctl_q a, ctl_q b)
+SIXPHASE_RAMFUNC static ctl_q turn_difference(ctl_q a, ctl_q b)
 {
     return ctl_sub(ctl_wrap_turn(ctl_add(ctl_sub(a, b), CTL_Q(0.5))), CTL_Q(0.5));
 }
 
-static uint16_t check_encoder(ctl_protect_t *p, const ctl_protect_limits_t *l,
-                              const ctl_protect_input_t *in)
+SIXPHASE_RAMFUNC static uint16_t check_encoder(ctl_protect_t *p, const ctl_protect_limits_t *l,
+                                               const ctl_protect_input_t *in)
 {
     uint16_t f = 0u;
     if (!in->running) {
@@ -203,8 +204,8 @@ static uint16_t check_encoder(ctl_protect_t *p, const ctl_protect_limits_t *l,
     return f;
 }
 
-static uint16_t check_adc(ctl_protect_t *p, const ctl_protect_limits_t *l,
-                          const ctl_protect_input_t *in)
+SIXPHASE_RAMFUNC static uint16_t check_adc(ctl_protect_t *p, const ctl_protect_limits_t *l,
+                                           const ctl_protect_input_t *in)
 {
     uint16_t judged;
     uint16_t f = 0u;
@@ -244,7 +245,7 @@ static uint16_t check_adc(ctl_protect_t *p, const ctl_protect_limits_t *l,
 
 /* The window's verdict: the mean |i| of the judged phases, and every judged phase below the
  * ratio of it is open; the one found is remembered (-1 for several). Starts the next window. */
-static uint16_t open_phase_verdict(ctl_protect_t *p, const ctl_protect_limits_t *l)
+SIXPHASE_RAMFUNC static uint16_t open_phase_verdict(ctl_protect_t *p, const ctl_protect_limits_t *l)
 {
     ctl_q mean = CTL_Q(0.0);
     int16_t found = 0;
@@ -267,7 +268,7 @@ static uint16_t open_phase_verdict(ctl_protect_t *p, const ctl_protect_limits_t 
     return (found > 0) ? CTL_FAULT_OPEN_PHASE : 0u;
 }
 
-static void open_phase_restart(ctl_protect_t *p)
+SIXPHASE_RAMFUNC static void open_phase_restart(ctl_protect_t *p)
 {
     int16_t k;
     for (k = 0; k < 6; k++) {
@@ -283,8 +284,8 @@ static void open_phase_restart(ctl_protect_t *p)
  * rightly carry none for a long time. A window that reaches 4 times its length without a turn
  * (below about 125 r/min at 10 kHz, 3 pole pairs) is dropped unjudged. Phases that carry no
  * current by design (ctl_protect_quiet: an isolated leg) are neither judged nor in the mean. */
-static uint16_t check_open_phase(ctl_protect_t *p, const ctl_protect_limits_t *l,
-                                 const ctl_protect_input_t *in)
+SIXPHASE_RAMFUNC static uint16_t check_open_phase(ctl_protect_t *p, const ctl_protect_limits_t *l,
+                                                  const ctl_protect_input_t *in)
 {
     int16_t k;
     if (!in->running) {
@@ -305,15 +306,16 @@ static uint16_t check_open_phase(ctl_protect_t *p, const ctl_protect_limits_t *l
     return open_phase_verdict(p, l);
 }
 
-static void drop_one(ctl_protect_t *p)
+SIXPHASE_RAMFUNC static void drop_one(ctl_protect_t *p)
 {
     if (p->log_dropped < UINT16_MAX) {
         p->log_dropped++;
     }
 }
 
-static void fill_record(ctl_fault_record_t *r, const ctl_protect_t *p, uint16_t faults,
-                        const ctl_protect_input_t *in, ctl_q torque_ref, int16_t vector, ctl_q duty)
+SIXPHASE_RAMFUNC static void fill_record(ctl_fault_record_t *r, const ctl_protect_t *p,
+                                         uint16_t faults, const ctl_protect_input_t *in,
+                                         ctl_q torque_ref, int16_t vector, ctl_q duty)
 {
     int16_t k;
     r->faults = faults;
@@ -330,8 +332,9 @@ static void fill_record(ctl_fault_record_t *r, const ctl_protect_t *p, uint16_t 
     r->duty = duty;
 }
 
-static void record(ctl_protect_t *p, uint16_t faults, const ctl_protect_input_t *in,
-                   ctl_q torque_ref, int16_t vector, ctl_q duty)
+SIXPHASE_RAMFUNC static void record(ctl_protect_t *p, uint16_t faults,
+                                    const ctl_protect_input_t *in, ctl_q torque_ref, int16_t vector,
+                                    ctl_q duty)
 {
     const uint16_t w = p->log_write;
     const bool full = (uint16_t)(w - p->log_read) >= (uint16_t)CTL_PROTECT_LOG_SIZE;
@@ -355,9 +358,9 @@ static void record(ctl_protect_t *p, uint16_t faults, const ctl_protect_input_t 
     p->log_write = (uint16_t)(w + 1u); /* ... before it is published */
 }
 
-uint16_t ctl_protect_check(ctl_protect_t *p, const ctl_protect_limits_t *l,
-                           const ctl_protect_input_t *in, ctl_q torque_ref, int16_t vector,
-                           ctl_q duty)
+SIXPHASE_RAMFUNC uint16_t ctl_protect_check(ctl_protect_t *p, const ctl_protect_limits_t *l,
+                                            const ctl_protect_input_t *in, ctl_q torque_ref,
+                                            int16_t vector, ctl_q duty)
 {
     uint16_t f = 0u;
     bool over = false;
@@ -417,7 +420,7 @@ void ctl_protect_raise(ctl_protect_t *p, uint16_t faults, const ctl_protect_inpu
     p->latched |= faults;
 }
 
-void ctl_protect_quiet(ctl_protect_t *p, uint16_t quiet)
+SIXPHASE_RAMFUNC void ctl_protect_quiet(ctl_protect_t *p, uint16_t quiet)
 {
     int16_t judged = 0;
     int16_t k;
@@ -444,7 +447,7 @@ void ctl_protect_accept(ctl_protect_t *p, uint16_t faults)
     p->episode_recorded = false;
 }
 
-bool ctl_protect_clear(ctl_protect_t *p)
+SIXPHASE_RAMFUNC bool ctl_protect_clear(ctl_protect_t *p)
 {
     if (p->active != 0u) {
         return false;
@@ -473,7 +476,7 @@ uint16_t ctl_protect_log_pending(const ctl_protect_t *p)
     return (uint16_t)(p->log_write - p->log_read);
 }
 
-bool ctl_protect_converter_alive(const ctl_protect_t *p)
+SIXPHASE_RAMFUNC bool ctl_protect_converter_alive(const ctl_protect_t *p)
 {
     int16_t k;
     for (k = 0; k < 6; k++) {

@@ -2,6 +2,7 @@
 
 #include "ctl_constants.h"
 #include "ctl_tables.h"
+#include "ctl_placement.h"
 
 #if defined(CTL_COUNT_OPS)
 uint32_t ctl_op_counts[CTL_OP_KINDS];
@@ -17,7 +18,7 @@ bool ctl_float_in_range(float x, float lo, float hi)
     return normal && x >= lo && x <= hi; /* NaN fails every comparison */
 }
 
-float ctl_sqrtf(float x)
+CTL_RAMFUNC_FLOAT float ctl_sqrtf(float x)
 {
     union {
         float f;
@@ -46,13 +47,13 @@ float ctl_sqrtf(float x)
 
 #if CTL_MATH_FLOAT
 
-ctl_q ctl_sqrt(ctl_q a)
+SIXPHASE_RAMFUNC ctl_q ctl_sqrt(ctl_q a)
 {
     CTL_COUNT_OP(CTL_OP_SQRT);
     return ctl_sqrtf(a);
 }
 
-ctl_q ctl_wrap_turn(ctl_q angle_turn)
+SIXPHASE_RAMFUNC ctl_q ctl_wrap_turn(ctl_q angle_turn)
 {
     int32_t whole;
     ctl_q w;
@@ -71,7 +72,7 @@ ctl_q ctl_wrap_turn(ctl_q angle_turn)
 }
 
 /* Sine of an angle already wrapped into [0, 1). */
-static ctl_q sin_of_wrapped(ctl_q w)
+SIXPHASE_RAMFUNC static ctl_q sin_of_wrapped(ctl_q w)
 {
     const float pos = w * (float)CTL_SIN_SEGMENTS;
     int32_t k = (int32_t)pos;
@@ -86,7 +87,7 @@ static ctl_q sin_of_wrapped(ctl_q w)
 
 /* The wrapped angle plus a quarter turn, wrapped again (as ctl_wrap_turn would: w + 0.25 is
  * below 1.25, and subtracting 1 from it is exact). */
-static ctl_q quarter_turn_on(ctl_q w)
+SIXPHASE_RAMFUNC static ctl_q quarter_turn_on(ctl_q w)
 {
     const float w2 = w + 0.25f;
     return (w2 >= 1.0f) ? w2 - 1.0f : w2;
@@ -109,7 +110,7 @@ int16_t ctl_turn_sector(ctl_q angle_turn, int16_t n)
 /* Position of the highest set bit of a non-zero value: the compiler's count-leading-zeros
  * where there is one (gcc, clang), a binary search elsewhere (cl2000; the C28x's own
  * instruction would be the intrinsic __norm32, left to a target-specific build). */
-static int16_t top_bit(uint32_t v)
+SIXPHASE_RAMFUNC static int16_t top_bit(uint32_t v)
 {
 #if defined(__GNUC__) && !defined(__TMS320C2000__)
     return (int16_t)(63 - __builtin_clzll((unsigned long long)v));
@@ -138,7 +139,7 @@ static int16_t top_bit(uint32_t v)
 #endif
 }
 
-ctl_q ctl_sqrt(ctl_q a)
+SIXPHASE_RAMFUNC ctl_q ctl_sqrt(ctl_q a)
 {
     /* Normalise by an even shift e to x = (a << e) / 2^32 in [0.25, 1); then
      * sqrt(a / 2^24) = sqrt(x) * 2^((8 - e) / 2). sqrt(x) = x / sqrt(x) with 1/sqrt(x) from a
@@ -183,13 +184,13 @@ ctl_q ctl_sqrt(ctl_q a)
     return (ctl_q)root;
 }
 
-ctl_q ctl_wrap_turn(ctl_q angle_turn)
+SIXPHASE_RAMFUNC ctl_q ctl_wrap_turn(ctl_q angle_turn)
 {
     return (ctl_q)((uint32_t)angle_turn & (uint32_t)(CTL_Q_ONE - 1));
 }
 
 /* Sine of an angle already wrapped into [0, 1). */
-static ctl_q sin_of_wrapped(ctl_q angle_wrapped)
+SIXPHASE_RAMFUNC static ctl_q sin_of_wrapped(ctl_q angle_wrapped)
 {
     /* 10 index bits, 14 interpolation bits of the 24-bit turn fraction. */
     const uint32_t w = (uint32_t)angle_wrapped;
@@ -202,7 +203,7 @@ static ctl_q sin_of_wrapped(ctl_q angle_wrapped)
 }
 
 /* The wrapped angle plus a quarter turn, wrapped again. */
-static ctl_q quarter_turn_on(ctl_q w) { return ctl_wrap_turn(w + CTL_Q(0.25)); }
+SIXPHASE_RAMFUNC static ctl_q quarter_turn_on(ctl_q w) { return ctl_wrap_turn(w + CTL_Q(0.25)); }
 
 int16_t ctl_turn_sector(ctl_q angle_turn, int16_t n)
 {
@@ -220,14 +221,14 @@ ctl_q ctl_cos_pu(ctl_q angle_turn)
 }
 
 /* One wrap for both: the same results as ctl_sin_pu and ctl_cos_pu. */
-void ctl_sincos_pu(ctl_q angle_turn, ctl_q *s, ctl_q *c)
+SIXPHASE_RAMFUNC void ctl_sincos_pu(ctl_q angle_turn, ctl_q *s, ctl_q *c)
 {
     const ctl_q w = ctl_wrap_turn(angle_turn);
     *s = sin_of_wrapped(w);
     *c = sin_of_wrapped(quarter_turn_on(w));
 }
 
-int16_t ctl_sector24(ctl_q y, ctl_q x)
+SIXPHASE_RAMFUNC int16_t ctl_sector24(ctl_q y, ctl_q x)
 {
     /* First-quadrant angle phi of (|x|, |y|): phi >= 15j deg <=> |y| >= |x| tan(15j deg). */
     static const ctl_q tan15[5] = {CTL_K_TAN_15_DEG, CTL_K_TAN_30_DEG, CTL_Q(1.0), CTL_K_TAN_60_DEG,

@@ -1,4 +1,5 @@
 #include "ctl_speed_pi.h"
+#include "ctl_placement.h"
 
 void ctl_speed_pi_init(ctl_speed_pi_t *pi, ctl_q kp, ctl_q ki_ts, ctl_q limit)
 {
@@ -8,9 +9,9 @@ void ctl_speed_pi_init(ctl_speed_pi_t *pi, ctl_q kp, ctl_q ki_ts, ctl_q limit)
     pi->integ = CTL_Q(0.0);
 }
 
-void ctl_speed_pi_reset(ctl_speed_pi_t *pi) { pi->integ = CTL_Q(0.0); }
+SIXPHASE_RAMFUNC void ctl_speed_pi_reset(ctl_speed_pi_t *pi) { pi->integ = CTL_Q(0.0); }
 
-ctl_q ctl_speed_pi_run(ctl_speed_pi_t *pi, ctl_q ref, ctl_q meas)
+SIXPHASE_RAMFUNC ctl_q ctl_speed_pi_run(ctl_speed_pi_t *pi, ctl_q ref, ctl_q meas)
 {
     const ctl_q err = ctl_sub(ref, meas);
     const ctl_q prop = ctl_mul(pi->kp, err);

@@ -1,6 +1,7 @@
 #include "ctl_vsd.h"
 
 #include "ctl_constants.h"
+#include "ctl_placement.h"
 
 /* Rows of the amplitude-invariant VSD matrix without the 1/3 factor:
  * cos th_k, sin th_k, cos 5th_k, sin 5th_k for th = 0, 120, 240, 30, 150, 270 deg. */
@@ -14,7 +15,7 @@ static const ctl_q vsd_cos5[6] = {CTL_Q(1.0),          CTL_Q(-0.5),        CTL_Q
 static const ctl_q vsd_sin5[6] = {CTL_Q(0.0), -CTL_K_SQRT3_OVER_2, CTL_K_SQRT3_OVER_2,
                                   CTL_Q(0.5), CTL_Q(0.5),          CTL_Q(-1.0)};
 
-void ctl_vsd_forward(const ctl_q phase[6], ctl_vsd_t *out)
+SIXPHASE_RAMFUNC void ctl_vsd_forward(const ctl_q phase[6], ctl_vsd_t *out)
 {
     /* The rows share terms: with a = i_A/3 - (i_B + i_C)/6, p = (i_D - i_E) sqrt3/6,
      * b = (i_D + i_E)/6 - i_F/3 and q = (i_B - i_C) sqrt3/6:

@@ -2,6 +2,7 @@
 #include "capture.h"
 
 #include "ctl_barrier.h"
+#include "sixphase_placement.h"
 
 void capture_init(capture_t *c)
 {
@@ -64,7 +65,7 @@ capture_error_t capture_arm(capture_t *c, const capture_setup_t *s)
 
 void capture_stop(capture_t *c) { c->state = CAPTURE_IDLE; }
 
-bool capture_due(capture_t *c)
+SIXPHASE_RAMFUNC bool capture_due(capture_t *c)
 {
     if (c->state != CAPTURE_ARMED && c->state != CAPTURE_TRIGGERED) {
         return false;
@@ -76,7 +77,7 @@ bool capture_due(capture_t *c)
     return true;
 }
 
-static bool capture_triggered(capture_t *c, int16_t v, bool faulted)
+SIXPHASE_RAMFUNC static bool capture_triggered(capture_t *c, int16_t v, bool faulted)
 {
     const capture_setup_t *s = &c->setup;
     bool hit = false;
@@ -102,8 +103,8 @@ static bool capture_triggered(capture_t *c, int16_t v, bool faulted)
     return hit;
 }
 
-void capture_sample(capture_t *c, const int16_t channel[CAPTURE_CHANNELS], int16_t trigger_value,
-                    uint32_t period, bool faulted)
+SIXPHASE_RAMFUNC void capture_sample(capture_t *c, const int16_t channel[CAPTURE_CHANNELS],
+                                     int16_t trigger_value, uint32_t period, bool faulted)
 {
     const capture_setup_t *s = &c->setup;
     int16_t k;

@@ -8,6 +8,7 @@
 #include "hal_cycles.h"
 #include "hal_pwm.h"
 #include "profile.h"
+#include "sixphase_placement.h"
 
 /* The control core's fault bits are the fault list's (firmware/link/sxlink_faults.h). */
 #define DRIVE_FAULT_BIT_CHECK(name, code, bit_name, bit, text)                                     \
@@ -19,7 +20,7 @@ SXL_FAULT_LIST(DRIVE_FAULT_BIT_CHECK)
 /* Severity order, the list's: the first bit present names the drive fault. */
 #define DRIVE_FAULT_MAP_ENTRY(name, code, bit_name, bit, text)                                     \
     {(uint16_t)(1u << (bit)), DRIVE_FAULT_##name},
-static const struct {
+SIXPHASE_RAMCONST static const struct {
     uint16_t bit;
     drive_fault_t code;
 } drive_fault_map[] = {SXL_FAULT_LIST(DRIVE_FAULT_MAP_ENTRY)};
@@ -27,7 +28,7 @@ static const struct {
 
 #define DRIVE_FAULT_MAP_LEN ((int16_t)(sizeof drive_fault_map / sizeof drive_fault_map[0]))
 
-drive_fault_t drive_fault_from_mask(uint16_t faults)
+SIXPHASE_RAMFUNC drive_fault_t drive_fault_from_mask(uint16_t faults)
 {
     int16_t i;
     for (i = 0; i < DRIVE_FAULT_MAP_LEN; i++) {
@@ -160,7 +161,7 @@ void drive_init(drive_t *d, const ctl_params_t *p)
     d->state = DRIVE_STATE_CALIBRATE;
 }
 
-static void drive_calibrate(drive_t *d)
+SIXPHASE_RAMFUNC static void drive_calibrate(drive_t *d)
 {
     int16_t i;
     for (i = 0; i < HAL_ADC_PHASES; i++) {
@@ -184,7 +185,7 @@ static void drive_calibrate(drive_t *d)
     d->state = DRIVE_STATE_READY;
 }
 
-static void drive_start_calibration(drive_t *d)
+SIXPHASE_RAMFUNC static void drive_start_calibration(drive_t *d)
 {
     int16_t i;
     for (i = 0; i < HAL_ADC_PHASES; i++) {
@@ -196,20 +197,20 @@ static void drive_start_calibration(drive_t *d)
 
 /* Speed scaling and protection limits of the parameter set in force (they follow every
  * applied set); the reference machine's while no valid set was ever in force. */
-static ctl_q drive_omega_scale(const drive_t *d)
+SIXPHASE_RAMFUNC static ctl_q drive_omega_scale(const drive_t *d)
 {
     return d->ctl.initialised ? ctl_config(&d->ctl)->omega_pu_per_rev_s
                               : d->fallback_omega_pu_per_rev_s;
 }
 
-static const ctl_protect_limits_t *drive_limits(const drive_t *d)
+SIXPHASE_RAMFUNC static const ctl_protect_limits_t *drive_limits(const drive_t *d)
 {
     return d->ctl.initialised ? &ctl_config(&d->ctl)->protect : &d->fallback_limits;
 }
 
 const ctl_protect_limits_t *drive_protect_limits(const drive_t *d) { return drive_limits(d); }
 
-static void drive_scale_measurements(drive_t *d)
+SIXPHASE_RAMFUNC static void drive_scale_measurements(drive_t *d)
 {
     int16_t i;
     for (i = 0; i < HAL_ADC_PHASES; i++) {
@@ -221,7 +222,7 @@ static void drive_scale_measurements(drive_t *d)
     d->meas.omega_e = ctl_mul_q16(d->encoder.mech_speed_q16, drive_omega_scale(d));
 }
 
-uint16_t drive_duty_to_hal(ctl_q duty)
+SIXPHASE_RAMFUNC uint16_t drive_duty_to_hal(ctl_q duty)
 {
     const int32_t q15 = ctl_to_qn(duty, 15);
     if (q15 <= 0) {
@@ -233,7 +234,7 @@ uint16_t drive_duty_to_hal(ctl_q duty)
     return (uint16_t)q15;
 }
 
-static void drive_run_step(drive_t *d)
+SIXPHASE_RAMFUNC static void drive_run_step(drive_t *d)
 {
     uint16_t duty[HAL_PWM_LEGS];
     int16_t i;
@@ -257,7 +258,7 @@ void drive_run_period(drive_t *d) { drive_run_step(d); }
 
 static void drive_control_step(drive_t *d);
 
-drive_run_refusal_t drive_run_check(const drive_t *d)
+SIXPHASE_RAMFUNC drive_run_refusal_t drive_run_check(const drive_t *d)
 {
     if (d->state != DRIVE_STATE_READY) {
         return DRIVE_RUN_REFUSED_STATE;
@@ -271,7 +272,7 @@ drive_run_refusal_t drive_run_check(const drive_t *d)
     return DRIVE_RUN_ACCEPTED;
 }
 
-static void drive_refuse_run(drive_t *d, drive_run_refusal_t why)
+SIXPHASE_RAMFUNC static void drive_refuse_run(drive_t *d, drive_run_refusal_t why)
 {
     d->run_refusal = why;
     if (d->run_refused < UINT16_MAX) {
@@ -281,7 +282,7 @@ static void drive_refuse_run(drive_t *d, drive_run_refusal_t why)
 
 /* READY: a run request starts the drive when nothing stands against it; otherwise a
  * commissioning request may start the sequence. */
-static void drive_ready_step(drive_t *d)
+SIXPHASE_RAMFUNC static void drive_ready_step(drive_t *d)
 {
     drive_run_refusal_t why;
     if (!d->run_requested) {
@@ -308,7 +309,7 @@ static void drive_ready_step(drive_t *d)
     drive_run_step(d);
 }
 
-void drive_control_isr(drive_t *d)
+SIXPHASE_RAMFUNC void drive_control_isr(drive_t *d)
 {
     prof_begin(d->isr_latency_cycles);
     drive_control_step(d);
@@ -318,7 +319,7 @@ void drive_control_isr(drive_t *d)
 
 /* Protection inputs of this period: the scaled and raw measurements, the torque the
  * controller estimated last period (the record keeps the command in force). */
-static uint16_t drive_protect(drive_t *d, bool running)
+SIXPHASE_RAMFUNC static uint16_t drive_protect(drive_t *d, bool running)
 {
     ctl_protect_input_t *in = &d->protect_in;
     int16_t i;
@@ -346,7 +347,7 @@ static uint16_t drive_protect(drive_t *d, bool running)
                              d->ctl.applied_vector, d->ctl.applied_duty);
 }
 
-uint16_t drive_clear_blockers(const drive_t *d, bool fresh)
+SIXPHASE_RAMFUNC uint16_t drive_clear_blockers(const drive_t *d, bool fresh)
 {
     const uint16_t latched = d->protect.latched;
     uint16_t blocking = d->protect.active; /* found in this period's check */
@@ -372,7 +373,7 @@ uint16_t drive_clear_blockers(const drive_t *d, bool fresh)
 }
 
 /* FAULT: a clear request leaves it only when nothing stands against it in this period. */
-static void drive_fault_step(drive_t *d, bool fresh)
+SIXPHASE_RAMFUNC static void drive_fault_step(drive_t *d, bool fresh)
 {
     bool encoder_fault, open_phase;
     hal_pwm_force_off();
@@ -403,7 +404,7 @@ static void drive_fault_step(drive_t *d, bool fresh)
     }
 }
 
-static void drive_control_step(drive_t *d)
+SIXPHASE_RAMFUNC static void drive_control_step(drive_t *d)
 {
     const bool fresh = hal_adc_read(&d->adc);
     uint16_t faults = 0u;

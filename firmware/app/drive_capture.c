@@ -2,21 +2,22 @@
 #include "drive_capture.h"
 
 #include "ctl.h"
+#include "sixphase_placement.h"
 
 #define CAPTURE_EXPONENT(id, name, unit, base, exponent) (int16_t)(exponent),
-static const int16_t capture_exponent[CAPTURE_SIGNAL_COUNT] = {
+SIXPHASE_RAMCONST static const int16_t capture_exponent[CAPTURE_SIGNAL_COUNT] = {
     CAPTURE_SIGNAL_LIST(CAPTURE_EXPONENT)};
 #undef CAPTURE_EXPONENT
 
 /* A per-unit value as a sample: value * 2^(15 - exponent), saturated to 16 bits. */
-static int16_t capture_scale(ctl_q value, int16_t signal)
+SIXPHASE_RAMFUNC static int16_t capture_scale(ctl_q value, int16_t signal)
 {
     const int32_t s = ctl_to_qn(value, (int16_t)(15 - capture_exponent[signal]));
     return (int16_t)((s > INT16_MAX) ? INT16_MAX : ((s < INT16_MIN) ? INT16_MIN : s));
 }
 
 /* The per-unit value of a signal other than the vector. */
-static ctl_q capture_pu(const drive_t *d, int16_t signal)
+SIXPHASE_RAMFUNC static ctl_q capture_pu(const drive_t *d, int16_t signal)
 {
     const ctl_diag_t *g = &d->ctl.diag;
     if (signal >= CAPTURE_I_A && signal <= CAPTURE_I_F) {
@@ -54,7 +55,7 @@ static ctl_q capture_pu(const drive_t *d, int16_t signal)
     }
 }
 
-int16_t drive_capture_value(const drive_t *d, int16_t signal)
+SIXPHASE_RAMFUNC int16_t drive_capture_value(const drive_t *d, int16_t signal)
 {
     if (signal < 0 || signal >= CAPTURE_SIGNAL_COUNT) {
         return 0;
@@ -65,7 +66,7 @@ int16_t drive_capture_value(const drive_t *d, int16_t signal)
     return capture_scale(capture_pu(d, signal), signal);
 }
 
-void drive_capture_period(drive_t *d)
+SIXPHASE_RAMFUNC void drive_capture_period(drive_t *d)
 {
     int16_t v[CAPTURE_CHANNELS] = {0, 0, 0, 0};
     int16_t k;

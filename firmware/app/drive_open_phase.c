@@ -2,6 +2,7 @@
 #include "drive_open_phase.h"
 
 #include "hal_pwm.h"
+#include "sixphase_placement.h"
 
 /* Both switches of the leg off for good, the others off until the set that fits arrives. */
 static void drive_isolate(drive_t *d, int16_t leg, drive_isolation_cause_t cause)
@@ -25,14 +26,14 @@ uint16_t drive_open_phase_faults(drive_t *d, uint16_t faults)
     return 0u;
 }
 
-bool drive_open_phase_in_force(const drive_t *d)
+SIXPHASE_RAMFUNC bool drive_open_phase_in_force(const drive_t *d)
 {
     return ctl_postfault_config(&d->ctl)->open_leg == d->isolated_leg;
 }
 
 /* Not the usual period (drive_open_phase_period): a request, or a leg isolated. With six legs
  * and nothing asked the protection judges all phases, as set here at a restore. */
-void drive_open_phase_update(drive_t *d)
+SIXPHASE_RAMFUNC void drive_open_phase_update(drive_t *d)
 {
     const bool ready_or_run = d->state == DRIVE_STATE_READY || d->state == DRIVE_STATE_RUN;
     uint16_t quiet = 0u;
@@ -62,7 +63,7 @@ void drive_open_phase_update(drive_t *d)
 }
 
 /* Not the usual period (drive_open_phase_gate). */
-bool drive_open_phase_gate_update(drive_t *d)
+SIXPHASE_RAMFUNC bool drive_open_phase_gate_update(drive_t *d)
 {
     if (!drive_open_phase_in_force(d)) {
         hal_pwm_force_off();

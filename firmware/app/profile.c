@@ -2,12 +2,13 @@
 
 #include "ctl.h"
 #include "hal_cycles.h"
+#include "sixphase_placement.h"
 
 prof_t drive_profile;
 
 uint32_t prof_mean(const prof_stat_t *s) { return (s->mean_x256 + 128u) >> 8; }
 
-void prof_ctl_stage(int16_t ctl_stage)
+SIXPHASE_RAMFUNC void prof_ctl_stage(int16_t ctl_stage)
 {
 #if PROFILE_ENABLE
     if (ctl_stage >= 0 && ctl_stage <= (int16_t)CTL_STAGE_SEARCH) {
@@ -22,7 +23,7 @@ void prof_ctl_stage(int16_t ctl_stage)
 
 #define PROF_MEAN_MAX_CYCLES 0x00FFFFFFu
 
-static void prof_record(prof_stat_t *s, uint32_t cycles)
+SIXPHASE_RAMFUNC static void prof_record(prof_stat_t *s, uint32_t cycles)
 {
     s->last = cycles;
     if (s->count == 0u) {
@@ -79,7 +80,7 @@ void prof_init(uint32_t period_cycles, uint32_t cycles_per_second)
     p->t_prev = p->t_start;
 }
 
-void prof_begin(uint32_t latency_cycles)
+SIXPHASE_RAMFUNC void prof_begin(uint32_t latency_cycles)
 {
     prof_t *p = &drive_profile;
     prof_record(&p->stage[PROF_LATENCY], latency_cycles);
@@ -87,14 +88,14 @@ void prof_begin(uint32_t latency_cycles)
     p->t_prev = p->t_start;
 }
 
-static uint32_t prof_elapsed(uint32_t from, uint32_t to)
+SIXPHASE_RAMFUNC static uint32_t prof_elapsed(uint32_t from, uint32_t to)
 {
     const uint32_t dt = (uint32_t)(to - from);
     const uint32_t cost = drive_profile.read_cost;
     return (dt > cost) ? dt - cost : 0u;
 }
 
-void prof_mark(prof_stage_t stage)
+SIXPHASE_RAMFUNC void prof_mark(prof_stage_t stage)
 {
     prof_t *p = &drive_profile;
     const uint32_t now = hal_cycles_now();
@@ -107,7 +108,7 @@ void prof_mark(prof_stage_t stage)
 /* busy * 1000 / period, rounded down, from k = floor(1000 2^16 / period) <= 2^16: busy k / 2^16
  * is at most one below it while busy < 2^16 (one comparison corrects that), and within
  * busy / 2^16 + 1 of it beyond (an overrun of over four periods); saturated at 65535. */
-static uint16_t prof_permille(uint32_t busy, uint32_t period, uint32_t k)
+SIXPHASE_RAMFUNC static uint16_t prof_permille(uint32_t busy, uint32_t period, uint32_t k)
 {
     const uint32_t hi = busy >> 16;
     uint32_t est;
@@ -125,7 +126,7 @@ static uint16_t prof_permille(uint32_t busy, uint32_t period, uint32_t k)
     return (uint16_t)((est > 65535u) ? 65535u : est);
 }
 
-void prof_end(void)
+SIXPHASE_RAMFUNC void prof_end(void)
 {
     prof_t *p = &drive_profile;
     const uint32_t now = hal_cycles_now();

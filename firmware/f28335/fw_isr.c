@@ -11,9 +11,9 @@
 #include "fw.h"
 #include "hal_cycles.h"
 #include "hal_pwm.h"
+#include "sixphase_placement.h"
 
-F28335_RAMFUNC(fw_adc_isr)
-F28335_INTERRUPT void fw_adc_isr(void)
+SIXPHASE_RAMFUNC F28335_INTERRUPT void fw_adc_isr(void)
 {
     const uint32_t t0 = hal_cycles_now();
     uint32_t dt;

@@ -23,7 +23,7 @@ drive_t fw_drive;
 fw_state_t fw_state;
 
 #if F28335_TARGET
-/* Defined by the linker command file (F28335_flash.cmd / F28335_ram.cmd). */
+/* Defined by the linker command file (F28335_flash.cmd). */
 extern uint16_t RamfuncsLoadStart;
 extern uint16_t RamfuncsLoadEnd;
 extern uint16_t RamfuncsRunStart;

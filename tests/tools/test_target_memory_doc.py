@@ -19,11 +19,18 @@ def write_build(d, code_words, isr_bytes, from_flash):
                    "background_path": ["main (8)", "fw_startup (152)"],
                    "isr_path": ["fw_adc_isr (16)", "ctl_step (272)"]}, f)
     with open(os.path.join(d, "ram.json"), "w") as f:
-        json.dump({"code_words": code_words, "table_words": 5524, "ebss_words": 5247,
-                   "code_region": "RAML0L3", "data_region": "RAML4L7",
-                   "regions": {"RAML0L3": 16384, "RAML4L7": 16384},
-                   "use": {"RAML0L3": code_words, "RAML4L7": 10771},
-                   "from_flash": from_flash}, f)
+        json.dump({"ranges": {"RAML0L3": {"length": 16384, "use": code_words, "ram": True},
+                              "RAML4L5": {"length": 8192, "use": 4502, "ram": True},
+                              "RAML6L7": {"length": 8192, "use": 6901, "ram": True}},
+                   "outputs": {"ramfuncs": {"words": code_words, "load": ["FLASHD"],
+                                            "run": ["RAML0L3"]},
+                               "ramconsts": {"words": 4502, "load": ["FLASHA"],
+                                             "run": ["RAML4L5"]},
+                               ".ebss": {"words": 6901, "load": ["RAML6L7"],
+                                         "run": ["RAML6L7"]}},
+                   "rts_in_ram": ["l_div28.asm.obj"], "boot_path": ["_c_int00", "main"],
+                   "from_flash": from_flash, "code_factor": [1.0, 1.5], "data_factor": 1.5,
+                   "ram_limit": 0.9}, f)
 
 
 class TargetMemoryDoc(unittest.TestCase):
@@ -46,8 +53,12 @@ class TargetMemoryDoc(unittest.TestCase):
             self.assertEqual(run("--write-doc").returncode, 0)
             text = open(doc).read()
             self.assertTrue(text.startswith("before\n") and text.endswith("after\n"))
-            self.assertIn("| float (default) | 10237 words (62 %) |", text)
-            self.assertIn("| fixed (Q24; `ctl_mptc_select` in flash) | 13663 words (83 %) |", text)
+            self.assertIn("| float (default) | 10237 words (62 %) of RAML0L3 | 4502 words (55 %) "
+                          "of RAML4L5 | 6901 words (84 %) of RAML6L7 | `l_div28.asm.obj` |", text)
+            self.assertIn("| fixed (Q24; `ctl_mptc_select` in flash) | 13663 words (83 %) of "
+                          "RAML0L3 |", text)
+            self.assertIn("Boot path before the RAM copy (runs where it is loaded): `_c_int00`, "
+                          "`main`.", text)
             self.assertIn("688 + 696 B -> 1096 words", text)
             self.assertNotIn("14998", text)
             r = run("--check-doc")

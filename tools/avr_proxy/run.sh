@@ -70,8 +70,10 @@ fi
 # 1. Builds: AVR ELF and host replay per arithmetic, the simavr harness, the simulator.
 # -Os: at -O2 the core's inlined 64-bit arithmetic no longer fits the 128 KB of flash once the
 # open-phase step is in (155 KB); the host side stays at -O2.
-avr_flags=(-mmcu=$mcu -std=c99 -Os -Wall -Wextra -Wpedantic -Werror -I "$core/include")
-host_flags=(-std=c99 -O2 -Wall -Wextra -Wpedantic -Werror -ffp-contract=off -I "$core/include")
+avr_flags=(-mmcu=$mcu -std=c99 -Os -Wall -Wextra -Wpedantic -Werror -I "$core/include"
+           -I "$core/platform")
+host_flags=(-std=c99 -O2 -Wall -Wextra -Wpedantic -Werror -ffp-contract=off -I "$core/include"
+            -I "$core/platform")
 pids=()
 for a in 0 1; do
   avr-gcc "${avr_flags[@]}" "${ti_paths[@]}" -DCTL_MATH_FLOAT=$a "$core"/src/*.c \

@@ -7,7 +7,7 @@
  * stand-ins that record what the code asked for, so tests can check it.
  *
  * Nothing outside this header may use __asm, cregister, interrupt or a
- * TI #pragma directly.
+ * TI #pragma directly. Code placement (what runs from RAM) is sixphase_placement.h's.
  */
 #ifndef F28335_COMPILER_H
 #define F28335_COMPILER_H
@@ -44,10 +44,6 @@ extern __cregister volatile uint16_t IFR;
 #define F28335_IER_CLEAR(mask) (IER &= (uint16_t) ~(uint16_t)(mask))
 #define F28335_IFR_CLEAR_ALL() (IFR = 0x0000u)
 
-/* Place function fn in the "ramfuncs" section (loaded to flash, run from L0). */
-#define F28335_PRAGMA(x) _Pragma(#x)
-#define F28335_RAMFUNC(fn) F28335_PRAGMA(CODE_SECTION(fn, "ramfuncs"))
-
 /* Absolute address to a pointer; only the target build uses real addresses. */
 #define F28335_ADDR(type, addr) ((type *)(addr))
 
@@ -75,8 +71,6 @@ void f28335_proxy_intrinsic(const char *instruction);
 #define F28335_IER_SET(mask) (IER |= (uint16_t)(mask))
 #define F28335_IER_CLEAR(mask) (IER &= (uint16_t) ~(uint16_t)(mask))
 #define F28335_IFR_CLEAR_ALL() (IFR = 0x0000u)
-
-#define F28335_RAMFUNC(fn)
 
 /* through uintptr_t: host pointers are wider than the 32-bit address arithmetic */
 #define F28335_ADDR(type, addr) ((type *)(uintptr_t)(addr))
@@ -114,8 +108,6 @@ void f28335_host_edis(void);
 #define F28335_IER_SET(mask) (f28335_host_core.ier |= (uint16_t)(mask))
 #define F28335_IER_CLEAR(mask) (f28335_host_core.ier &= (uint16_t) ~(uint16_t)(mask))
 #define F28335_IFR_CLEAR_ALL() (f28335_host_core.ifr = 0x0000u)
-
-#define F28335_RAMFUNC(fn)
 
 #endif /* __TMS320C2000__ */
 

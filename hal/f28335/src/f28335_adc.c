@@ -15,6 +15,7 @@
  */
 #include "f28335_hal.h"
 #include "hal_adc.h"
+#include "sixphase_placement.h"
 
 #define ADC_ACQ_PS 3u
 #define ADC_CLKPS 1u
@@ -84,10 +85,12 @@ bool hal_adc_init(void)
     return true;
 }
 
-bool f28335_adc_sequence_pending(void) { return (F28335_ADC->ADCST & ADC_ST_INT_SEQ1) != 0u; }
+SIXPHASE_RAMFUNC bool f28335_adc_sequence_pending(void)
+{
+    return (F28335_ADC->ADCST & ADC_ST_INT_SEQ1) != 0u;
+}
 
-F28335_RAMFUNC(hal_adc_read)
-bool hal_adc_read(hal_adc_sample_t *s)
+SIXPHASE_RAMFUNC bool hal_adc_read(hal_adc_sample_t *s)
 {
     volatile f28335_adc_t *a = F28335_ADC;
     const bool fresh = (a->ADCST & ADC_ST_INT_SEQ1) != 0u;
@@ -105,5 +108,4 @@ bool hal_adc_read(hal_adc_sample_t *s)
     return fresh;
 }
 
-F28335_RAMFUNC(f28335_adc_isr_ack)
-void f28335_adc_isr_ack(void) { F28335_PIECTRL->PIEACK = PIE_GROUP_ACK(1u); }
+SIXPHASE_RAMFUNC void f28335_adc_isr_ack(void) { F28335_PIECTRL->PIEACK = PIE_GROUP_ACK(1u); }

@@ -5,6 +5,7 @@
  */
 #include "f28335_hal.h"
 #include "hal_cycles.h"
+#include "sixphase_placement.h"
 
 static bool cycles_running;
 
@@ -26,8 +27,7 @@ void hal_cycles_init(void)
     cycles_running = true;
 }
 
-F28335_RAMFUNC(hal_cycles_now)
-uint32_t hal_cycles_now(void)
+SIXPHASE_RAMFUNC uint32_t hal_cycles_now(void)
 {
     F28335_HOST_TIME_PASSES();
     return ~F28335_CPUTIMER(F28335_CYCLES_TIMER)->TIM;

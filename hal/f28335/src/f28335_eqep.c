@@ -28,6 +28,7 @@
 #include "f28335_hal.h"
 #include "f28335_internal.h"
 #include "hal_encoder.h"
+#include "sixphase_placement.h"
 
 static f28335_qep_state_t qep;
 
@@ -35,7 +36,7 @@ const f28335_qep_state_t *f28335_qep_state(void) { return &qep; }
 
 /* (pos * (2^16 hi + lo)) >> 16 mod 2^32, exactly, in 32-bit products: with pos = 2^16 p_hi +
  * p_lo, it is pos hi + p_hi lo + ((p_lo lo) >> 16), the angle wrapping at one turn. */
-uint32_t f28335_qep_angle(const f28335_qep_state_t *q, uint32_t pos)
+SIXPHASE_RAMFUNC uint32_t f28335_qep_angle(const f28335_qep_state_t *q, uint32_t pos)
 {
     const uint32_t p_hi = pos >> 16, p_lo = pos & 0xFFFFu;
     return pos * q->angle_hi + p_hi * q->angle_lo + ((p_lo * q->angle_lo) >> 16) + q->elec_offset;
@@ -44,7 +45,7 @@ uint32_t f28335_qep_angle(const f28335_qep_state_t *q, uint32_t pos)
 /* delta (2^16 hi + lo) / 2^16 truncated toward zero, as the 64-bit quotient was, on the
  * magnitude m = 2^16 m_hi + m_lo: m hi + m_hi lo + ((m_lo lo) >> 16), every product within 32
  * bits while m <= ut_max_delta; the sign put back after. */
-int32_t f28335_qep_speed_unit(const f28335_qep_state_t *q, int32_t delta_counts)
+SIXPHASE_RAMFUNC int32_t f28335_qep_speed_unit(const f28335_qep_state_t *q, int32_t delta_counts)
 {
     const uint32_t m =
         (delta_counts < 0) ? (uint32_t)0u - (uint32_t)delta_counts : (uint32_t)delta_counts;
@@ -56,7 +57,7 @@ int32_t f28335_qep_speed_unit(const f28335_qep_state_t *q, int32_t delta_counts)
     return (delta_counts < 0) ? -(int32_t)v : (int32_t)v;
 }
 
-int32_t f28335_qep_speed_capture(const f28335_qep_state_t *q, uint16_t period)
+SIXPHASE_RAMFUNC int32_t f28335_qep_speed_capture(const f28335_qep_state_t *q, uint16_t period)
 {
     uint32_t v;
     if (period == 0u) {
@@ -93,7 +94,7 @@ static void qep_constants(f28335_qep_state_t *q, uint16_t pole_pairs)
     q->cap_k = (uint32_t)cap_k;
 }
 
-static int32_t abs32(int32_t x) { return (x < 0) ? -x : x; }
+SIXPHASE_RAMFUNC static int32_t abs32(int32_t x) { return (x < 0) ? -x : x; }
 
 bool hal_encoder_init(uint32_t lines, uint16_t pole_pairs, uint32_t elec_offset)
 {
@@ -145,7 +146,7 @@ bool hal_encoder_init(uint32_t lines, uint16_t pole_pairs, uint32_t elec_offset)
     return true;
 }
 
-static void qep_unit_period(volatile f28335_eqep_t *e, uint16_t sts)
+SIXPHASE_RAMFUNC static void qep_unit_period(volatile f28335_eqep_t *e, uint16_t sts)
 {
     const uint32_t poslat = e->QPOSLAT;
     const uint16_t cprd = e->QCPRDLAT;
@@ -197,7 +198,7 @@ static void qep_unit_period(volatile f28335_eqep_t *e, uint16_t sts)
 }
 
 /* now - before in counts, taken into -counts/2 .. counts/2 (both below counts). */
-static int32_t qep_count_step(uint32_t now, uint32_t before)
+SIXPHASE_RAMFUNC static int32_t qep_count_step(uint32_t now, uint32_t before)
 {
     const int32_t half = (int32_t)(qep.counts / 2u);
     int32_t d = (int32_t)now - (int32_t)before;
@@ -211,7 +212,8 @@ static int32_t qep_count_step(uint32_t now, uint32_t before)
 
 /* The unwrapped position: the counter's change since the last read, across the first index's
  * reset. The sum wraps at 2^32 like the counter it extends (unsigned: no overflow). */
-static void qep_track_position(volatile f28335_eqep_t *e, uint32_t pos, uint16_t sts)
+SIXPHASE_RAMFUNC static void qep_track_position(volatile f28335_eqep_t *e, uint32_t pos,
+                                                uint16_t sts)
 {
     const bool seen = (sts & EQEP_STS_FIMF) != 0u;
     int32_t step;
@@ -232,8 +234,7 @@ uint32_t hal_encoder_offset(void) { return qep.elec_offset; }
 
 void hal_encoder_set_offset(uint32_t elec_offset) { qep.elec_offset = elec_offset; }
 
-F28335_RAMFUNC(hal_encoder_read)
-void hal_encoder_read(hal_encoder_sample_t *s)
+SIXPHASE_RAMFUNC void hal_encoder_read(hal_encoder_sample_t *s)
 {
     volatile f28335_eqep_t *e = F28335_EQEP1;
     const uint32_t pos = e->QPOSCNT;
@@ -273,4 +274,4 @@ void hal_encoder_read(hal_encoder_sample_t *s)
 }
 
 /* FIMF is write-1-to-clear; the zeros written with it leave the other status bits alone. */
-void hal_encoder_rehome(void) { F28335_EQEP1->QEPSTS = EQEP_STS_FIMF; }
+SIXPHASE_RAMFUNC void hal_encoder_rehome(void) { F28335_EQEP1->QEPSTS = EQEP_STS_FIMF; }

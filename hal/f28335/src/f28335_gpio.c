@@ -1,5 +1,6 @@
 #include "f28335_internal.h"
 #include "f28335_regs.h"
+#include "sixphase_placement.h"
 
 /* Two-bit field of pin (0..31) in the 16-pin MUX1/MUX2 or QSEL1/QSEL2 pair. */
 static uint32_t two_bit_field_mask(uint16_t pin) { return (uint32_t)3u << (2u * (pin & 15u)); }
@@ -54,7 +55,7 @@ void f28335_gpio_set_pullup(uint16_t pin, bool enabled)
     F28335_EDIS();
 }
 
-bool f28335_gpio_read(uint16_t pin)
+SIXPHASE_RAMFUNC bool f28335_gpio_read(uint16_t pin)
 {
     if (pin > 31u) {
         return false;

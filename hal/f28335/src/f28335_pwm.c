@@ -32,6 +32,7 @@
 #include "f28335_hal.h"
 #include "f28335_internal.h"
 #include "hal_pwm.h"
+#include "sixphase_placement.h"
 
 #define PWM_FREE_SOFT_STOP_AT_ZERO 1u /* emulation halt: stop at the end of a period */
 
@@ -63,7 +64,7 @@ uint16_t f28335_pwm_deadband_for(uint32_t dead_time_ns)
     return (uint16_t)counts;
 }
 
-uint16_t f28335_pwm_cmpa_for(uint16_t duty_q15, uint16_t prd)
+SIXPHASE_RAMFUNC uint16_t f28335_pwm_cmpa_for(uint16_t duty_q15, uint16_t prd)
 {
     const uint32_t on = ((uint32_t)duty_q15 * prd + (HAL_PWM_DUTY_ONE / 2u)) >> 15;
     if (on == 0u || on >= prd) {
@@ -75,7 +76,7 @@ uint16_t f28335_pwm_cmpa_for(uint16_t duty_q15, uint16_t prd)
     return (uint16_t)(prd - on);
 }
 
-uint16_t f28335_pwm_force_for(uint16_t duty_q15, uint16_t prd)
+SIXPHASE_RAMFUNC uint16_t f28335_pwm_force_for(uint16_t duty_q15, uint16_t prd)
 {
     const uint32_t on = ((uint32_t)duty_q15 * prd + (HAL_PWM_DUTY_ONE / 2u)) >> 15;
     return (on >= prd) ? EPWM_AQCSFRC_CSFA_HIGH : 0u;
@@ -83,7 +84,7 @@ uint16_t f28335_pwm_force_for(uint16_t duty_q15, uint16_t prd)
 
 uint16_t f28335_pwm_period(void) { return pwm_prd; }
 
-static void pwm_force_all(void)
+SIXPHASE_RAMFUNC static void pwm_force_all(void)
 {
     int16_t i;
     F28335_EALLOW();
@@ -187,8 +188,7 @@ bool hal_pwm_init(uint32_t carrier_hz, uint32_t dead_time_ns)
     return true;
 }
 
-F28335_RAMFUNC(hal_pwm_write)
-void hal_pwm_write(const uint16_t duty[HAL_PWM_LEGS])
+SIXPHASE_RAMFUNC void hal_pwm_write(const uint16_t duty[HAL_PWM_LEGS])
 {
     int16_t i;
     for (i = 0; i < HAL_PWM_LEGS; i++) {
@@ -209,14 +209,13 @@ void hal_pwm_write(const uint16_t duty[HAL_PWM_LEGS])
     }
 }
 
-F28335_RAMFUNC(hal_pwm_force_off)
-void hal_pwm_force_off(void)
+SIXPHASE_RAMFUNC void hal_pwm_force_off(void)
 {
     pwm_sw_forced = true;
     pwm_force_all();
 }
 
-void hal_pwm_enable(void)
+SIXPHASE_RAMFUNC void hal_pwm_enable(void)
 {
     int16_t i;
     pwm_sw_forced = false;
@@ -229,7 +228,7 @@ void hal_pwm_enable(void)
     F28335_EDIS();
 }
 
-bool hal_pwm_is_off(void)
+SIXPHASE_RAMFUNC bool hal_pwm_is_off(void)
 {
     int16_t i;
     for (i = 0; i < F28335_EPWM_COUNT; i++) {
@@ -257,7 +256,7 @@ uint16_t hal_pwm_isolated_legs(void) { return pwm_isolated; }
 
 void hal_pwm_restore_legs(void) { pwm_isolated = 0u; }
 
-bool hal_pwm_hw_trip_seen(void)
+SIXPHASE_RAMFUNC bool hal_pwm_hw_trip_seen(void)
 {
     /* TZ1 is active low: the comparator still asserting, or a one-shot latch
      * that software did not cause. */
@@ -267,5 +266,4 @@ bool hal_pwm_hw_trip_seen(void)
     return !pwm_sw_forced && hal_pwm_is_off();
 }
 
-F28335_RAMFUNC(f28335_pwm_time_base)
-uint16_t f28335_pwm_time_base(void) { return F28335_EPWM(0)->TBCTR; }
+SIXPHASE_RAMFUNC uint16_t f28335_pwm_time_base(void) { return F28335_EPWM(0)->TBCTR; }

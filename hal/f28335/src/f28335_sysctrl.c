@@ -9,6 +9,7 @@
  * pins are inputs and the gate drivers' pull-downs keep the switches off.
  */
 #include "f28335_hal.h"
+#include "sixphase_placement.h"
 
 #define PLL_DIV_X10 10u
 #define HISPCP_DIV6 3u /* HSPCLK = 150 / 6 = 25 MHz */
@@ -89,8 +90,7 @@ bool f28335_clock_init(void)
 }
 
 /* Must run from RAM: the flash cannot be read while its wait states change. */
-F28335_RAMFUNC(f28335_flash_init)
-void f28335_flash_init(void)
+SIXPHASE_RAMFUNC void f28335_flash_init(void)
 {
     volatile f28335_flash_t *f = F28335_FLASH;
     F28335_EALLOW();
