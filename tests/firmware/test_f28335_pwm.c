@@ -265,8 +265,8 @@ static void test_isolated_leg(void **state)
  * CTR = 0; TI does not say whether that count's events see the old or the new software force,
  * so both orders are run. Simultaneous events: the highest priority wins (TI's ePWM guides:
  * software force; counting up CBU, CAU, ZRO, CBD, CAD; counting down CBD, CAD, PRD, CBU, CAU).
- * A compare value that matches at CTR = 0 or TBPRD (where the direction turns) is a boundary
- * case the driver must never produce: the model counts it. */
+ * A compare value with an action that matches at CTR = 0 or TBPRD (where the direction turns)
+ * is a boundary case the driver must never produce: the model counts it. */
 typedef struct {
     uint16_t prd, aqctla;
     uint16_t cmpa, cmpb, csf;          /* active */
@@ -299,8 +299,10 @@ static uint16_t aq_event_action(aq_model_t *m, uint16_t ctr, bool up)
                        {prd, EPWM_AQ_PRD_SHIFT},
                        {false, EPWM_AQ_CBU_SHIFT},
                        {false, EPWM_AQ_CAU_SHIFT}};
+    const bool ca_acts = (aq_action(m, EPWM_AQ_CAU_SHIFT) | aq_action(m, EPWM_AQ_CAD_SHIFT)) != 0u;
+    const bool cb_acts = (aq_action(m, EPWM_AQ_CBU_SHIFT) | aq_action(m, EPWM_AQ_CBD_SHIFT)) != 0u;
     int k;
-    if ((ca || cb) && (zro || prd)) {
+    if (((ca && ca_acts) || (cb && cb_acts)) && (zro || prd)) {
         m->boundary_matches++;
     }
     for (k = 0; k < 5; k++) {
@@ -334,6 +336,21 @@ static void aq_load(aq_model_t *m)
     m->csf = m->csf_sh;
 }
 
+/* Count `pos` of a period (0 .. 2 TBPRD - 1) with its shadow load at CTR = 0; the level after. */
+static bool aq_step(aq_model_t *m, int pos)
+{
+    const bool up = pos < m->prd;
+    const uint16_t ctr = (uint16_t)(up ? pos : 2 * m->prd - pos);
+    if (ctr == 0u && m->load_before_events) {
+        aq_load(m);
+    }
+    aq_count(m, ctr, up); /* at CTR = TBPRD the direction is down (TI) */
+    if (ctr == 0u && !m->load_before_events) {
+        aq_load(m);
+    }
+    return m->out;
+}
+
 /* One period: the level at count 0 (*high_at_zero) and the counts high after it, with the
  * first and last of those (positions 1 .. 2 prd - 1; -1 when never high). */
 static int aq_period(aq_model_t *m, bool *high_at_zero, int *first, int *last)
@@ -341,15 +358,7 @@ static int aq_period(aq_model_t *m, bool *high_at_zero, int *first, int *last)
     int pos, high = 0;
     *first = *last = -1;
     for (pos = 0; pos < 2 * m->prd; pos++) {
-        const bool up = pos < m->prd;
-        const uint16_t ctr = (uint16_t)(up ? pos : 2 * m->prd - pos);
-        if (ctr == 0u && m->load_before_events) {
-            aq_load(m);
-        }
-        aq_count(m, ctr, up); /* at CTR = TBPRD the direction is down (TI) */
-        if (ctr == 0u && !m->load_before_events) {
-            aq_load(m);
-        }
+        aq_step(m, pos);
         if (pos == 0) {
             *high_at_zero = m->out;
         } else if (m->out) {
