@@ -639,7 +639,9 @@ static void test_halt_tripped_and_forced_off(void **state)
 
 /* What the halt costs at 100 %: EPWMxA low for the two counts next to CTR = 0; the dead band
  * delays the upper switch's turn-on by DBRED after them and swallows the lower switch's pulse
- * (shorter than DBFED). Counts per period of 2 TBPRD, in steady 100 %. */
+ * (shorter than DBFED). Counts per period of 2 TBPRD, in steady 100 %. The dead band as run
+ * lengths: a switch is on once EPWMxA has held its level (high for the upper, low for the lower)
+ * for more than that switch's delay. */
 static void test_halt_cost_at_full_duty(void **state)
 {
     static const uint16_t full[6] = {32768u, 32768u, 32768u, 32768u, 32768u, 32768u};
@@ -651,17 +653,22 @@ static void test_halt_cost_at_full_duty(void **state)
     hal_pwm_write(full);
     aq_from_registers(&m, 0, true);
     for (period = 0; period < 3; period++) {
-        int low = 0, upper = 0, lower = 0;
+        int low = 0, upper = 0, lower = 0, upper_first = -1;
         for (pos = 0; pos < 2 * m.prd; pos++) {
             const bool in = aq_step(&m, pos);
             run = (in == level) ? run + 1 : 1;
             level = in;
             low += in ? 0 : 1;
-            upper += (in && run > (int)R.epwm[0].DBRED) ? 1 : 0;
             lower += (!in && run > (int)R.epwm[0].DBFED) ? 1 : 0;
+            if (in && run > (int)R.epwm[0].DBRED) {
+                upper++;
+                upper_first = (upper_first < 0) ? pos : upper_first;
+            }
         }
         if (period > 0) { /* the first one follows the 0 % of init */
             assert_int_equal(low, 2);
+            assert_false(level); /* off from the count before CTR = 0 (the ADC start) ... */
+            assert_int_equal(upper_first, 1 + 300); /* ... until DBRED after CTR = 1 */
             assert_int_equal(upper, 2 * 7500 - 2 - 300);
             assert_int_equal(lower, 0);
         }
