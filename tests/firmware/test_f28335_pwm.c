@@ -74,10 +74,9 @@ static void test_init_compare_actions_deadband(void **state)
         /* CMPA shadowed, loaded at CTR = 0 */
         assert_int_equal(
             R.epwm[i].CMPCTL & (EPWM_CMPCTL_SHDWAMODE_IMMEDIATE | EPWM_CMPCTL_LOADAMODE_MASK), 0);
-        /* A: clear on ZRO, set on CAU, clear on CAD, clear on CBU (CMPB = 1) */
-        assert_int_equal(R.epwm[i].AQCTLA, (1u << 0) | (2u << 4) | (1u << 6) | (1u << 8));
-        assert_int_equal(R.epwm[i].CMPB, 1u);
-        /* continuous software force loaded at CTR = 0 with the compares, none at start */
+        /* A: clear on ZRO, set on CAU, clear on CAD; no CMPB action */
+        assert_int_equal(R.epwm[i].AQCTLA, (1u << 0) | (2u << 4) | (1u << 6));
+        /* no continuous software force (it would hold a leg high through a debugger halt) */
         assert_int_equal(R.epwm[i].AQSFRC & 0x00C0u, 0u);
         assert_int_equal(R.epwm[i].AQCSFRC, 0u);
         assert_int_equal(R.epwm[i].AQCTLB, 0);
@@ -130,24 +129,19 @@ static void test_init_rejects_bad_arguments(void **state)
 static void test_cmpa_for_duties(void **state)
 {
     (void)state;
-    /* 0 % and 100 %: no compare event; 100 % is the continuous force */
+    /* 0 %: no compare event; 100 %: the widest compare pulse (CMPA = 1, low at CTR = 0) */
     assert_int_equal(f28335_pwm_cmpa_for(0u, 7500u), 7501);
-    assert_int_equal(f28335_pwm_force_for(0u, 7500u), 0u);
-    assert_int_equal(f28335_pwm_cmpa_for(32768u, 7500u), 7501);
-    assert_int_equal(f28335_pwm_force_for(32768u, 7500u), EPWM_AQCSFRC_CSFA_HIGH);
-    assert_int_equal(f28335_pwm_cmpa_for(40000u, 7500u), 7501); /* above full: full */
-    assert_int_equal(f28335_pwm_force_for(40000u, 7500u), EPWM_AQCSFRC_CSFA_HIGH);
+    assert_int_equal(f28335_pwm_cmpa_for(32768u, 7500u), 1);
+    assert_int_equal(f28335_pwm_cmpa_for(40000u, 7500u), 1);    /* above full: full */
     assert_int_equal(f28335_pwm_cmpa_for(16384u, 7500u), 3750); /* 50 % */
     assert_int_equal(f28335_pwm_cmpa_for(8192u, 7500u), 5625);  /* 25 %: high 2*(7500-5625)/15000 */
     assert_int_equal(f28335_pwm_cmpa_for(24576u, 7500u), 1875); /* 75 % */
-    assert_int_equal(f28335_pwm_force_for(24576u, 7500u), 0u);
     assert_int_equal(f28335_pwm_cmpa_for(1u, 7500u), 7501);     /* rounds to 0 counts: 0 % */
     assert_int_equal(f28335_pwm_cmpa_for(3u, 7500u), 7499);     /* smallest pulse: 2 counts */
-    assert_int_equal(f28335_pwm_cmpa_for(32767u, 7500u), 7501); /* rounds to full */
-    assert_int_equal(f28335_pwm_force_for(32767u, 7500u), EPWM_AQCSFRC_CSFA_HIGH);
-    /* largest below full (7499 counts): CMPA kept one count above CMPB's clear at 1 */
+    assert_int_equal(f28335_pwm_cmpa_for(32767u, 7500u), 1);    /* rounds to full */
+    /* 7499 counts, one below full, gets the same pulse as full; 7498 its own */
     assert_int_equal(f28335_pwm_cmpa_for(32763u, 7500u), F28335_PWM_CMPA_MIN);
-    assert_int_equal(f28335_pwm_force_for(32763u, 7500u), 0u);
+    assert_int_equal(f28335_pwm_cmpa_for(32759u, 7500u), 2);
 }
 
 static void test_write_duty_is_centred_pulse(void **state)
@@ -159,14 +153,13 @@ static void test_write_duty_is_centred_pulse(void **state)
     assert_true(hal_pwm_init(10000u, 2000u));
     hal_pwm_write(duty);
     assert_int_equal(R.epwm[0].CMPA, 7501);
-    assert_int_equal(R.epwm[0].AQCSFRC, 0u);
-    assert_int_equal(R.epwm[1].CMPA, 7501);
-    assert_int_equal(R.epwm[1].AQCSFRC, EPWM_AQCSFRC_CSFA_HIGH);
+    assert_int_equal(R.epwm[1].CMPA, 1); /* 100 %: 2 counts short of the period */
     assert_int_equal(R.epwm[2].CMPA, 3750);
     assert_int_equal(R.epwm[3].CMPA, 5625);
     assert_int_equal(R.epwm[4].CMPA, 1875);
     assert_int_equal(R.epwm[5].CMPA, 7500 - 750);
-    for (i = 2; i < 6; i++) {
+    for (i = 1; i < 6; i++) {
+        assert_int_equal(R.epwm[i].AQCSFRC, 0u);
         const uint32_t high = 2u * (7500u - R.epwm[i].CMPA);
         const uint32_t want = (uint32_t)duty[i] * 15000u / 32768u;
         assert_true(high + 2u >= want && high <= want + 2u);
@@ -262,11 +255,12 @@ static void test_isolated_leg(void **state)
 /* ---- Action-qualifier model of one module (up-down count, EPWMxA before the dead band) ----
  * Counts 0, 1, .., TBPRD, TBPRD - 1, .., 1 make one period of 2 TBPRD counts; the output of a
  * count is the level after that count's events. Shadowed CMPA, CMPB and AQCSFRC load at
- * CTR = 0; TI does not say whether that count's events see the old or the new software force,
- * so both orders are run. Simultaneous events: the highest priority wins (TI's ePWM guides:
- * software force; counting up CBU, CAU, ZRO, CBD, CAD; counting down CBD, CAD, PRD, CBU, CAU).
- * A compare value that matches at CTR = 0 or TBPRD (where the direction turns) is a boundary
- * case the driver must never produce: the model counts it. */
+ * CTR = 0; TI does not say whether that count's events see the old or the new values, so both
+ * orders are run (the driver no longer uses the software force, which the model keeps so that
+ * the tests can run an older driver). Simultaneous events: the highest priority wins (TI's ePWM
+ * guides: software force; counting up CBU, CAU, ZRO, CBD, CAD; counting down CBD, CAD, PRD, CBU,
+ * CAU). A compare value with an action that matches at CTR = 0 or TBPRD (where the direction turns)
+ * is a boundary case the driver must never produce: the model counts it. */
 typedef struct {
     uint16_t prd, aqctla;
     uint16_t cmpa, cmpb, csf;          /* active */
@@ -299,8 +293,10 @@ static uint16_t aq_event_action(aq_model_t *m, uint16_t ctr, bool up)
                        {prd, EPWM_AQ_PRD_SHIFT},
                        {false, EPWM_AQ_CBU_SHIFT},
                        {false, EPWM_AQ_CAU_SHIFT}};
+    const bool ca_acts = (aq_action(m, EPWM_AQ_CAU_SHIFT) | aq_action(m, EPWM_AQ_CAD_SHIFT)) != 0u;
+    const bool cb_acts = (aq_action(m, EPWM_AQ_CBU_SHIFT) | aq_action(m, EPWM_AQ_CBD_SHIFT)) != 0u;
     int k;
-    if ((ca || cb) && (zro || prd)) {
+    if (((ca && ca_acts) || (cb && cb_acts)) && (zro || prd)) {
         m->boundary_matches++;
     }
     for (k = 0; k < 5; k++) {
@@ -334,6 +330,21 @@ static void aq_load(aq_model_t *m)
     m->csf = m->csf_sh;
 }
 
+/* Count `pos` of a period (0 .. 2 TBPRD - 1) with its shadow load at CTR = 0; the level after. */
+static bool aq_step(aq_model_t *m, int pos)
+{
+    const bool up = pos < m->prd;
+    const uint16_t ctr = (uint16_t)(up ? pos : 2 * m->prd - pos);
+    if (ctr == 0u && m->load_before_events) {
+        aq_load(m);
+    }
+    aq_count(m, ctr, up); /* at CTR = TBPRD the direction is down (TI) */
+    if (ctr == 0u && !m->load_before_events) {
+        aq_load(m);
+    }
+    return m->out;
+}
+
 /* One period: the level at count 0 (*high_at_zero) and the counts high after it, with the
  * first and last of those (positions 1 .. 2 prd - 1; -1 when never high). */
 static int aq_period(aq_model_t *m, bool *high_at_zero, int *first, int *last)
@@ -341,15 +352,7 @@ static int aq_period(aq_model_t *m, bool *high_at_zero, int *first, int *last)
     int pos, high = 0;
     *first = *last = -1;
     for (pos = 0; pos < 2 * m->prd; pos++) {
-        const bool up = pos < m->prd;
-        const uint16_t ctr = (uint16_t)(up ? pos : 2 * m->prd - pos);
-        if (ctr == 0u && m->load_before_events) {
-            aq_load(m);
-        }
-        aq_count(m, ctr, up); /* at CTR = TBPRD the direction is down (TI) */
-        if (ctr == 0u && !m->load_before_events) {
-            aq_load(m);
-        }
+        aq_step(m, pos);
         if (pos == 0) {
             *high_at_zero = m->out;
         } else if (m->out) {
@@ -374,17 +377,13 @@ static void aq_from_registers(aq_model_t *m, int leg, bool load_before_events)
     aq_load(m);
 }
 
-/* Writes duty to leg 0 through the driver, then runs the period that follows. 100 %: high
- * from count 1 on. Otherwise a pulse of 2 on counts (on limited to TBPRD -
- * F28335_PWM_CMPA_MIN) centred on CTR = TBPRD. Count 0 is where a force begins or ends: it
- * follows the previous period's force or this one's, depending on the load order (one count,
- * 6.7 ns, either way; f28335_pwm.c). */
+/* Writes duty to leg 0 through the driver, then runs the period that follows: a pulse of 2 on
+ * counts centred on CTR = TBPRD, on limited to TBPRD - F28335_PWM_CMPA_MIN (100 % two counts
+ * short), and count 0 low in every period, in both load orders. */
 static void aq_expect_period(aq_model_t *m, uint16_t duty_q15)
 {
     uint16_t duty[6] = {0u, 0u, 0u, 0u, 0u, 0u};
     const uint32_t on = ((uint32_t)duty_q15 * m->prd + 16384u) >> 15;
-    const bool full = on >= m->prd;
-    const bool after_full = (m->csf & EPWM_AQCSFRC_CSFA_MASK) == EPWM_AQCSFRC_CSFA_HIGH;
     const uint32_t on_eff = (on > m->prd - F28335_PWM_CMPA_MIN) ? m->prd - F28335_PWM_CMPA_MIN : on;
     bool at_zero = false;
     int first, last, high;
@@ -394,19 +393,13 @@ static void aq_expect_period(aq_model_t *m, uint16_t duty_q15)
     m->cmpb_sh = R.epwm[0].CMPB;
     m->csf_sh = R.epwm[0].AQCSFRC;
     high = aq_period(m, &at_zero, &first, &last);
-    /* count 0 follows the force of the period the load order makes it belong to */
-    assert_true(at_zero == (m->load_before_events ? full : after_full));
-    if (full) {
-        assert_int_equal(high, 2 * m->prd - 1);
-    } else {
-        if ((uint32_t)high != 2u * on_eff) {
-            print_error("duty %u: %d counts high, want %u\n", duty_q15, high,
-                        (unsigned)(2u * on_eff));
-            fail();
-        }
-        if (high > 0) { /* centred on the peak */
-            assert_int_equal(m->prd - first, last - m->prd + 1);
-        }
+    assert_false(at_zero); /* every period starts low, after 100 % too */
+    if ((uint32_t)high != 2u * on_eff) {
+        print_error("duty %u: %d counts high, want %u\n", duty_q15, high, (unsigned)(2u * on_eff));
+        fail();
+    }
+    if (high > 0) { /* centred on the peak */
+        assert_int_equal(m->prd - first, last - m->prd + 1);
     }
     assert_int_equal(m->boundary_matches, 0);
 }
@@ -427,8 +420,8 @@ static void aq_run_sequence(const uint16_t *duties, int n)
     }
 }
 
-/* 0 % after 100 % must clear the upper switch in the next period (before the fix the output
- * stayed high: no event cleared it), and 100 % after 0 % must set it for the whole period. */
+/* 0 % after 100 % must clear the upper switch in the next period (an early driver left it high:
+ * no event cleared it), and 100 % after 0 % must give the widest pulse at once. */
 static void test_aq_full_and_zero_sequences(void **state)
 {
     static const uint16_t full_zero_full[] = {32768u, 0u, 32768u, 0u, 0u, 32768u, 32768u, 0u};
@@ -461,6 +454,225 @@ static void test_aq_duty_sweep(void **state)
         duties[3 * k + 2] = (uint16_t)(32768u - (uint16_t)k * 511u);
     }
     aq_run_sequence(duties, 3 * 64);
+}
+
+/* ---- Emulation halt: the six modules' time bases, action qualifiers and trip zones ----
+ * TBCTL.FREE_SOFT decides where a time base stops when the emulator halts the CPU (SPRUG04A,
+ * TBCTL bits 15:14): 0 after the next count, 1 when the counter completes its cycle (up-down:
+ * at CTR = 0), 2 or 3 never (free run: the last duties keep switching). While stopped an
+ * output holds its level: the one after the stop count's events or, should the stop come
+ * before them, the one of the count before; both are checked. A tripped module's outputs are
+ * low whatever its action qualifier does. The dead band only delays the rising edge of either
+ * switch, so an upper switch can be on in a halt only if its EPWMxA is high and its module is
+ * not tripped: the model records that per count as bit k for leg k (A..F). */
+#define HALT_COUNTS_MAX (2 * 7500)
+
+/* What the trip-zone hardware does with the driver's writes: a forced one-shot trip latches,
+ * a clear ends it. The modules tripped now, bit k for ePWM k+1. */
+static uint16_t tz_latch(void)
+{
+    uint16_t tripped = 0u;
+    int i;
+    for (i = 0; i < HAL_PWM_LEGS; i++) {
+        if ((R.epwm[i].TZCLR & EPWM_TZ_OST) != 0u) {
+            R.epwm[i].TZFLG &= (uint16_t)~EPWM_TZ_OST;
+        }
+        if ((R.epwm[i].TZFRC & EPWM_TZ_OST) != 0u) {
+            R.epwm[i].TZFLG |= EPWM_TZ_OST;
+        }
+        R.epwm[i].TZCLR = 0u;
+        R.epwm[i].TZFRC = 0u;
+        if ((R.epwm[i].TZFLG & EPWM_TZ_OST) != 0u) {
+            tripped |= (uint16_t)(1u << i);
+        }
+    }
+    return tripped;
+}
+
+/* With two isolated neutrals each set (A B C, D E F) applies no voltage at 000 or 111; any
+ * other state of its upper switches is an active vector. A tripped leg counts as off. */
+static bool holds_active_vector(uint16_t upper_on)
+{
+    const uint16_t abc = upper_on & 7u, def = (upper_on >> 3) & 7u;
+    return (abc != 0u && abc != 7u) || (def != 0u && def != 7u);
+}
+
+/* The stop count's level and the one before (positions into prev, then next). */
+static void halt_expect_safe(const uint16_t *prev, const uint16_t *next, int n, int stop)
+{
+    const uint16_t held[2] = {stop < n ? prev[stop] : next[stop - n], prev[stop - 1]};
+    int k;
+    for (k = 0; k < 2; k++) {
+        if (holds_active_vector(held[k]) || held[k] != 0u) {
+            print_error("halt at count %d%s: upper switches %02o on (%s)\n", stop,
+                        k == 0 ? "" : " (count before)", held[k],
+                        holds_active_vector(held[k]) ? "an active vector" : "a zero vector");
+        }
+        assert_false(holds_active_vector(held[k])); /* the requirement */
+        assert_int_equal(held[k], 0u);              /* the design: every upper switch off */
+    }
+}
+
+/* A halt requested at every count of the period `prev`; `next` is the period after it. */
+static void halt_check_requests(uint16_t free_soft, const uint16_t *prev, const uint16_t *next,
+                                int n)
+{
+    int p;
+    if (free_soft > EPWM_FREE_SOFT_STOP_AT_CYCLE_END) {
+        fail_msg("FREE_SOFT %u: the time base runs on through a halt", free_soft);
+    }
+    for (p = 1; p < n; p++) { /* a request at count 0 is the previous period's last stop */
+        halt_expect_safe(prev, next, n, free_soft == 0u ? p + 1 : n);
+    }
+}
+
+/* One period of the six modules: per count the upper switches that may be on. */
+static uint16_t halt_run_period(aq_model_t legs[HAL_PWM_LEGS], uint16_t tripped, uint16_t *on)
+{
+    uint16_t any = 0u;
+    int pos, leg;
+    for (pos = 0; pos < 2 * legs[0].prd; pos++) {
+        uint16_t mask = 0u;
+        for (leg = 0; leg < HAL_PWM_LEGS; leg++) {
+            if (aq_step(&legs[leg], pos) && ((tripped >> leg) & 1u) == 0u) {
+                mask |= (uint16_t)(1u << leg);
+            }
+        }
+        on[pos] = mask;
+        any |= mask;
+    }
+    return any;
+}
+
+/* The six modules after hal_pwm_init and hal_pwm_enable, as the driver left them. */
+static void halt_setup(aq_model_t legs[HAL_PWM_LEGS], bool load_before_events)
+{
+    int leg;
+    f28335_host_regs_reset();
+    R.gpiodata.GPADAT = (uint32_t)1u << F28335_PWM_TRIP_GPIO;
+    assert_true(hal_pwm_init(10000u, 2000u));
+    (void)tz_latch();
+    hal_pwm_enable();
+    assert_int_equal(tz_latch(), 0u);
+    for (leg = 0; leg < HAL_PWM_LEGS; leg++) {
+        aq_from_registers(&legs[leg], leg, load_before_events);
+        /* the mode the argument needs, in every module */
+        assert_int_equal((R.epwm[leg].TBCTL & EPWM_TBCTL_FREE_SOFT_MASK) >>
+                             EPWM_TBCTL_FREE_SOFT_SHIFT,
+                         EPWM_FREE_SOFT_STOP_AT_CYCLE_END);
+    }
+}
+
+/* Writes each duty set for a period (and keeps the last one more period), checking a halt at
+ * every count. Returns the upper switches on at any count. */
+static uint16_t halt_run_sequence(aq_model_t legs[HAL_PWM_LEGS], const uint16_t (*duties)[6], int n)
+{
+    static uint16_t on[2][HALT_COUNTS_MAX];
+    const uint16_t free_soft =
+        (uint16_t)((R.epwm[0].TBCTL & EPWM_TBCTL_FREE_SOFT_MASK) >> EPWM_TBCTL_FREE_SOFT_SHIFT);
+    const int counts = 2 * legs[0].prd;
+    uint16_t any = 0u;
+    int k, leg;
+    assert_true(counts <= HALT_COUNTS_MAX);
+    for (k = 0; k <= n; k++) {
+        if (k < n) {
+            hal_pwm_write(duties[k]);
+            for (leg = 0; leg < HAL_PWM_LEGS; leg++) {
+                legs[leg].cmpa_sh = R.epwm[leg].CMPA;
+                legs[leg].cmpb_sh = R.epwm[leg].CMPB;
+                legs[leg].csf_sh = R.epwm[leg].AQCSFRC;
+            }
+        }
+        any |= halt_run_period(legs, tz_latch(), on[k & 1]);
+        if (k > 0) {
+            halt_check_requests(free_soft, on[(k - 1) & 1], on[k & 1], counts);
+        }
+    }
+    return any;
+}
+
+/* Duty sets a drive commands: conventional MPTC's full-period vectors, DDC with a set's zero
+ * state 111 (its two legs of v at 100 %), the limits of the compare range, 0 % and 100 %. */
+static const uint16_t halt_duty_sets[][6] = {
+    {0u, 0u, 0u, 0u, 0u, 0u},
+    {32768u, 0u, 0u, 32768u, 0u, 0u},
+    {32768u, 32768u, 32768u, 32768u, 32768u, 32768u},
+    {32768u, 32768u, 0u, 0u, 32768u, 32768u},
+    {32768u, 32768u, 13107u, 0u, 9830u, 32768u},
+    {3u, 32763u, 32767u, 32766u, 1u, 32768u},
+    {32768u, 3u, 0u, 32763u, 16384u, 32768u},
+    {16384u, 8192u, 24576u, 32760u, 5u, 32768u},
+    {0u, 32768u, 0u, 32768u, 0u, 32768u},
+    {40000u, 0u, 32768u, 3u, 32768u, 0u},
+};
+
+/* No leg holds an active vector while the emulator halts the CPU, whatever the duties, wherever
+ * in the period the halt comes, in both orders of the CTR = 0 load and events. Before the fix a
+ * leg at 100 % stayed high (continuous software force) through the halt. */
+static void test_halt_holds_no_active_vector(void **state)
+{
+    const int n = (int)(sizeof halt_duty_sets / sizeof halt_duty_sets[0]);
+    int order;
+    (void)state;
+    for (order = 0; order < 2; order++) {
+        aq_model_t legs[HAL_PWM_LEGS];
+        halt_setup(legs, order == 0);
+        (void)halt_run_sequence(legs, halt_duty_sets, n);
+    }
+}
+
+/* An isolated leg (its module tripped) stays off through a halt, and the others hold no active
+ * vector beside it; after the software force-off no output is on at any count. */
+static void test_halt_tripped_and_forced_off(void **state)
+{
+    const int n = (int)(sizeof halt_duty_sets / sizeof halt_duty_sets[0]);
+    aq_model_t legs[HAL_PWM_LEGS];
+    (void)state;
+    halt_setup(legs, true);
+    assert_true(hal_pwm_isolate_leg(2));
+    (void)halt_run_sequence(legs, halt_duty_sets, n);
+
+    halt_setup(legs, true);
+    hal_pwm_force_off();
+    assert_int_equal(halt_run_sequence(legs, halt_duty_sets, n), 0u);
+}
+
+/* What the halt costs at 100 %: EPWMxA low for the two counts next to CTR = 0; the dead band
+ * delays the upper switch's turn-on by DBRED after them and swallows the lower switch's pulse
+ * (shorter than DBFED). Counts per period of 2 TBPRD, in steady 100 %. The dead band as run
+ * lengths: a switch is on once EPWMxA has held its level (high for the upper, low for the lower)
+ * for more than that switch's delay. */
+static void test_halt_cost_at_full_duty(void **state)
+{
+    static const uint16_t full[6] = {32768u, 32768u, 32768u, 32768u, 32768u, 32768u};
+    aq_model_t m;
+    int period, pos, run = 1000; /* counts at this level: steady 0 % before */
+    bool level = false;
+    (void)state;
+    assert_true(hal_pwm_init(10000u, 2000u));
+    hal_pwm_write(full);
+    aq_from_registers(&m, 0, true);
+    for (period = 0; period < 3; period++) {
+        int low = 0, upper = 0, lower = 0, upper_first = -1;
+        for (pos = 0; pos < 2 * m.prd; pos++) {
+            const bool in = aq_step(&m, pos);
+            run = (in == level) ? run + 1 : 1;
+            level = in;
+            low += in ? 0 : 1;
+            lower += (!in && run > (int)R.epwm[0].DBFED) ? 1 : 0;
+            if (in && run > (int)R.epwm[0].DBRED) {
+                upper++;
+                upper_first = (upper_first < 0) ? pos : upper_first;
+            }
+        }
+        if (period > 0) { /* the first one follows the 0 % of init */
+            assert_int_equal(low, 2);
+            assert_false(level); /* off from the count before CTR = 0 (the ADC start) ... */
+            assert_int_equal(upper_first, 1 + 300); /* ... until DBRED after CTR = 1 */
+            assert_int_equal(upper, 2 * 7500 - 2 - 300);
+            assert_int_equal(lower, 0);
+        }
+    }
 }
 
 /* Every protected register the drivers write is written between EALLOW and EDIS (HRCNFG once
@@ -503,6 +715,9 @@ int main(void)
         cmocka_unit_test_setup(test_aq_full_and_zero_sequences, setup),
         cmocka_unit_test_setup(test_aq_smallest_and_largest_duties, setup),
         cmocka_unit_test_setup(test_aq_duty_sweep, setup),
+        cmocka_unit_test_setup(test_halt_holds_no_active_vector, setup),
+        cmocka_unit_test_setup(test_halt_tripped_and_forced_off, setup),
+        cmocka_unit_test_setup(test_halt_cost_at_full_duty, setup),
         cmocka_unit_test_setup(test_no_protected_write_outside_eallow, setup),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -48,18 +48,14 @@ void f28335_interrupts_disable_global(void);
 uint16_t f28335_pwm_period_for(uint32_t carrier_hz);
 /* Dead-band counts for dead_time_ns; 0xFFFF if above the 10-bit limit. */
 uint16_t f28335_pwm_deadband_for(uint32_t dead_time_ns);
-/* CMPB of every module: the up-count event at CTR = 1 that clears EPWMxA once more after a
- * period in which the continuous force held it high (f28335_pwm.c). CMPA stays at least one
- * count above it. */
-#define F28335_PWM_CMPB 1u
-#define F28335_PWM_CMPA_MIN 2u
+/* The smallest CMPA: the widest pulse, which 100 % gets, still low at CTR = 0 (where a
+ * debugger halt stops the time base, f28335_pwm.c) and at CTR = 1 counting down. */
+#define F28335_PWM_CMPA_MIN 1u
 
 /* CMPA for a Q15 duty (0..32768) and period prd: on = round(duty * prd / 32768) counts per
- * half period; prd + 1 (no compare event) when on is 0 or prd (0 % and 100 %), else prd - on
- * limited to F28335_PWM_CMPA_MIN..prd - 1. */
+ * half period; prd + 1 (no compare event) when on is 0, F28335_PWM_CMPA_MIN when on is prd
+ * (100 %, one count short per half period), else prd - on. */
 uint16_t f28335_pwm_cmpa_for(uint16_t duty_q15, uint16_t prd);
-/* AQCSFRC for that duty: continuous force high at 100 % (on = prd), no force otherwise. */
-uint16_t f28335_pwm_force_for(uint16_t duty_q15, uint16_t prd);
 uint16_t f28335_pwm_period(void);
 /* ePWM1 time-base counter: in up-down mode the counter rises from 0 at the period start
  * (ADC start of conversion), so in the first half period it is the time since then, in

@@ -95,6 +95,9 @@ typedef struct {
 #define EPWM_TBCTL_PHSDIR_UP 0x2000u      /* bit 13 */
 #define EPWM_TBCTL_FREE_SOFT_SHIFT 14u
 #define EPWM_TBCTL_FREE_SOFT_MASK 0xC000u
+/* FREE_SOFT on an emulation halt: 0 stop after the next count, 1 stop when the counter completes
+ * its cycle (up-down: at CTR = 0), 2 or 3 run free (SPRUG04A, TBCTL). */
+#define EPWM_FREE_SOFT_STOP_AT_CYCLE_END 1u
 
 #define EPWM_CMPCTL_LOADAMODE_MASK 0x0003u /* 0 = load at CTR = 0 */
 #define EPWM_CMPCTL_LOADBMODE_MASK 0x000Cu

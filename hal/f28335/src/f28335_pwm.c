@@ -4,37 +4,46 @@
  *   time base   up-down count, TBCLK = SYSCLKOUT, TBPRD = SYSCLK / (2 f),
  *               ePWM1 master (SYNCO at CTR = 0), ePWM2..6 slaves (phase 0,
  *               count up after sync, SYNCI passed on)
- *   compare     CMPA, CMPB shadowed, loaded at CTR = 0; CMPB fixed at 1
+ *   compare     CMPA shadowed, loaded at CTR = 0; CMPB unused
  *   actions     EPWMxA set on CAU, cleared on CAD: high while CTR > CMPA, a
  *               pulse of 2 (TBPRD - CMPA) TBCLK centred on CTR = TBPRD, with
- *               CMPA kept in 2 .. TBPRD - 1; also cleared on ZRO and on CBU
- *               (CTR = 1 counting up), so every period starts low whatever the
- *               one before left
- *   0 %, 100 %  no compare event (CMPA = TBPRD + 1) and, for 100 %, the
- *               continuous software force high (AQCSFRC, shadowed, loaded at
- *               CTR = 0 with the compares). Nothing depends on an edge case of
- *               the compare logic. Where a force ends, TI does not say whether
- *               the zero event of that same count still sees the force: if it
- *               does, CBU clears one count later; either way the next pulse is
- *               centred (tests/firmware: the action-qualifier model, both
- *               orders). Event priorities (TI's ePWM guides, up-down mode):
- *               software force; then counting up CBU, CAU, ZRO, CBD, CAD;
- *               counting down CBD, CAD, PRD, CBU, CAU.
+ *               CMPA kept in 1 .. TBPRD - 1; also cleared on ZRO, so every
+ *               period starts low. Event priorities (TI's ePWM guides, up-down
+ *               mode): counting up CBU, CAU, ZRO, CBD, CAD; counting down CBD,
+ *               CAD, PRD, CBU, CAU; CMPA is never 0 or TBPRD, so no compare
+ *               competes with ZRO or meets the turn at TBPRD.
+ *   0 %, 100 %  0 %: no compare event (CMPA = TBPRD + 1), ZRO keeps it low.
+ *               100 %: the widest compare pulse, CMPA = 1 (the largest duty
+ *               that leaves CTR = 0 low): high from CTR = 1 counting up to
+ *               CTR = 1 counting down, 2 (TBPRD - 1) of 2 TBPRD counts, 2 TBCLK
+ *               short (13.3 ns at 150 MHz). The dead band makes that notch
+ *               DBRED + 2 counts of the upper switch off, the lower one not
+ *               turned on (tests/firmware: 302 of 15000 counts at 10 kHz and
+ *               2 us). No continuous software force: it would hold a leg high
+ *               through a debugger halt.
+ *   emulation   FREE_SOFT = 1: on a debugger halt each time base runs on to the
+ *   halt        end of its cycle, CTR = 0 in up-down mode, and stops there
+ *               (SPRUG04A, TBCTL); the outputs hold their level. Every EPWMxA
+ *               is low at CTR = 0 and at CTR = 1 counting down before it, so in
+ *               a halt no upper switch is on and no three-phase set holds an
+ *               active vector; a tripped module stays tripped (the one-shot
+ *               latch needs software to clear it). The F2833x has no trip input
+ *               tied to the CPU's emulation stop (TZ1..TZ6 are pins), so this
+ *               is the only on-chip guard; FREE_SOFT = 0 would stop anywhere in
+ *               the pattern, 2 or 3 would keep switching the last duties.
  *   dead band   EPWMxA as source of both edges, full mode, active high
  *               complementary: xA = upper switch, xB = lower switch
  *   trip zone   TZ1 (GPIO12, active low) one-shot trips every module, both
  *               outputs forced low; software force-off = TZFRC.OST; an isolated leg is
  *               its module's one-shot trip alone, which hal_pwm_enable leaves set
  *   ADC start   ePWM1 SOCA at CTR = 0: the period boundary, the symmetry
- *               point of the centred pulses; a leg is low there unless its
- *               duty is 100 % (not always all legs low)
+ *               point of the centred pulses, where every EPWMxA is low (a leg
+ *               at 100 % is in its notch, both switches off)
  */
 #include "f28335_hal.h"
 #include "f28335_internal.h"
 #include "hal_pwm.h"
 #include "sixphase_placement.h"
-
-#define PWM_FREE_SOFT_STOP_AT_ZERO 1u /* emulation halt: stop at the end of a period */
 
 static uint16_t pwm_prd;
 static bool pwm_sw_forced = true;
@@ -67,19 +76,13 @@ uint16_t f28335_pwm_deadband_for(uint32_t dead_time_ns)
 SIXPHASE_RAMFUNC uint16_t f28335_pwm_cmpa_for(uint16_t duty_q15, uint16_t prd)
 {
     const uint32_t on = ((uint32_t)duty_q15 * prd + (HAL_PWM_DUTY_ONE / 2u)) >> 15;
-    if (on == 0u || on >= prd) {
-        return (uint16_t)(prd + 1u); /* 0 % or 100 %: no compare event (see above) */
+    if (on == 0u) {
+        return (uint16_t)(prd + 1u); /* 0 %: no compare event */
     }
-    if (on > (uint32_t)prd - F28335_PWM_CMPA_MIN) {
-        return F28335_PWM_CMPA_MIN; /* CMPA = 1 would meet CBU's clear */
+    if (on >= prd) {
+        return F28335_PWM_CMPA_MIN; /* 100 %: low at CTR = 0, where a debugger halt stops */
     }
     return (uint16_t)(prd - on);
-}
-
-SIXPHASE_RAMFUNC uint16_t f28335_pwm_force_for(uint16_t duty_q15, uint16_t prd)
-{
-    const uint32_t on = ((uint32_t)duty_q15 * prd + (HAL_PWM_DUTY_ONE / 2u)) >> 15;
-    return (on >= prd) ? EPWM_AQCSFRC_CSFA_HIGH : 0u;
 }
 
 uint16_t f28335_pwm_period(void) { return pwm_prd; }
@@ -99,7 +102,7 @@ static void pwm_init_module(int16_t i, uint16_t prd, uint16_t db)
 {
     volatile f28335_epwm_t *p = F28335_EPWM(i);
     uint16_t tbctl = (uint16_t)(EPWM_TBCTL_CTRMODE_UPDOWN |
-                                (PWM_FREE_SOFT_STOP_AT_ZERO << EPWM_TBCTL_FREE_SOFT_SHIFT));
+                                (EPWM_FREE_SOFT_STOP_AT_CYCLE_END << EPWM_TBCTL_FREE_SOFT_SHIFT));
     F28335_EALLOW();
     p->TZSEL = EPWM_TZSEL_OSHT1;
     p->TZCTL = (uint16_t)(EPWM_TZCTL_TZA_LOW | EPWM_TZCTL_TZB_LOW);
@@ -123,13 +126,13 @@ static void pwm_init_module(int16_t i, uint16_t prd, uint16_t db)
     p->CMPCTL = 0u; /* CMPA/CMPB shadowed, loaded at CTR = 0 */
     p->CMPA = f28335_pwm_cmpa_for(0u, prd);
     p->CMPAHR = 0u;
-    p->CMPB = F28335_PWM_CMPB;
+    p->CMPB = 0u; /* no action uses it */
     p->AQCTLA =
         (uint16_t)((EPWM_AQ_CLEAR << EPWM_AQ_ZRO_SHIFT) | (EPWM_AQ_SET << EPWM_AQ_CAU_SHIFT) |
-                   (EPWM_AQ_CLEAR << EPWM_AQ_CAD_SHIFT) | (EPWM_AQ_CLEAR << EPWM_AQ_CBU_SHIFT));
+                   (EPWM_AQ_CLEAR << EPWM_AQ_CAD_SHIFT));
     p->AQCTLB = 0u; /* xB comes from the dead band */
     p->AQSFRC = EPWM_AQSFRC_RLDCSF_ZERO;
-    p->AQCSFRC = 0u;
+    p->AQCSFRC = 0u; /* never forced: a force would hold through a halt */
 
     p->DBCTL = (uint16_t)(EPWM_DBCTL_OUT_MODE_FULL | EPWM_DBCTL_POLSEL_AHC);
     p->DBRED = db;
@@ -195,17 +198,7 @@ SIXPHASE_RAMFUNC void hal_pwm_write(const uint16_t duty[HAL_PWM_LEGS])
         volatile f28335_epwm_t *p = F28335_EPWM(i);
         /* an isolated leg's module is tripped; its compare gets 0 % all the same */
         const uint16_t d = (((unsigned)pwm_isolated >> i) & 1u) != 0u ? 0u : duty[i];
-        const uint16_t force = f28335_pwm_force_for(d, pwm_prd);
-        /* Into 100 % the force first, out of it the compare first: if the period's shadow load
-         * falls between the two writes, the leg keeps its previous duty for one more period
-         * instead of getting a period at 0 %. */
-        if (force != 0u) {
-            p->AQCSFRC = force;
-            p->CMPA = f28335_pwm_cmpa_for(d, pwm_prd);
-        } else {
-            p->CMPA = f28335_pwm_cmpa_for(d, pwm_prd);
-            p->AQCSFRC = force;
-        }
+        p->CMPA = f28335_pwm_cmpa_for(d, pwm_prd);
     }
 }
 
