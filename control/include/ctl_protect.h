@@ -47,6 +47,7 @@
 /* A current channel counts as converting if its word changed within this many periods
  * (sensor noise moves a live 12-bit word every few periods even at zero current). */
 #define CTL_PROTECT_ALIVE_PERIODS 1000
+#define CTL_PROTECT_CHANNELS_ALL ((uint16_t)0x3Fu) /* the six current channels */
 /* Shortest open-phase window (periods: 40 ms at 10 kHz); it also spans an electrical turn. */
 #define CTL_PROTECT_OPEN_PHASE_WINDOW 400
 
@@ -147,7 +148,8 @@ typedef struct {
     int16_t n_rail;
     int16_t n_stuck[7];
     int16_t last_raw[7];
-    int16_t word_age[6];  /* periods since each current channel's word last changed */
+    int16_t word_age[6];          /* periods since each current channel's word last changed */
+    uint16_t changed_since_stuck; /* bit k: channel k's word changed since ADC_STUCK latched */
     ctl_q expected_speed; /* electrical speed the torque should have built up without counts */
     ctl_q expected_angle; /* and the angle (turns) it should have turned through */
     ctl_q last_theta;
@@ -205,9 +207,10 @@ void ctl_protect_raise(ctl_protect_t *p, uint16_t faults, const ctl_protect_inpu
 /* Clear the latch if no fault condition is active; true on success. The log is kept. */
 bool ctl_protect_clear(ctl_protect_t *p);
 
-/* Every current channel's word changed within CTL_PROTECT_ALIVE_PERIODS: the converter runs.
- * Judged in every state (the ADC converts with the outputs off), so a latched ADC_STUCK can
- * be re-verified at standstill before a clear. */
+/* Every current channel's word changed since ADC_STUCK last latched, and within
+ * CTL_PROTECT_ALIVE_PERIODS: the converter runs. Judged in every state (the ADC converts with
+ * the outputs off), so a latched ADC_STUCK can be re-verified at standstill before a clear;
+ * a clear keeps the channels' history, so a frozen word never passes as a fresh one. */
 bool ctl_protect_converter_alive(const ctl_protect_t *p);
 
 /* Oldest unread record; false when the log is empty. Background side. */

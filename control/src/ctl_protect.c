@@ -99,9 +99,10 @@ SIXPHASE_RAMFUNC static void reset_filters(ctl_protect_t *p)
     p->n_overspeed = 0;
     p->n_sum = 0;
     p->n_rail = 0;
+    /* The converter's history (last_raw, word_age, changed_since_stuck) survives: a clear
+     * that forgot it would count the frozen word as a fresh change and pass a dead ADC. */
     for (k = 0; k < 7; k++) {
         p->n_stuck[k] = 0;
-        p->last_raw[k] = -1;
     }
     p->expected_speed = CTL_Q(0.0);
     p->expected_angle = CTL_Q(0.0);
@@ -123,10 +124,23 @@ void ctl_protect_init(ctl_protect_t *p)
     p->quiet = 0u;
     p->inv_judged = CTL_K_ONE_SIXTH;
     p->open_phase = -1;
+    for (k = 0; k < 7; k++) {
+        p->last_raw[k] = -1;
+    }
     for (k = 0; k < 6; k++) {
         p->word_age[k] = 0;
     }
+    p->changed_since_stuck = CTL_PROTECT_CHANNELS_ALL;
     reset_filters(p);
+}
+
+/* Latches faults; a stuck converter must show every word change again before a clear. */
+SIXPHASE_RAMFUNC static void latch(ctl_protect_t *p, uint16_t faults)
+{
+    if ((faults & CTL_FAULT_ADC_STUCK) != 0u && (p->latched & CTL_FAULT_ADC_STUCK) == 0u) {
+        p->changed_since_stuck = 0u;
+    }
+    p->latched |= faults;
 }
 
 /* Count consecutive periods a condition holds; true once it held for `periods`. */
@@ -235,6 +249,7 @@ SIXPHASE_RAMFUNC static uint16_t check_adc(ctl_protect_t *p, const ctl_protect_l
         }
         if (!unchanged) {
             p->word_age[k] = 0;
+            p->changed_since_stuck |= (uint16_t)(1u << k);
         } else if (p->word_age[k] < INT16_MAX) {
             p->word_age[k]++;
         }
@@ -408,7 +423,7 @@ SIXPHASE_RAMFUNC uint16_t ctl_protect_check(ctl_protect_t *p, const ctl_protect_
     if ((f & (uint16_t)~p->latched) != 0u) {
         record(p, f, in, torque_ref, vector, duty);
     }
-    p->latched |= f;
+    latch(p, f);
     return f;
 }
 
@@ -417,7 +432,7 @@ void ctl_protect_raise(ctl_protect_t *p, uint16_t faults, const ctl_protect_inpu
     if ((faults & (uint16_t)~p->latched) != 0u) {
         record(p, faults, in, CTL_Q(0.0), 0, CTL_Q(0.0));
     }
-    p->latched |= faults;
+    latch(p, faults);
 }
 
 SIXPHASE_RAMFUNC void ctl_protect_quiet(ctl_protect_t *p, uint16_t quiet)
@@ -478,9 +493,13 @@ uint16_t ctl_protect_log_pending(const ctl_protect_t *p)
 
 SIXPHASE_RAMFUNC bool ctl_protect_converter_alive(const ctl_protect_t *p)
 {
+    const uint16_t judged = (uint16_t)(~p->quiet & CTL_PROTECT_CHANNELS_ALL);
     int16_t k;
+    if ((p->changed_since_stuck & judged) != judged) {
+        return false; /* a word has not moved since the converter was found stuck */
+    }
     for (k = 0; k < 6; k++) {
-        if ((((unsigned)p->quiet >> k) & 1u) == 0u && p->word_age[k] >= CTL_PROTECT_ALIVE_PERIODS) {
+        if ((((unsigned)judged >> k) & 1u) != 0u && p->word_age[k] >= CTL_PROTECT_ALIVE_PERIODS) {
             return false;
         }
     }

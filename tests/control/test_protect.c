@@ -299,6 +299,48 @@ static void test_isolated_phase_word_may_rest(void **state)
     assert_int_equal(prot.latched, CTL_FAULT_ADC_STUCK);
 }
 
+/* The outputs are off after an ADC_STUCK trip: the frozen channel keeps its word, the others
+ * read their offsets with noise. */
+static ctl_protect_input_t stopped_with_frozen_word(int32_t n)
+{
+    ctl_protect_input_t in = healthy(0);
+    int16_t k;
+    for (k = 0; k < 6; k++) {
+        in.i_phase[k] = CTL_Q(0.0);
+        in.raw_phase[k] = (int16_t)(2048 + (n + k) % 3 - 1);
+    }
+    in.raw_phase[1] = 2500;
+    in.running = false;
+    return in;
+}
+
+/* A dead converter is never cleared back into RUN: the clear leaves the channels' history
+ * alone, and the converter counts as alive only once every word changed since the trip.
+ * Before: the clear reset the history, so the frozen word counted as a fresh change and the
+ * drive could be cleared and restarted into 50 blind periods again and again. */
+static void test_frozen_converter_stays_dead_across_clears(void **state)
+{
+    int32_t n, cycle;
+    (void)state;
+    assert_int_equal(periods_to_detect(stuck_adc, CTL_FAULT_ADC_STUCK, 1000), 51);
+    for (cycle = 0; cycle < 20; cycle++) {
+        for (n = 0; n < 10; n++) {
+            const ctl_protect_input_t in = stopped_with_frozen_word(n);
+            (void)ctl_protect_check(&prot, &limits, &in, CTL_Q(0.0), 0, CTL_Q(0.0));
+        }
+        assert_false(ctl_protect_converter_alive(&prot));
+        assert_true(ctl_protect_clear(&prot)); /* nothing active: the drive asks the converter */
+        assert_int_equal(prot.latched, 0u);
+    }
+    /* the word moves again (a converter that recovered): alive */
+    for (n = 0; n < 3; n++) {
+        ctl_protect_input_t in = stopped_with_frozen_word(n);
+        in.raw_phase[1] = (int16_t)(2047 + n);
+        (void)ctl_protect_check(&prot, &limits, &in, CTL_Q(0.0), 0, CTL_Q(0.0));
+    }
+    assert_true(ctl_protect_converter_alive(&prot));
+}
+
 /* A fault the drive rode through is unlatched; the next one is a new root cause with a record of
  * its own (the first one's record stays). */
 static void test_accepted_fault_records_again(void **state)
@@ -485,6 +527,7 @@ int main(void)
         cmocka_unit_test_setup(test_isolated_phase_is_not_judged, setup),
         cmocka_unit_test_setup(test_accepted_fault_records_again, setup),
         cmocka_unit_test_setup(test_isolated_phase_word_may_rest, setup),
+        cmocka_unit_test_setup(test_frozen_converter_stays_dead_across_clears, setup),
         cmocka_unit_test_setup(test_no_false_trip, setup),
         cmocka_unit_test_setup(test_records_and_latch, setup),
         cmocka_unit_test_setup(test_full_log_keeps_a_new_root_cause, setup),

@@ -591,6 +591,45 @@ static int start_over_current_server(void **state)
     return start_server(state);
 }
 
+/* A frozen converter (the ADC result registers stop at 0.15 s) is never cleared back into RUN:
+ * a host that clears and restarts in a loop gets every clear refused and no restart. Before,
+ * a clear reset the channels' history: 332 clear-and-run cycles in 6 s, each running 49
+ * periods without a current measurement. */
+static void test_frozen_adc_cannot_be_cleared_into_run(void **state)
+{
+    sxl_frame_t r;
+    int cycle, refused = 0, restarts = 0;
+    unsigned records;
+    (void)state;
+    assert_true(wait_for(is_ready, 2.0, &r));
+    assert_int_equal(request(SXL_CMD_RUN, NULL, 0, &r), 0);
+    assert_true(wait_for(is_fault, 2.0, &r));
+    status(&r);
+    assert_int_equal(st_u8(&r, SXL_ST_FAULT), DRIVE_FAULT_ADC_STUCK);
+    records = sxl_get_u16(&r.payload[1 + SXL_ST_RECORDS]); /* a restart would trip anew */
+    for (cycle = 0; cycle < 40; cycle++) {
+        (void)request(SXL_CMD_CLEAR_FAULT, NULL, 0, &r);
+        refused += r.payload[0] != SXL_OK ? 1 : 0;
+        (void)request(SXL_CMD_RUN, NULL, 0, &r);
+        status(&r);
+        restarts += st_u8(&r, SXL_ST_STATE) != DRIVE_STATE_FAULT ? 1 : 0;
+    }
+    print_message("40 clear-and-run cycles: %d clears refused, %d restarts\n", refused, restarts);
+    assert_int_equal(restarts, 0);
+    status(&r);
+    assert_int_equal(sxl_get_u16(&r.payload[1 + SXL_ST_RECORDS]), records);
+    assert_int_equal(st_u8(&r, SXL_ST_STATE), DRIVE_STATE_FAULT);
+    assert_int_equal(st_u8(&r, SXL_ST_FAULT), DRIVE_FAULT_ADC_STUCK);
+}
+
+static int start_adc_stuck_server(void **state)
+{
+    server_scenario = "fault-adc-stuck";
+    server_fault_time = "0.15"; /* while the drive accelerates: current flows, words must move */
+    (void)snprintf(trace_dir, sizeof trace_dir, "/tmp/sixphase-serve-XXXXXX");
+    return start_server(state);
+}
+
 /* A slow line (57600 baud: 0.58 bytes a period at 10 kHz) still carries every frame. */
 static void test_slow_line(void **state)
 {
@@ -707,11 +746,14 @@ int main(void)
     const struct CMUnitTest shutdown[] = {cmocka_unit_test(test_host_shuts_the_board_down)};
     const struct CMUnitTest pacing[] = {cmocka_unit_test(test_fast_pacing_and_bad_rate)};
     const struct CMUnitTest slow[] = {cmocka_unit_test(test_slow_line)};
+    const struct CMUnitTest frozen[] = {
+        cmocka_unit_test(test_frozen_adc_cannot_be_cleared_into_run)};
     int failed = cmocka_run_group_tests(tests, start_server, stop_server);
     failed += cmocka_run_group_tests(after, NULL, NULL);
     failed += cmocka_run_group_tests(post_mortem, start_over_current_server, stop_and_clean);
     failed += cmocka_run_group_tests(shutdown, start_shutdown_server, stop_and_clean);
     failed += cmocka_run_group_tests(pacing, NULL, NULL);
     failed += cmocka_run_group_tests(slow, start_slow_line_server, stop_and_clean);
+    failed += cmocka_run_group_tests(frozen, start_adc_stuck_server, stop_and_clean);
     return failed;
 }
