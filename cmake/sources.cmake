@@ -22,7 +22,8 @@ set(SIXPHASE_CTL_SOURCES
     control/src/ctl_config.c
     control/src/ctl_postfault_config.c
     control/src/ctl_postfault.c
-    control/src/ctl.c)
+    control/src/ctl.c
+    control/src/ctl_step.c)
 
 # Drive application: control ISR body, state machine, stage profiler, commissioning (the
 # motor identification: the sequence, its steps, their excitation and statistics).

@@ -89,11 +89,14 @@ SECTIONS
                    /* control/src/ctl.c */
                    *(.text:_advance_angle) *(.text:_command_from_choice)
                    *(.text:_ctl_config) *(.text:_ctl_config_take) *(.text:_ctl_diag_flux_est)
+                   *(.text:_ctl_healthy_step)
                    *(.text:_ctl_postfault_config) *(.text:_ctl_pulse_arrange)
                    *(.text:_ctl_pulse_set_difference) *(.text:_ctl_reset)
-                   *(.text:_ctl_reset_command) *(.text:_ctl_step) *(.text:_mid_period_angles)
+                   *(.text:_ctl_reset_command) *(.text:_mid_period_angles)
                    *(.text:_predict) *(.text:_select_ddc)
                    *(.text:_use_config)
+                   /* control/src/ctl_step.c */
+                   *(.text:_ctl_step)
                    /* ctl.c's copy of ctl_diag_record.h (the open-phase step's stays in flash) */
                    *ctl.*obj(.text:_ctl_diag_record)
                    /* control/src/ctl_ddc.c, and its copy of ctl_ddc_levels.h (the open-phase

@@ -118,7 +118,7 @@ bool fw_startup(void)
     link_service_init(&fw_state.link, FW_LINK_GAP_CYCLES);
 
     drive_init(&fw_drive, &p);
-    /* indirect-call: ctl_step, ctl_ddc_select -> prof_ctl_stage (tools/stack_depth.py) */
+    /* indirect-call: ctl_healthy_step, ctl_ddc_select -> prof_ctl_stage (tools/stack_depth.py) */
     /* indirect-call: ctl_postfault_step, pf_select_ddc -> prof_ctl_stage */
     ctl_set_stage_hook(&fw_drive.ctl, prof_ctl_stage); /* stage timing (profile.h) */
     if (!fw_state.clock_ok || !hal_ok) {
