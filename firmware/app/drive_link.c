@@ -157,7 +157,7 @@ void drive_link_profile(uint16_t stage, uint16_t *out)
 
 static uint16_t handle_set_controller(drive_t *d, const sxl_frame_t *req)
 {
-    ctl_params_t p;
+    ctl_params_t *p = &d->params_req; /* the drive's staging set, off the stack (drive.h) */
     uint32_t lambda_milli;
     if (req->len != 5u) {
         return SXL_ERR_LENGTH;
@@ -166,10 +166,10 @@ static uint16_t handle_set_controller(drive_t *d, const sxl_frame_t *req)
     if (req->payload[0] > SXL_CONTROLLER_MPTC13 || lambda_milli > DRIVE_LINK_MAX_LAMBDA_MILLI) {
         return SXL_ERR_VALUE;
     }
-    p = d->params_bg;
-    p.controller = (ctl_controller_t)req->payload[0];
-    p.lambda_nm_per_wb = (float)lambda_milli * 0.001f;
-    switch (drive_request_params(d, &p)) {
+    *p = d->params_bg;
+    p->controller = (ctl_controller_t)req->payload[0];
+    p->lambda_nm_per_wb = (float)lambda_milli * 0.001f;
+    switch (drive_request_params(d, p)) {
     case CTL_PARAM_OK:
         return SXL_OK;
     case CTL_PARAM_BUSY:
