@@ -34,6 +34,7 @@ set(SIXPHASE_DRIVE_SOURCES
     firmware/app/drive_capture.c
     firmware/app/capture.c
     firmware/app/profile.c
+    firmware/app/stack_watch.c
     firmware/app/drive_commission.c
     firmware/app/commission.c
     firmware/app/ident_ctx.c
