@@ -11,7 +11,9 @@ one subdirectory per proxy:
         (*.ci, indirect calls resolved by tools/stack_depth.py's `indirect-call:` notes)
         and the Cortex-M0's frames;
   avr/  avr-gcc -mmcu=atmega1284p -fstack-usage (*.su): the AVR's frames;
-  x86/  gcc -m32 -maccumulate-outgoing-args -fstack-usage (*.su): the i386's frames.
+  x86/  gcc -m32 -mpreferred-stack-boundary=2 -maccumulate-outgoing-args -fstack-usage
+        (*.su): the i386's frames (4-byte stack alignment, the C28x's 2 words; gcc's default
+        16 would pad every frame).
 The proxies' frames are matched to the graph by function name (gcc clones such as
 NAME.isra.0 go by the C name; a static function by its name).
 
@@ -40,7 +42,10 @@ Frame of a compiled function, in C28x words: the LARGEST over the proxies of
   address the call pushes (LCR: 2 words) and the whole save-on-entry set (XAR1, XAR2, XAR3: 6
   words; R4H..R7H with fpu32: 8 words; TI SPRU514, "Register Use and Preservation"), whether
   or not the function uses them.
-Called routines that are not compiled here get an allowance:
+Called routines that are not compiled here get an allowance, or nothing when the F28335 does
+the work in instructions (INSTRUCTIONS: with fpu32, float addition, subtraction,
+multiplication, comparison and conversion are FPU instructions, TI SPRU514 --float_support;
+double is float under COFF; float division is a library call and gets the allowance):
 - RTS_WORDS for each run-time library helper a path calls (gcc's __aeabi_* / __*di3 and
   memcpy / memset stand for TI's rts2800_fpu32.lib routines: division, 64-bit arithmetic,
   copies). TI's library is not available here, so this is an allowance, not a measurement:

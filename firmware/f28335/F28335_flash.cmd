@@ -19,8 +19,9 @@
  *                isolated) stays in flash: L0..L3 cannot hold it too (docs/porting.md 7).
  *   .text        FLASHC, FLASHB (start-up, background loop, parameter builds)
  *   constants    FLASHA: .cinit, .pinit, .econst, .switch of everything else
- *   .stack       M0 + M1, 0x700 words (tools/check_target_memory.sh sizes it: background
- *                plus a nested control interrupt, with margin; it must lie below 0x10000)
+ *   .stack       M0 + M1, 0x700 words (tools/check_stack_bound.sh bounds its use: background
+ *                plus a nested control interrupt, 20 % left; it must lie below 0x10000;
+ *                start-up paints it from __stack for the measured mark, docs/porting.md 8)
  *   .ebss        L4..L7
  * docs/porting.md section 7 has the RAM budget (tools/check_target_memory.sh).
  *
