@@ -199,8 +199,13 @@ def bound_of(directory, background, isr):
             "isr_path": ["%s (%d, %s)" % p for p in isr_d[1]]}
 
 
+class Arguments(argparse.ArgumentParser):
+    def error(self, message):
+        fail(message)  # one line, non-zero exit
+
+
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap = Arguments(description=__doc__.split("\n")[0])
     ap.add_argument("--background", required=True)
     ap.add_argument("--isr", required=True)
     ap.add_argument("--stack-words", type=int, required=True)

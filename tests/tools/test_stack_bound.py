@@ -152,6 +152,11 @@ class StackBound(unittest.TestCase):
             r, _ = self.run_tool(self.build(d, *self.frames()), 0)
             self.assertNotEqual(r.returncode, 0)
             self.assertIn("--stack-words must be positive", r.stderr)
+            r = subprocess.run([sys.executable, TOOL, "--isr", "isr", d], stdout=subprocess.PIPE,
+                               stderr=subprocess.PIPE, text=True)
+            self.assertNotEqual(r.returncode, 0)
+            self.assertEqual(len(r.stderr.strip().splitlines()), 1, r.stderr)
+            self.assertIn("stack_bound: the following arguments are required", r.stderr)
 
 
 if __name__ == "__main__":
