@@ -22,7 +22,8 @@ set(SIXPHASE_CTL_SOURCES
     control/src/ctl_config.c
     control/src/ctl_postfault_config.c
     control/src/ctl_postfault.c
-    control/src/ctl.c)
+    control/src/ctl.c
+    control/src/ctl_step.c)
 
 # Drive application: control ISR body, state machine, stage profiler, commissioning (the
 # motor identification: the sequence, its steps, their excitation and statistics).
@@ -33,6 +34,7 @@ set(SIXPHASE_DRIVE_SOURCES
     firmware/app/drive_capture.c
     firmware/app/capture.c
     firmware/app/profile.c
+    firmware/app/stack_watch.c
     firmware/app/drive_commission.c
     firmware/app/commission.c
     firmware/app/ident_ctx.c

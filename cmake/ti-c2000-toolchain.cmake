@@ -54,8 +54,8 @@ set(CMAKE_C_FLAGS_DEBUG_INIT "-g -O0")
 set(CMAKE_C_FLAGS_RELWITHDEBINFO_INIT "-g -O2 --opt_for_speed=5")
 
 # Linker: ROM autoinitialisation model (.cinit copied by c_int00), the FPU32
-# COFF run-time library, stack in M0 + M1 (see the linker command files; 0x700 words as
-# tools/check_stack.sh sizes it).
+# COFF run-time library, stack in M0 + M1 (see the linker command files; 0x700 words, of which
+# tools/check_stack_bound.sh requires its bound to leave 20 %).
 set(CMAKE_EXE_LINKER_FLAGS_INIT
     "--rom_model --stack_size=0x700 --heap_size=0 --warn_sections --reread_libs \
 --search_path=${TI_CGT_C2000_ROOT}/lib --search_path=${TI_CGT_C2000_ROOT}/include")

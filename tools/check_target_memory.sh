@@ -12,7 +12,8 @@
 # -fno-inline (the complete call graph of the period, whatever cl2000 inlines); and Cortex-M0
 # -O2 -fno-inline (no divide instruction and no FPU: every division and 64-bit operation is a
 # library call, as on the C28x, so the run-time library members the image needs show).
-# tools/stack_depth.py and tools/image_check.py do the sums; tools/target_memory_doc.py puts the
+# tools/check_stack_bound.sh bounds the stack (register-poor proxies, its own builds);
+# tools/image_check.py does the image's sums; tools/target_memory_doc.py puts the
 # figures into docs/porting.md section 7 (--write-doc) or checks that they are there
 # (--check-doc, CI).
 # usage: tools/check_target_memory.sh [--write-doc | --check-doc] [OUTDIR]
@@ -72,12 +73,11 @@ for arith in float fixed; do
   # the stand-ins of cl2000's intrinsics: no code of the image
   rm "$dir/noinline/ti_link_stubs.ci" "$dir/m0/ti_link_stubs.ci" "$dir/o2/ti_link_stubs.o"
   echo "== $arith build"
-  python3 "$here/tools/stack_depth.py" --background main --isr fw_adc_isr \
-    --stack-words "$((stack_words))" --summary "$dir/stack.json" "$dir"/o2/*.ci
   python3 "$here/tools/image_check.py" --linker "$linker" "${link[@]}" --objects "$dir/o2" \
     --callgraph "$dir/m0" --asm "$here/firmware/f28335/codestart.asm" \
     --stack-words "$((stack_words))" --from-flash "$from_flash" --summary "$dir/ram.json"
 done
+"$here/tools/check_stack_bound.sh" "$out" # -> $out/{float,fixed}/stack_bound.json; 20 % left
 if [ -n "$doc_mode" ]; then
   python3 "$here/tools/target_memory_doc.py" "$doc_mode" "$here/docs/porting.md" \
     --stack-words "$((stack_words))" --float "$out/float" --fixed "$out/fixed"

@@ -4,8 +4,9 @@
 usage: target_memory_doc.py (--write-doc | --check-doc) DOC --stack-words N
                             --float DIR --fixed DIR
 
-DIR holds a build's stack.json (tools/stack_depth.py --summary) and ram.json
-(tools/image_check.py --summary). The figures go between the markers
+DIR holds a build's stack_bound.json (tools/check_stack_bound.sh, the stack bound) and
+ram.json (tools/image_check.py --summary): tools/check_target_memory.sh writes both. The
+figures go between the markers
 <!-- target-memory --> and <!-- /target-memory --> of DOC: --write-doc rewrites that block,
 --check-doc fails when it differs from what the tools measure now (CI), so the document
 cannot drift from the code.
@@ -16,6 +17,7 @@ import os
 import re
 import sys
 
+BUILD_NAMES = {"o2": "-O2", "noinline": "-fno-inline"}
 BEGIN = "<!-- target-memory -->"
 END = "<!-- /target-memory -->"
 
@@ -27,12 +29,13 @@ def fail(msg):
 
 def load(directory):
     try:
-        with open(os.path.join(directory, "stack.json")) as f:
+        with open(os.path.join(directory, "stack_bound.json")) as f:
             stack = json.load(f)
         with open(os.path.join(directory, "ram.json")) as f:
             ram = json.load(f)
     except (OSError, ValueError) as e:
-        fail("%s: %s" % (directory, e))
+        fail("%s: %s (stack_bound.json: run tools/check_stack_bound.sh on the same directory "
+             "first)" % (directory, e))
     return stack, ram
 
 
@@ -53,11 +56,18 @@ def placed(ram, output):
     return "%s of %s" % (percent(out["words"], ram["ranges"][r]["length"]), r)
 
 
+def worst(stack):
+    """The build (-O2 or -fno-inline) that gave the bound."""
+    return [b for b in stack["builds"] if b["build"] == stack["worst_build"]][0]
+
+
 def row(label, stack, ram):
-    return "| %s | %s | %s | %s | %s | %d + %d B -> %d words |" % (
+    w = worst(stack)
+    return "| %s | %s | %s | %s | %s | %d + %d + %d = %d words (%.0f %% left; %s) |" % (
         label, placed(ram, "ramfuncs"), placed(ram, "ramconsts"), placed(ram, ".ebss"),
-        ", ".join("`%s`" % m for m in ram["rts_in_ram"]) or "none",
-        stack["background_bytes"], stack["isr_bytes"], stack["need_words"])
+        ", ".join("`%s`" % m for m in ram["rts_in_ram"]) or "none", w["background_words"],
+        w["isr_words"], w["context_words"], stack["bound_words"], stack["free_percent"],
+        BUILD_NAMES.get(w["build"], w["build"]))
 
 
 def label(name, from_flash, also):
@@ -81,8 +91,8 @@ def render(stack_words, builds):
         "RAM range.",
         "",
         "| build | per-period code (`ramfuncs`) | its tables (`ramconsts`) | static data (`.ebss`) "
-        "| run-time library members in RAM | stack: background + ISR on the proxy -> C28x words "
-        "(0x%X = %d reserved) |" % (stack_words, stack_words),
+        "| run-time library members in RAM | stack bound: background + ISR + interrupt context, "
+        "C28x words (0x%X = %d reserved) |" % (stack_words, stack_words),
         "|---|---|---|---|---|---|",
         row(label("float (default", fr["from_flash"], []), fs, fr),
         row(label("fixed (Q24", qr["from_flash"], fr["from_flash"]), qs, qr),
@@ -90,8 +100,12 @@ def render(stack_words, builds):
         "Boot path before the RAM copy (runs where it is loaded): %s." % ", ".join(
             "`%s`" % f for f in fr["boot_path"] if f != "f28335_proxy_intrinsic"),
         "",
-        "Deepest paths (float): background `%s`; control interrupt `%s`." % (
-            path_text(fs["background_path"]), path_text(fs["isr_path"])),
+        "Deepest paths (float, %s): background `%s`; control interrupt `%s`." % (
+            BUILD_NAMES.get(worst(fs)["build"]), path_text(worst(fs)["background_path"]),
+            path_text(worst(fs)["isr_path"])),
+        "Deepest paths (fixed, %s): background `%s`; control interrupt `%s`." % (
+            BUILD_NAMES.get(worst(qs)["build"]), path_text(worst(qs)["background_path"]),
+            path_text(worst(qs)["isr_path"])),
         END,
     ]
     return "\n".join(lines)
@@ -114,8 +128,9 @@ def main():
     new = render(a.stack_words, [load(a.float), load(a.fixed)])
     if a.check_doc:
         if block.group(0) != new:
-            fail("%s: the stack and RAM figures are out of date; run "
-                 "tools/check_target_memory.sh --write-doc and commit the result" % a.doc)
+            fail("%s: the stack and RAM figures are out of date; run tools/check_stack_bound.sh "
+                 "DIR, then tools/check_target_memory.sh --write-doc DIR, and commit the result"
+                 % a.doc)
         print("target_memory_doc: %s is current" % a.doc)
         return
     with open(a.doc, "w") as f:

@@ -246,9 +246,10 @@ SIXPHASE_RAMFUNC static void select_ddc(const ctl_t *c, const ctl_config_t *cfg,
 #endif
 }
 
-SIXPHASE_RAMFUNC void ctl_step(ctl_t *c, const ctl_meas_t *m, ctl_cmd_t *cmd)
+/* ctl_step's healthy branch (ctl_step.c). */
+SIXPHASE_RAMFUNC void ctl_healthy_step(ctl_t *c, const ctl_meas_t *m, ctl_cmd_t *cmd)
 {
-    const ctl_config_t *cfg;
+    const ctl_config_t *cfg = &c->config[c->config_active];
     ctl_sample_t smp;
     ctl_horizon_t h;
     ctl_choice_t choice;
@@ -256,13 +257,6 @@ SIXPHASE_RAMFUNC void ctl_step(ctl_t *c, const ctl_meas_t *m, ctl_cmd_t *cmd)
     ctl_q iq1;
     ctl_q ix1;
     ctl_q iy1;
-
-    (void)ctl_config_take(c);
-    if (!c->healthy_step) { /* one test on the healthy path, as before open phases */
-        ctl_postfault_step(c, m, cmd);
-        return;
-    }
-    cfg = &c->config[c->config_active];
 
     /* Measured state at k, references. */
     ctl_vsd_forward(m->i_phase, &smp.vsd);

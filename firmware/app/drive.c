@@ -487,15 +487,18 @@ void drive_request_run(drive_t *d) { d->run_requested = true; }
 
 ctl_param_error_t drive_request_params(drive_t *d, const ctl_params_t *p)
 {
-    ctl_params_t q = *p;
+    ctl_params_t *q = &d->params_req; /* background only: drive.h */
     ctl_param_error_t e;
+    if (q != p) {
+        *q = *p;
+    }
     /* the open phase is the drive's: the leg it isolated (drive_open_phase.h) */
-    q.open_phase = d->isolated_leg;
-    q.postfault_strategy = d->postfault_strategy;
-    e = ctl_request_params(&d->ctl, &q);
+    q->open_phase = d->isolated_leg;
+    q->postfault_strategy = d->postfault_strategy;
+    e = ctl_request_params(&d->ctl, q);
     if (e == CTL_PARAM_OK) {
-        const bool rescale = q.pole_pairs != d->params_bg.pole_pairs;
-        d->params_bg = q;
+        const bool rescale = q->pole_pairs != d->params_bg.pole_pairs;
+        d->params_bg = *q;
         if (rescale && d->ctl.loop_mode == CTL_LOOP_SPEED) {
             drive_set_speed_ref_rpm(d, d->speed_ref_rpm); /* electrical reference follows Pn */
         }

@@ -123,6 +123,9 @@ typedef struct {
     ctl_params_t params_bg;          /* last parameter set requested (background copy) */
     float speed_ref_rpm;             /* last speed reference set */
     float torque_ref_nm;             /* last torque reference set */
+    /* the set being requested (drive_request_params and the commands that build one): here,
+     * not on the stack, where it was the largest object of the background's deepest path */
+    ctl_params_t params_req;
     /* ISR timing, filled by the platform's ISR wrapper (0 where unused) */
     uint32_t isr_cycles_last;
     uint32_t isr_cycles_max;

@@ -233,19 +233,20 @@ drive_comm_result_t drive_commission_apply(drive_t *d, uint16_t *applied)
 {
     const comm_t *c = &d->comm;
     const bool offset = c->x.result[COMM_Q_OFFSET].quality == COMM_QUALITY_OK;
-    ctl_params_t p = d->params_bg;
+    ctl_params_t *p = &d->params_req; /* the drive's staging set, off the stack (drive.h) */
     uint16_t got;
     *applied = 0u;
     if (d->state != DRIVE_STATE_READY || c->state == COMM_STATE_IDLE ||
         c->state == COMM_STATE_RUNNING) {
         return DRIVE_COMM_REFUSED;
     }
-    got = drive_comm_take(c, &p);
+    *p = d->params_bg;
+    got = drive_comm_take(c, p);
     if (got == 0u && !offset) {
         return DRIVE_COMM_REFUSED;
     }
     if (got != 0u) {
-        const ctl_param_error_t e = drive_request_params(d, &p);
+        const ctl_param_error_t e = drive_request_params(d, p);
         if (e == CTL_PARAM_BUSY) {
             return DRIVE_COMM_BUSY;
         }

@@ -6,6 +6,7 @@
 #include "drive_open_phase.h"
 #include "hal_pwm.h"
 #include "profile.h"
+#include "stack_watch.h"
 
 /* The protocol's state and refusal name tables (sxlink_names.c) are numbered like the
  * firmware's enums, and sxlink stays free of drive.h: check them here, where both are visible
@@ -14,6 +15,7 @@
 #define DRIVE_LINK_ASSERT(name, cond) typedef char drive_link_assert_##name[(cond) ? 1 : -1]
 DRIVE_LINK_ASSERT(state_names,
                   (int32_t)SXL_STATE_NAME_COUNT == (int32_t)DRIVE_STATE_COMMISSION + 1);
+DRIVE_LINK_ASSERT(stack_not_measured, SXL_STACK_NOT_MEASURED == 0u); /* stack_watch.h's size 0 */
 DRIVE_LINK_ASSERT(run_refusal_names,
                   (int32_t)SXL_RUN_REFUSAL_NAME_COUNT == (int32_t)DRIVE_RUN_REFUSAL_COUNT);
 
@@ -83,6 +85,9 @@ void drive_link_status(const drive_t *d, uint16_t rx_errors, uint16_t *out)
     sxl_put_u16(&out[SXL_ST_RECORDS], ctl_protect_log_pending(&d->protect));
     out[SXL_ST_RUN_REFUSAL] = (uint16_t)((uint16_t)d->run_refusal & 0xFFu);
     sxl_put_u16(&out[SXL_ST_CLEAR_BLOCKED], d->clear_blocked);
+    /* the scan (at most the stack's size in reads) runs here, in the background */
+    sxl_put_u16(&out[SXL_ST_STACK_USED], stack_watch_scan(&drive_stack));
+    sxl_put_u16(&out[SXL_ST_STACK_WORDS], drive_stack.words); /* 0 unpainted: not measured */
 }
 
 uint16_t drive_link_fault_record(drive_t *d, uint16_t *out)
@@ -157,7 +162,7 @@ void drive_link_profile(uint16_t stage, uint16_t *out)
 
 static uint16_t handle_set_controller(drive_t *d, const sxl_frame_t *req)
 {
-    ctl_params_t p;
+    ctl_params_t *p = &d->params_req; /* the drive's staging set, off the stack (drive.h) */
     uint32_t lambda_milli;
     if (req->len != 5u) {
         return SXL_ERR_LENGTH;
@@ -166,10 +171,10 @@ static uint16_t handle_set_controller(drive_t *d, const sxl_frame_t *req)
     if (req->payload[0] > SXL_CONTROLLER_MPTC13 || lambda_milli > DRIVE_LINK_MAX_LAMBDA_MILLI) {
         return SXL_ERR_VALUE;
     }
-    p = d->params_bg;
-    p.controller = (ctl_controller_t)req->payload[0];
-    p.lambda_nm_per_wb = (float)lambda_milli * 0.001f;
-    switch (drive_request_params(d, &p)) {
+    *p = d->params_bg;
+    p->controller = (ctl_controller_t)req->payload[0];
+    p->lambda_nm_per_wb = (float)lambda_milli * 0.001f;
+    switch (drive_request_params(d, p)) {
     case CTL_PARAM_OK:
         return SXL_OK;
     case CTL_PARAM_BUSY:

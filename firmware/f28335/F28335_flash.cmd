@@ -19,8 +19,10 @@
  *                functions have a switch.
  *   .text        FLASHC, FLASHB (start-up, background loop, parameter builds)
  *   constants    FLASHA: .cinit, .pinit, .econst, .switch of everything else
- *   .stack       M0 + M1, 0x700 words (--stack_size, cmake/ti-c2000-toolchain.cmake); it must
- *                lie below 0x10000
+ *   .stack       M0 + M1, 0x700 words (--stack_size, cmake/ti-c2000-toolchain.cmake;
+ *                tools/check_stack_bound.sh bounds its use: background plus a nested control
+ *                interrupt, 20 % left); it must lie below 0x10000; start-up paints it from
+ *                __stack for the measured mark (docs/porting.md 8)
  *   .ebss        L6..L7
  * tools/image_check.py (CI) proves it: the boot path runs at its load address, the period's
  * code, tables and jump tables and nothing else run from RAM, every memory range holds its

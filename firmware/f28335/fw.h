@@ -52,6 +52,12 @@
 /* ISR time limit in CPU cycles: 80 % of the 15000-cycle period at 10 kHz,
  * leaving room for the conversion time before the interrupt and the latency. */
 #define FW_ISR_BUDGET_CYCLES ((uint32_t)12000u)
+/* Words above a local of fw_stack_paint's frame left unpainted: the rest of that frame and
+ * stack_watch_paint's (2 words of return address, at most 14 of saved registers, a few locals). */
+#define FW_STACK_PAINT_GUARD 32u
+/* Host build: the stand-in stack region and the part of it taken as in use. */
+#define FW_HOST_STACK_WORDS 64u
+#define FW_HOST_STACK_IN_USE 8u
 /* A partial frame older than this is dropped (cycles: 20 ms). */
 #define FW_LINK_GAP_CYCLES ((uint32_t)3000000u)
 
@@ -65,6 +71,11 @@ typedef struct {
 extern drive_t fw_drive;
 extern fw_state_t fw_state;
 
+/* Paints the stack's unused part for its high-water mark (stack_watch.h); start-up's first step. */
+void fw_stack_paint(void);
+#if !F28335_TARGET
+extern volatile uint16_t fw_host_stack[FW_HOST_STACK_WORDS];
+#endif
 /* Whole start-up; returns false if a peripheral failed (drive left in FAULT). */
 bool fw_startup(void);
 /* One pass of the background loop: watchdog, serial link. */

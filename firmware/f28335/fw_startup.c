@@ -1,5 +1,6 @@
 /*
  * Start-up sequence. Order matters:
+ *   0. the stack's unused part painted (stack_watch.h), before anything deeper runs
  *   1. interrupts off, watchdog off (the code-start stub already disabled it)
  *   2. PLL to 150 MHz, peripheral clocks
  *   3. ramfuncs (per-period code) and ramconsts (its tables) copied to RAM, then the
@@ -14,6 +15,7 @@
 
 #include "fw.h"
 #include "profile.h"
+#include "stack_watch.h"
 #include "hal_adc.h"
 #include "hal_cycles.h"
 #include "hal_encoder.h"
@@ -30,7 +32,15 @@ extern uint16_t RamfuncsRunStart;
 extern uint16_t RamconstsLoadStart;
 extern uint16_t RamconstsLoadEnd;
 extern uint16_t RamconstsRunStart;
+/* The run-time stack, .stack (TI SPRU513, --stack_size): the RTS start-up (boot.asm) defines
+ * __stack at its start and points SP there; the linker defines __STACK_SIZE, its size in words,
+ * as the symbol's value. COFF adds one leading underscore to C names. */
+extern uint16_t _stack;
+extern uint16_t _STACK_SIZE;
 #else
+/* Host: a stand-in stack region, painted as the target's is (the host's own stack is not the
+ * C28x's and is not measured), with the first FW_HOST_STACK_IN_USE words taken as in use. */
+volatile uint16_t fw_host_stack[FW_HOST_STACK_WORDS];
 /* Host: stand-in sections so the copies run and can be checked. */
 uint16_t fw_host_ramfuncs_load[4] = {0x1234u, 0x5678u, 0x9ABCu, 0xDEF0u};
 uint16_t fw_host_ramfuncs_run[4];
@@ -56,6 +66,22 @@ void fw_ramfuncs_copy(void)
 #else
     fw_copy_words(fw_host_ramfuncs_run, fw_host_ramfuncs_load, 4u);
     fw_copy_words(fw_host_ramconsts_run, fw_host_ramconsts_load, 3u);
+#endif
+}
+
+/* Paints the stack above this function's frame (stack_watch.h). The C28x stack grows upward:
+ * everything below `here` is the callers' (c_int00, main, fw_startup), and the guard covers
+ * the rest of this frame and stack_watch_paint's (return address, saved registers, locals).
+ * Those words count as used. */
+void fw_stack_paint(void)
+{
+#if F28335_TARGET
+    volatile uint16_t here = 0u;
+    volatile uint16_t *const base = &_stack;
+    const uint16_t in_use = (uint16_t)((uint16_t)(&here - base) + FW_STACK_PAINT_GUARD);
+    stack_watch_paint(&drive_stack, base, (uint16_t)(uintptr_t)&_STACK_SIZE, in_use);
+#else
+    stack_watch_paint(&drive_stack, fw_host_stack, FW_HOST_STACK_WORDS, FW_HOST_STACK_IN_USE);
 #endif
 }
 
@@ -86,8 +112,10 @@ static void fw_motor_params(ctl_params_t *p)
 bool fw_startup(void)
 {
     ctl_params_t p;
-    bool hal_ok = true;
+    bool hal_ok;
 
+    fw_stack_paint(); /* first: no local of this frame is live yet */
+    hal_ok = true;
     f28335_interrupts_disable_global();
     f28335_watchdog_disable();
     fw_state.clock_ok = f28335_clock_init();
@@ -118,7 +146,7 @@ bool fw_startup(void)
     link_service_init(&fw_state.link, FW_LINK_GAP_CYCLES);
 
     drive_init(&fw_drive, &p);
-    /* indirect-call: ctl_step, ctl_ddc_select -> prof_ctl_stage (tools/stack_depth.py) */
+    /* indirect-call: ctl_healthy_step, ctl_ddc_select -> prof_ctl_stage (tools/stack_depth.py) */
     /* indirect-call: ctl_postfault_step, pf_select_ddc -> prof_ctl_stage */
     ctl_set_stage_hook(&fw_drive.ctl, prof_ctl_stage); /* stage timing (profile.h) */
     if (!fw_state.clock_ok || !hal_ok) {

@@ -26,8 +26,8 @@
  * run or clear was refused, in the status, and the result SXL_ERR_BUSY; 4: the capture buffer
  * (SXL_CMD_CAPTURE_*, SXL_ERR_NO_ROOM); 5: commissioning (SXL_CMD_COMMISSION_*, the drive state
  * COMMISSION) and open-phase operation (SXL_CMD_GET_OPEN_PHASE .. SXL_CMD_RESTORE_LEGS, status
- * flag bit 3). */
-#define SXL_VERSION 5u
+ * flag bit 3); 6: the stack's high-water mark and size in the status (SXL_ST_STACK_USED). */
+#define SXL_VERSION 6u
 
 /* Commands (host -> drive). A reply carries CMD | SXL_REPLY and starts with
  * a result byte. */
@@ -125,7 +125,14 @@
  * that refused the last clear */
 #define SXL_ST_RUN_REFUSAL 38u
 #define SXL_ST_CLEAR_BLOCKED 39u
-#define SXL_ST_SIZE 41u
+/* protocol 6: uint16 the stack's high-water mark since start-up, words; uint16 the stack's size,
+ * words, or SXL_STACK_NOT_MEASURED where the platform does not paint its stack (the virtual
+ * board; the mark is then 0) */
+#define SXL_ST_STACK_USED 41u
+#define SXL_ST_STACK_WORDS 43u
+#define SXL_STACK_NOT_MEASURED 0u
+#define SXL_ST_SIZE 45u
+#define SXL_ST_SIZE_V5 41u /* protocol 3 to 5 ended at the clear's conditions */
 #define SXL_ST_SIZE_V2 38u /* protocol 2 ended at records */
 #define SXL_ST_SIZE_V1 34u /* protocol 1 ended at rx_errors: readers accept the shorter block */
 /* Profile payload (reply to SXL_CMD_GET_PROFILE, after the result byte); cycles of the

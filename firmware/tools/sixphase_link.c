@@ -239,6 +239,17 @@ static const char *name_of(const char *const *names, size_t n, uint16_t v)
 
 static int print_profile_row(const sxl_frame_t *r, int first);
 
+/* The status's second line (protocol 6): the stack's high-water mark against its size. */
+static void print_stack(uint16_t used, uint16_t words)
+{
+    if (words == SXL_STACK_NOT_MEASURED) {
+        printf("stack: not measured (virtual board)\n");
+        return;
+    }
+    printf("stack: %u of %u words used (%.0f %%)\n", (unsigned)used, (unsigned)words,
+           100.0 * (double)used / (double)words);
+}
+
 static int print_reply(const sxl_frame_t *r)
 {
     const uint16_t result = r->payload[0];
@@ -288,7 +299,7 @@ static int print_reply(const sxl_frame_t *r)
             (void)sxl_fault_mask_str(sxl_get_u16(&st[SXL_ST_FAULTS]), mask, (uint16_t)sizeof mask);
             printf(" faults=%s fault_records=%u", mask, (unsigned)sxl_get_u16(&st[SXL_ST_RECORDS]));
         }
-        if (r->len >= 1u + SXL_ST_SIZE) {
+        if (r->len >= 1u + SXL_ST_SIZE_V5) {
             char blocked[256];
             (void)sxl_fault_mask_str(sxl_get_u16(&st[SXL_ST_CLEAR_BLOCKED]), blocked,
                                      (uint16_t)sizeof blocked);
@@ -297,6 +308,9 @@ static int print_reply(const sxl_frame_t *r)
         }
         printf(" leg_isolated=%s", (st[SXL_ST_FLAGS] & SXL_FLAG_LEG_ISOLATED) ? "yes" : "no");
         printf("\n");
+        if (r->len >= 1u + SXL_ST_SIZE) {
+            print_stack(sxl_get_u16(&st[SXL_ST_STACK_USED]), sxl_get_u16(&st[SXL_ST_STACK_WORDS]));
+        }
         return 0;
     default:
         printf("ok\n");

@@ -9,6 +9,7 @@
 #include "ctl_pu.h"
 #include "drive_link.h"
 #include "profile.h"
+#include "stack_watch.h"
 #include "mock_hal_ctl.h"
 
 static drive_t d;
@@ -269,6 +270,30 @@ static void check_overcurrent_record(const uint16_t *fr, uint32_t period)
     assert_near(sxl_get_i32(&fr[SXL_FR_TORQUE_REF]), -8400, 1);
     assert_int_equal(sxl_get_i16(&fr[SXL_FR_VECTOR]), 45);
     assert_near(sxl_get_u16(&fr[SXL_FR_DUTY]), 19661, 1); /* 0.6 in Q15 */
+}
+
+/* The stack's high-water mark and size (protocol 6): "not measured" (size 0) until the platform
+ * paints, then the highest word written since the paint, read by the status request itself. */
+static void test_status_stack(void **state)
+{
+    static volatile uint16_t region[100];
+    const uint16_t *st = &rep.payload[1];
+    (void)state;
+    assert_int_equal(send(SXL_CMD_GET_STATUS), SXL_OK);
+    assert_int_equal(sxl_get_u16(&st[SXL_ST_STACK_WORDS]), SXL_STACK_NOT_MEASURED);
+    assert_int_equal(sxl_get_u16(&st[SXL_ST_STACK_USED]), 0u);
+    stack_watch_paint(&drive_stack, region, 100u, 12u);
+    assert_int_equal(send(SXL_CMD_GET_STATUS), SXL_OK);
+    assert_int_equal(sxl_get_u16(&st[SXL_ST_STACK_USED]), 12u);
+    assert_int_equal(sxl_get_u16(&st[SXL_ST_STACK_WORDS]), 100u);
+    region[59] = 0u; /* a deeper call reached word 59 */
+    assert_int_equal(send(SXL_CMD_GET_STATUS), SXL_OK);
+    assert_int_equal(rep.len, 1u + SXL_ST_SIZE);
+    assert_int_equal(sxl_get_u16(&st[SXL_ST_STACK_USED]), 60u);
+    assert_int_equal(sxl_get_u16(&st[SXL_ST_STACK_WORDS]), 100u);
+    assert_reply_bytes();
+    drive_stack.words = 0u; /* back to "not measured" for the other tests */
+    drive_stack.used = 0u;
 }
 
 /* An over-current while running, then an overrun reported in the next period: the status
@@ -555,6 +580,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test_setup(test_ping_and_unknown, setup),
         cmocka_unit_test_setup(test_status, setup),
+        cmocka_unit_test_setup(test_status_stack, setup),
         cmocka_unit_test_setup(test_speed_and_torque, setup),
         cmocka_unit_test_setup(test_run_stop_clear, setup),
         cmocka_unit_test_setup(test_set_controller, setup),

@@ -13,6 +13,7 @@
 #include "ctl_pu.h"
 #include "fw.h"
 #include "profile.h"
+#include "stack_watch.h"
 #include "test_support.h"
 
 #define R (f28335_host_regs)
@@ -121,6 +122,11 @@ static void test_startup_configures_everything(void **state)
     for (i = 0; i < 3; i++) {
         assert_int_equal(fw_host_ramconsts_run[i], fw_host_ramconsts_load[i]);
     }
+    /* the stack painted above the part in use (the host's stand-in region) */
+    assert_ptr_equal(drive_stack.base, fw_host_stack);
+    assert_int_equal(drive_stack.words, FW_HOST_STACK_WORDS);
+    assert_int_equal(fw_host_stack[FW_HOST_STACK_IN_USE], STACK_WATCH_PATTERN);
+    assert_int_equal(fw_host_stack[FW_HOST_STACK_WORDS - 1u], STACK_WATCH_PATTERN);
     /* peripherals */
     assert_int_equal(R.epwm[0].TBPRD, 7500u);
     assert_int_equal(R.epwm[5].DBFED, 300u);
@@ -168,6 +174,9 @@ static void test_isr_calibrates_then_runs_on_serial_command(void **state)
     assert_int_equal(rep.payload[1 + SXL_ST_FAULT], DRIVE_FAULT_NONE);
     assert_int_equal(sxl_get_u32(&rep.payload[1 + SXL_ST_ISR_COUNT]),
                      (uint32_t)DRIVE_CALIBRATION_SAMPLES + 21u);
+    /* the stack's mark: nothing runs on the stand-in region, so its in-use part */
+    assert_int_equal(sxl_get_u16(&rep.payload[1 + SXL_ST_STACK_USED]), FW_HOST_STACK_IN_USE);
+    assert_int_equal(sxl_get_u16(&rep.payload[1 + SXL_ST_STACK_WORDS]), FW_HOST_STACK_WORDS);
 
     /* stop */
     assert_int_equal(transact(SXL_CMD_STOP, NULL, 0u, &rep), SXL_RX_FRAME);

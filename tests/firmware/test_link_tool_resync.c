@@ -134,9 +134,12 @@ static void test_noise_and_a_stale_reply_are_skipped(void **state)
     memset(status, 0, sizeof status);
     status[0] = SXL_OK;
     status[1u + SXL_ST_STATE] = 2u; /* READY */
+    sxl_put_u16(&status[1u + SXL_ST_STACK_USED], 812u);
+    sxl_put_u16(&status[1u + SXL_ST_STACK_WORDS], 1792u);
     send_frame(&s, SXL_CMD_GET_STATUS | SXL_REPLY, status, (uint16_t)(1u + SXL_ST_SIZE));
     assert_int_equal(finish(&s, out, sizeof out), 0);
     assert_non_null(strstr(out, "state=READY"));
+    assert_non_null(strstr(out, "\nstack: 812 of 1792 words used (45 %)\n"));
 }
 
 static void test_silent_drive_times_out(void **state)

@@ -241,6 +241,17 @@ static void test_tool_profile_while_running(void **state)
     assert_true(mean > 0u && min <= mean && mean <= max);
 }
 
+/* `sixphase-link status` on the virtual board: the status line, then the stack's, which the
+ * virtual board does not measure (it has no C28x stack; protocol 6 says so with size 0). */
+static void test_tool_status_stack_not_measured(void **state)
+{
+    char out[2048];
+    (void)state;
+    assert_int_equal(tool("status", out, sizeof out), 0);
+    assert_non_null(strstr(out, "state=RUN "));
+    assert_non_null(strstr(out, "\nstack: not measured (virtual board)\n"));
+}
+
 static void test_controller_and_lambda_change_while_running(void **state)
 {
     uint16_t p[5];
@@ -733,6 +744,7 @@ int main(void)
         cmocka_unit_test(test_ping_and_ready),
         cmocka_unit_test(test_run_reaches_speed),
         cmocka_unit_test(test_tool_profile_while_running),
+        cmocka_unit_test(test_tool_status_stack_not_measured),
         cmocka_unit_test(test_controller_and_lambda_change_while_running),
         cmocka_unit_test(test_garbage_is_counted_and_skipped),
         cmocka_unit_test(test_capture_while_running),

@@ -121,14 +121,14 @@ class ImageCheck(unittest.TestCase):
         # the no-inline proxy objects carry no placement marks: every function is in .text
         status, err = self.run_tool(objects="noinline")
         self.assertEqual(status, 1)
-        self.assertIn("period: ctl_step runs in the control interrupt from flash "
-                      "(ctl.c.obj(.text", err)
+        self.assertIn("period: drive_control_isr runs in the control interrupt from flash "
+                      "(drive.c.obj(.text", err)
 
     def test_marked_function_outside_the_period_is_caught(self):
         status, err = self.run_tool(from_flash="ctl_step," + FLASH_ON_PURPOSE)
         self.assertEqual(status, 1)
-        self.assertIn("period: ctl_step runs from RAM (ctl.c.obj(.TI.ramfunc)) but the control "
-                      "period never calls it", err)
+        self.assertIn("period: ctl_step runs from RAM (ctl_step.c.obj(.TI.ramfunc)) but the "
+                      "control period never calls it", err)
 
     def test_section_no_rule_takes(self):
         status, err = self.run_tool(self.variant("   .switch    : > FLASHA,  PAGE = 0\n", ""))

@@ -12,12 +12,16 @@ TOOL = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "too
                     "target_memory_doc.py")
 
 
-def write_build(d, code_words, isr_bytes, from_flash):
+def write_build(d, code_words, isr_words, from_flash):
     os.makedirs(d)
-    with open(os.path.join(d, "stack.json"), "w") as f:
-        json.dump({"background_bytes": 688, "isr_bytes": isr_bytes, "need_words": 1096,
-                   "background_path": ["main (8)", "fw_startup (152)"],
-                   "isr_path": ["fw_adc_isr (16)", "ctl_step (272)"]}, f)
+    with open(os.path.join(d, "stack_bound.json"), "w") as f:
+        build = {"build": "noinline", "background_words": 600, "isr_words": isr_words,
+                 "context_words": 56, "bound_words": 656 + isr_words,
+                 "background_path": ["main (20, m0)", "fw_startup (150, x86)"],
+                 "isr_path": ["fw_adc_isr (28, x86)", "ctl_step (32, x86)"]}
+        json.dump({"bound_words": 656 + isr_words, "stack_words": 1792,
+                   "free_percent": round(100.0 - 100.0 * (656 + isr_words) / 1792, 1),
+                   "worst_build": "noinline", "builds": [dict(build, build="o2"), build]}, f)
     with open(os.path.join(d, "ram.json"), "w") as f:
         json.dump({"ranges": {"RAML0L3": {"length": 16384, "use": code_words, "ram": True},
                               "RAML4L5": {"length": 8192, "use": 4502, "ram": True},
@@ -40,8 +44,8 @@ class TargetMemoryDoc(unittest.TestCase):
             with open(doc, "w") as f:
                 f.write("before\n<!-- target-memory -->\nold 14998 words\n"
                         "<!-- /target-memory -->\nafter\n")
-            write_build(os.path.join(d, "float"), 10237, 688, [])
-            write_build(os.path.join(d, "fixed"), 13663, 696, ["ctl_mptc_select"])
+            write_build(os.path.join(d, "float"), 10237, 676, [])
+            write_build(os.path.join(d, "fixed"), 13663, 744, ["ctl_mptc_select"])
             base = [sys.executable, TOOL, doc, "--stack-words", "1792", "--float",
                     os.path.join(d, "float"), "--fixed", os.path.join(d, "fixed")]
 
@@ -59,11 +63,14 @@ class TargetMemoryDoc(unittest.TestCase):
                           "RAML0L3 |", text)
             self.assertIn("Boot path before the RAM copy (runs where it is loaded): `_c_int00`, "
                           "`main`.", text)
-            self.assertIn("688 + 696 B -> 1096 words", text)
+            self.assertIn("| 600 + 676 + 56 = 1332 words (26 % left; -fno-inline) |", text)
+            self.assertIn("| 600 + 744 + 56 = 1400 words (22 % left; -fno-inline) |", text)
+            self.assertIn("Deepest paths (float, -fno-inline): background `main -> fw_startup`; "
+                          "control interrupt `fw_adc_isr -> ctl_step`.", text)
             self.assertNotIn("14998", text)
             r = run("--check-doc")
             self.assertEqual(r.returncode, 0, r.stderr)
-            write_build(os.path.join(d, "float2"), 10300, 688, [])  # the code grew
+            write_build(os.path.join(d, "float2"), 10300, 676, [])  # the code grew
             base[base.index(os.path.join(d, "float"))] = os.path.join(d, "float2")
             r = run("--check-doc")
             self.assertNotEqual(r.returncode, 0)

@@ -14,6 +14,10 @@ volatile uint16_t IFR;
 /* __asm(" EALLOW") and the other single-instruction intrinsics. */
 void f28335_proxy_intrinsic(const char *instruction) { (void)instruction; }
 
+/* The linker's and the RTS start-up's stack symbols (__stack, __STACK_SIZE). */
+uint16_t _stack;
+uint16_t _STACK_SIZE;
+
 /* Symbols of the linker command files (ramfuncs and ramconsts load and run addresses). */
 uint16_t RamfuncsLoadStart;
 uint16_t RamfuncsLoadEnd;
