@@ -34,8 +34,8 @@ def load(directory):
         with open(os.path.join(directory, "ram.json")) as f:
             ram = json.load(f)
     except (OSError, ValueError) as e:
-        fail("%s: %s (stack_bound.json: run tools/check_stack_bound.sh on the same directory "
-             "first)" % (directory, e))
+        fail("%s: %s (tools/check_target_memory.sh writes stack_bound.json and ram.json)"
+             % (directory, e))
     return stack, ram
 
 
@@ -54,6 +54,15 @@ def placed(ram, output):
         return "-"
     r = out["run"][0]
     return "%s of %s" % (percent(out["words"], ram["ranges"][r]["length"]), r)
+
+
+SARAM_WORDS = 0x800 + 0x8000  # M0, M1 and L0..L7 of the F28335
+
+
+def code_total(ram):
+    text = ram["outputs"][".text"]["words"]
+    funcs = ram["outputs"]["ramfuncs"]["words"]
+    return text, funcs, text + funcs, SARAM_WORDS
 
 
 def worst(stack):
@@ -100,6 +109,10 @@ def render(stack_words, builds):
         "Boot path before the RAM copy (runs where it is loaded): %s." % ", ".join(
             "`%s`" % f for f in fr["boot_path"] if f != "f28335_proxy_intrinsic"),
         "",
+        "All code of the float image: `.text` %d + `ramfuncs` %d = %d words, against %d words "
+        "of SARAM in all (M0 to L7, stack and data not counted): there is no RAM-only image."
+        % code_total(fr),
+        "",
         "Deepest paths (float, %s): background `%s`; control interrupt `%s`." % (
             BUILD_NAMES.get(worst(fs)["build"]), path_text(worst(fs)["background_path"]),
             path_text(worst(fs)["isr_path"])),
@@ -128,9 +141,8 @@ def main():
     new = render(a.stack_words, [load(a.float), load(a.fixed)])
     if a.check_doc:
         if block.group(0) != new:
-            fail("%s: the stack and RAM figures are out of date; run tools/check_stack_bound.sh "
-                 "DIR, then tools/check_target_memory.sh --write-doc DIR, and commit the result"
-                 % a.doc)
+            fail("%s: the stack and RAM figures are out of date; run "
+                 "tools/check_target_memory.sh --write-doc DIR and commit the result" % a.doc)
         print("target_memory_doc: %s is current" % a.doc)
         return
     with open(a.doc, "w") as f:

@@ -135,6 +135,8 @@ void drive_init(drive_t *d, const ctl_params_t *p)
     drive_init_open_phase(d, p);
     d->speed_ref_rpm = 0.0f;
     d->torque_ref_nm = 0.0f;
+    d->link_token = 0u; /* disarmed until the host arms a session */
+    d->link_sessions = 0u;
     d->isr_cycles_last = 0u;
     d->isr_cycles_max = 0u;
     comm_init(&d->comm);

@@ -123,6 +123,10 @@ typedef struct {
     ctl_params_t params_bg;          /* last parameter set requested (background copy) */
     float speed_ref_rpm;             /* last speed reference set */
     float torque_ref_nm;             /* last torque reference set */
+    /* the link's armed session (SXL_CMD_ARM): the token commands that move the motor must
+     * carry, 0 while disarmed; and how many sessions were armed (the next token's seed) */
+    uint32_t link_token;
+    uint32_t link_sessions;
     /* the set being requested (drive_request_params and the commands that build one): here,
      * not on the stack, where it was the largest object of the background's deepest path */
     ctl_params_t params_req;

@@ -508,6 +508,56 @@ static uint16_t on_restore_legs(drive_t *d, const sxl_frame_t *req, sxl_frame_t 
     return drive_request_restore_legs(d) ? SXL_OK : SXL_ERR_REFUSED;
 }
 
+/* A session token no noise frame can be expected to carry: a 32-bit mix (murmur3's finaliser)
+ * of the session count and the control period, never 0 (0 is "disarmed"). */
+static uint32_t session_token(const drive_t *d)
+{
+    uint32_t x = (d->link_sessions * 0x9E3779B9u) ^ d->isr_count;
+    x ^= x >> 16;
+    x *= 0x85EBCA6Bu;
+    x ^= x >> 13;
+    x *= 0xC2B2AE35u;
+    x ^= x >> 16;
+    return (x != 0u) ? x : 1u;
+}
+
+static uint16_t on_arm(drive_t *d, const sxl_frame_t *req, sxl_frame_t *reply, uint16_t rx_errors)
+{
+    (void)req;
+    (void)rx_errors;
+    d->link_sessions++;
+    d->link_token = session_token(d);
+    sxl_put_u32(&reply->payload[1], d->link_token);
+    reply->len = 1u + SXL_TOKEN_BYTES;
+    return SXL_OK;
+}
+
+static uint16_t on_disarm(drive_t *d, const sxl_frame_t *req, sxl_frame_t *reply,
+                          uint16_t rx_errors)
+{
+    (void)req;
+    (void)reply;
+    (void)rx_errors;
+    d->link_token = 0u;
+    return SXL_OK;
+}
+
+/* A command that moves the motor: its payload starts with the armed session's token, which is
+ * taken off here (in place) so that its handler sees its own payload. */
+static bool take_token(const drive_t *d, sxl_frame_t *req)
+{
+    uint16_t i;
+    if (req->len < SXL_TOKEN_BYTES || d->link_token == 0u ||
+        sxl_get_u32(req->payload) != d->link_token) {
+        return false;
+    }
+    req->len = (uint16_t)(req->len - SXL_TOKEN_BYTES);
+    for (i = 0u; i < req->len; i++) {
+        req->payload[i] = req->payload[i + SXL_TOKEN_BYTES];
+    }
+    return true;
+}
+
 #define LINK_ANY_LENGTH 0xFFFFu /* the handler checks the length */
 
 /* indirect-call: drive_link_handle -> table link_commands (tools/stack_depth.py) */
@@ -526,6 +576,8 @@ static const struct {
     {SXL_CMD_STOP, 0u, on_stop},
     {SXL_CMD_CLEAR_FAULT, 0u, on_clear_fault},
     {SXL_CMD_SET_CONTROLLER, LINK_ANY_LENGTH, on_set_controller},
+    {SXL_CMD_ARM, 0u, on_arm},
+    {SXL_CMD_DISARM, 0u, on_disarm},
     {SXL_CMD_CAPTURE_ARM, SXL_CA_SIZE, on_capture_arm},
     {SXL_CMD_CAPTURE_STATUS, 0u, on_capture_status},
     {SXL_CMD_CAPTURE_READ, 3u, on_capture_read},
@@ -540,13 +592,18 @@ static const struct {
     {SXL_CMD_RESTORE_LEGS, 0u, on_restore_legs},
 };
 
-void drive_link_handle(drive_t *d, const sxl_frame_t *req, sxl_frame_t *reply, uint16_t rx_errors)
+void drive_link_handle(drive_t *d, sxl_frame_t *req, sxl_frame_t *reply, uint16_t rx_errors)
 {
     uint16_t result = SXL_ERR_UNKNOWN;
     uint16_t k;
     reply->cmd = (uint16_t)((req->cmd | SXL_REPLY) & 0xFFu);
     reply->len = 1u;
     for (k = 0u; k < (uint16_t)(sizeof link_commands / sizeof link_commands[0]); k++) {
+        if (link_commands[k].cmd == req->cmd && SXL_ARMED_COMMAND(req->cmd) &&
+            !take_token(d, req)) {
+            result = SXL_ERR_NOT_ARMED;
+            break;
+        }
         if (link_commands[k].cmd == req->cmd) {
             result = (link_commands[k].len != LINK_ANY_LENGTH && req->len != link_commands[k].len)
                          ? SXL_ERR_LENGTH

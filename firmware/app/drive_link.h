@@ -17,8 +17,10 @@
 #define DRIVE_LINK_MAX_LAMBDA_MILLI ((uint32_t)2000000u) /* lambda, 0.001 N*m/Wb */
 
 /* Handle req and fill reply (always a reply for a well-formed frame).
- * rx_errors: malformed frames seen by the receiver, reported in the status. */
-void drive_link_handle(drive_t *d, const sxl_frame_t *req, sxl_frame_t *reply, uint16_t rx_errors);
+ * rx_errors: malformed frames seen by the receiver, reported in the status.
+ * A command that moves the motor (SXL_ARMED_COMMAND) is refused with SXL_ERR_NOT_ARMED unless
+ * its payload starts with the armed session's token, which is taken off req's payload. */
+void drive_link_handle(drive_t *d, sxl_frame_t *req, sxl_frame_t *reply, uint16_t rx_errors);
 
 /* Profile payload of one stage (SXL_PF_*); out must hold SXL_PF_SIZE bytes. */
 void drive_link_profile(uint16_t stage, uint16_t *out);

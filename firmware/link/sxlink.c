@@ -1,24 +1,42 @@
 #include "sxlink.h"
 
-uint16_t sxl_crc16_byte(uint16_t crc, uint16_t byte)
+/* CRC-32C (Castagnoli), reflected, bit by bit: no table (512 words on the C28x) for at most
+ * SXL_MAX_FRAME bytes, in the background. */
+uint32_t sxl_crc32_byte(uint32_t crc, uint16_t byte)
 {
     uint16_t i;
-    crc = (uint16_t)(crc ^ (uint16_t)((byte & 0xFFu) << 8));
+    crc ^= (uint32_t)(byte & 0xFFu);
     for (i = 0u; i < 8u; i++) {
-        if ((crc & 0x8000u) != 0u) {
-            crc = (uint16_t)((uint16_t)(crc << 1) ^ 0x1021u);
-        } else {
-            crc = (uint16_t)(crc << 1);
-        }
+        crc = ((crc & 1u) != 0u) ? ((crc >> 1) ^ SXL_CRC32C_POLY_REFLECTED) : (crc >> 1);
     }
     return crc;
 }
 
-uint16_t sxl_crc16(const uint16_t *bytes, uint16_t n, uint16_t crc)
+uint32_t sxl_crc32(const uint16_t *bytes, uint16_t n)
 {
+    uint32_t crc = 0xFFFFFFFFu;
     uint16_t i;
     for (i = 0u; i < n; i++) {
-        crc = sxl_crc16_byte(crc, bytes[i]);
+        crc = sxl_crc32_byte(crc, bytes[i]);
+    }
+    return crc ^ 0xFFFFFFFFu;
+}
+
+/* The CRC's bytes, most significant first, at out[0..3]. */
+static void put_crc(uint16_t *out, uint32_t crc)
+{
+    uint16_t i;
+    for (i = 0u; i < SXL_CRC_BYTES; i++) {
+        out[i] = (uint16_t)((crc >> (8u * (SXL_CRC_BYTES - 1u - i))) & 0xFFu);
+    }
+}
+
+static uint32_t get_crc(const uint16_t *in)
+{
+    uint32_t crc = 0u;
+    uint16_t i;
+    for (i = 0u; i < SXL_CRC_BYTES; i++) {
+        crc = (crc << 8) | (uint32_t)(in[i] & 0xFFu);
     }
     return crc;
 }
@@ -26,9 +44,8 @@ uint16_t sxl_crc16(const uint16_t *bytes, uint16_t n, uint16_t crc)
 uint16_t sxl_encode(uint16_t cmd, const uint16_t *payload, uint16_t len, uint16_t *out,
                     uint16_t cap)
 {
-    uint16_t crc = 0xFFFFu;
     uint16_t i;
-    const uint16_t total = (uint16_t)(len + 5u);
+    const uint16_t total = (uint16_t)(len + SXL_FRAME_OVERHEAD);
     if (len > SXL_MAX_PAYLOAD || cmd > 0xFFu || cap < total || (len > 0u && payload == 0)) {
         return 0u;
     }
@@ -43,9 +60,7 @@ uint16_t sxl_encode(uint16_t cmd, const uint16_t *payload, uint16_t len, uint16_
     for (i = 0u; i < len; i++) {
         out[3u + i] = payload[i];
     }
-    crc = sxl_crc16(&out[1], (uint16_t)(len + 2u), crc);
-    out[3u + len] = (uint16_t)(crc >> 8);
-    out[4u + len] = (uint16_t)(crc & 0xFFu);
+    put_crc(&out[3u + len], sxl_crc32(&out[1], (uint16_t)(len + 2u)));
     return total;
 }
 
@@ -76,6 +91,9 @@ void sxl_decoder_abandon(sxl_decoder_t *d)
 
 static bool length_valid(uint16_t len) { return len != 0u && len <= SXL_MAX_PAYLOAD + 1u; }
 
+/* Bytes of a whole frame whose LEN field is len: start byte, LEN, CMD + payload, CRC. */
+static uint16_t frame_bytes(uint16_t len) { return (uint16_t)(len + 2u + SXL_CRC_BYTES); }
+
 /* Drop the held bytes before index k, then anything up to the next start byte. */
 static void drop_before(sxl_decoder_t *d, uint16_t k)
 {
@@ -93,16 +111,15 @@ static void drop_before(sxl_decoder_t *d, uint16_t k)
 static bool frame_ends_here(const sxl_decoder_t *d, uint16_t start)
 {
     uint16_t len;
-    uint16_t crc;
-    if (d->held[start] != SXL_SOF || (uint16_t)(d->n - start) < 5u) {
+    if (d->held[start] != SXL_SOF || (uint16_t)(d->n - start) < SXL_FRAME_OVERHEAD) {
         return false;
     }
     len = d->held[start + 1u];
-    if (!length_valid(len) || (uint16_t)(d->n - start) != (uint16_t)(len + 4u)) {
+    if (!length_valid(len) || (uint16_t)(d->n - start) != frame_bytes(len)) {
         return false;
     }
-    crc = sxl_crc16(&d->held[start + 1u], (uint16_t)(len + 1u), 0xFFFFu);
-    return crc == (uint16_t)((d->held[d->n - 2u] << 8) | d->held[d->n - 1u]);
+    return sxl_crc32(&d->held[start + 1u], (uint16_t)(len + 1u)) ==
+           get_crc(&d->held[d->n - SXL_CRC_BYTES]);
 }
 
 static void take_frame(sxl_decoder_t *d, uint16_t start, sxl_frame_t *out)
@@ -123,7 +140,7 @@ static sxl_rx_t drop_dead_starts(sxl_decoder_t *d)
     sxl_rx_t result = SXL_RX_NONE;
     while (d->n >= 2u) {
         const uint16_t len = d->held[1];
-        if (length_valid(len) && d->n < (uint16_t)(len + 4u)) {
+        if (length_valid(len) && d->n < frame_bytes(len)) {
             break; /* still waiting for its bytes */
         }
         result = length_valid(len) ? SXL_RX_ERR_CRC : SXL_RX_ERR_LENGTH;

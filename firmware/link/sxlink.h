@@ -4,10 +4,13 @@
  * host tool. Bytes are held in uint16_t (0..255) because a char is 16 bits on
  * the C28x; nothing here assumes 8-bit storage.
  *
- * Frame:  0xA5 | LEN | CMD | PAYLOAD (LEN - 1 bytes) | CRC_HI | CRC_LO
+ * Frame:  0xA5 | LEN | CMD | PAYLOAD (LEN - 1 bytes) | CRC (4 bytes, most significant first)
  *   LEN   number of bytes of CMD + PAYLOAD, 1 .. 1 + SXL_MAX_PAYLOAD
- *   CRC   CRC-16/CCITT-FALSE (poly 0x1021, init 0xFFFF, no reflection, no
- *         final xor) over LEN, CMD and PAYLOAD
+ *   CRC   CRC-32C (Castagnoli: poly 0x1EDC6F41 reflected, init and final xor 0xFFFFFFFF) over
+ *         LEN, CMD and PAYLOAD. Since protocol 7; CRC-16 before let 13 of 300,000 noise frames
+ *         with a start byte and a valid length through, any of which could be a command.
+ * Commands that move the motor (SXL_ARMED_COMMAND) also carry the token of an armed session
+ * (SXL_CMD_ARM) as their first four payload bytes.
  * Multi-byte payload fields are little-endian. See docs/serial-protocol.md.
  */
 #ifndef SXLINK_H
@@ -21,13 +24,18 @@
 
 #define SXL_SOF 0xA5u
 #define SXL_MAX_PAYLOAD 48u
-#define SXL_MAX_FRAME (SXL_MAX_PAYLOAD + 5u)
+#define SXL_CRC_BYTES 4u
+#define SXL_CRC32C_POLY_REFLECTED 0x82F63B78u
+#define SXL_FRAME_OVERHEAD (3u + SXL_CRC_BYTES) /* start byte, LEN, CMD, CRC */
+#define SXL_MAX_FRAME (SXL_MAX_PAYLOAD + SXL_FRAME_OVERHEAD)
 /* Protocol version. 2: fault fields in the status, SXL_CMD_GET_FAULT_RECORD; 3: why the last
  * run or clear was refused, in the status, and the result SXL_ERR_BUSY; 4: the capture buffer
  * (SXL_CMD_CAPTURE_*, SXL_ERR_NO_ROOM); 5: commissioning (SXL_CMD_COMMISSION_*, the drive state
  * COMMISSION) and open-phase operation (SXL_CMD_GET_OPEN_PHASE .. SXL_CMD_RESTORE_LEGS, status
- * flag bit 3); 6: the stack's high-water mark and size in the status (SXL_ST_STACK_USED). */
-#define SXL_VERSION 6u
+ * flag bit 3); 6: the stack's high-water mark and size in the status (SXL_ST_STACK_USED);
+ * 7: CRC-32C instead of CRC-16, and the armed session (SXL_CMD_ARM, SXL_ERR_NOT_ARMED) that
+ * commands moving the motor need. */
+#define SXL_VERSION 7u
 
 /* Commands (host -> drive). A reply carries CMD | SXL_REPLY and starts with
  * a result byte. */
@@ -41,6 +49,9 @@
 #define SXL_CMD_STOP 0x13u
 #define SXL_CMD_CLEAR_FAULT 0x14u
 #define SXL_CMD_SET_CONTROLLER 0x15u /* uint8 controller, uint32 lambda in 0.001 N*m/Wb */
+/* none -> uint32 session token (never 0): arms the session, a new ARM replaces the token */
+#define SXL_CMD_ARM 0x16u
+#define SXL_CMD_DISARM 0x17u         /* none -> result only: the token no longer moves the motor */
 #define SXL_CMD_CAPTURE_ARM 0x20u    /* SXL_CA_* setup -> result only */
 #define SXL_CMD_CAPTURE_STATUS 0x21u /* none -> SXL_CS_* */
 #define SXL_CMD_CAPTURE_READ 0x22u   /* uint8 channel, uint16 first sample -> SXL_CR_* */
@@ -65,12 +76,20 @@
 
 /* Result byte of every reply. */
 #define SXL_OK 0u
-#define SXL_ERR_LENGTH 1u  /* payload length wrong for the command */
-#define SXL_ERR_VALUE 2u   /* value out of range or parameters rejected */
-#define SXL_ERR_UNKNOWN 3u /* unknown command */
-#define SXL_ERR_REFUSED 4u /* not allowed in the present state */
-#define SXL_ERR_BUSY 5u    /* the previous parameter set is still being applied: retry */
-#define SXL_ERR_NO_ROOM 6u /* capture: length x channels above the buffer */
+#define SXL_ERR_LENGTH 1u    /* payload length wrong for the command */
+#define SXL_ERR_VALUE 2u     /* value out of range or parameters rejected */
+#define SXL_ERR_UNKNOWN 3u   /* unknown command */
+#define SXL_ERR_REFUSED 4u   /* not allowed in the present state */
+#define SXL_ERR_BUSY 5u      /* the previous parameter set is still being applied: retry */
+#define SXL_ERR_NO_ROOM 6u   /* capture: length x channels above the buffer */
+#define SXL_ERR_NOT_ARMED 7u /* a command that moves the motor without the armed token */
+
+/* Commands that move the motor: accepted only with the armed session's token in front of their
+ * own payload (SXL_TOKEN_BYTES, uint32 little-endian). */
+#define SXL_TOKEN_BYTES 4u
+#define SXL_ARMED_COMMAND(cmd)                                                                     \
+    ((cmd) == SXL_CMD_RUN || (cmd) == SXL_CMD_COMMISSION_START || (cmd) == SXL_CMD_ISOLATE_LEG ||  \
+     (cmd) == SXL_CMD_RESTORE_LEGS)
 
 /* Capture setup (SXL_CMD_CAPTURE_ARM payload). Signals: firmware/link/capture_signals.h;
  * unused channels 0xFF. Results: SXL_ERR_VALUE for an unknown signal, no channel, decimation
@@ -210,8 +229,9 @@ typedef struct {
     uint16_t errors; /* saturates at 65535 */
 } sxl_decoder_t;
 
-uint16_t sxl_crc16(const uint16_t *bytes, uint16_t n, uint16_t crc);
-uint16_t sxl_crc16_byte(uint16_t crc, uint16_t byte);
+/* CRC-32C of n bytes (init and final xor included), and one byte's step (neither). */
+uint32_t sxl_crc32(const uint16_t *bytes, uint16_t n);
+uint32_t sxl_crc32_byte(uint32_t crc, uint16_t byte);
 
 /* Encode a frame into out (capacity cap bytes). Returns the frame length, or 0
  * if the payload is too long, a byte is above 255 or out is too small. */

@@ -44,7 +44,8 @@ static const char *const result_names[] = {"ok",
                                            "unknown command",
                                            "refused",
                                            "busy, retry",
-                                           "no room in the capture buffer"};
+                                           "no room in the capture buffer",
+                                           "not armed (the session's token is missing)"};
 
 const char *result_name(uint16_t result)
 {
@@ -412,9 +413,9 @@ static void print_frame(const uint16_t *frame, uint16_t n)
 #define BUSY_RETRIES 5
 #define BUSY_RETRY_US 2000
 
-/* Send one request and wait for its reply; 0 on success. */
-int exchange(int fd, const options_t *o, uint16_t cmd, const uint16_t *payload, uint16_t len,
-             sxl_frame_t *reply)
+/* Send one frame and wait for its reply (a BUSY reply is retried); 0 on success. */
+static int send_and_wait(int fd, const options_t *o, uint16_t cmd, const uint16_t *payload,
+                         uint16_t len, sxl_frame_t *reply)
 {
     uint16_t frame[SXL_MAX_FRAME];
     const uint16_t flen = sxl_encode(cmd, payload, len, frame, (uint16_t)SXL_MAX_FRAME);
@@ -432,6 +433,45 @@ int exchange(int fd, const options_t *o, uint16_t cmd, const uint16_t *payload, 
         }
         usleep(BUSY_RETRY_US);
     }
+}
+
+/* Arms a session (SXL_CMD_ARM) and puts its token in front of the payload. */
+static int arm(int fd, const options_t *o, const uint16_t *payload, uint16_t len, uint16_t *armed)
+{
+    sxl_frame_t reply;
+    uint16_t i;
+    int rc = send_and_wait(fd, o, SXL_CMD_ARM, NULL, 0u, &reply);
+    if (rc != 0) {
+        return rc;
+    }
+    if (reply.payload[0] != SXL_OK || reply.len != 1u + SXL_TOKEN_BYTES) {
+        return fail(EXIT_IO, "the drive did not arm a session (%s)", result_name(reply.payload[0]));
+    }
+    for (i = 0u; i < SXL_TOKEN_BYTES; i++) {
+        armed[i] = reply.payload[1u + i];
+    }
+    for (i = 0u; i < len; i++) {
+        armed[SXL_TOKEN_BYTES + i] = payload[i];
+    }
+    return 0;
+}
+
+/* Send one request and wait for its reply; 0 on success. A command that moves the motor
+ * (SXL_ARMED_COMMAND) goes out in a session armed just before it. */
+int exchange(int fd, const options_t *o, uint16_t cmd, const uint16_t *payload, uint16_t len,
+             sxl_frame_t *reply)
+{
+    uint16_t armed[SXL_MAX_PAYLOAD];
+    int rc;
+    if (!SXL_ARMED_COMMAND(cmd)) {
+        return send_and_wait(fd, o, cmd, payload, len, reply);
+    }
+    if (len > SXL_MAX_PAYLOAD - SXL_TOKEN_BYTES) {
+        return fail(EXIT_USAGE, "cannot encode the request");
+    }
+    rc = arm(fd, o, payload, len, armed);
+    return (rc != 0) ? rc
+                     : send_and_wait(fd, o, cmd, armed, (uint16_t)(len + SXL_TOKEN_BYTES), reply);
 }
 
 /* Read the fault log until the drive reports it empty. */
@@ -637,7 +677,20 @@ static int parse_options(int argc, char **argv, options_t *o, int *next)
 int print_request(uint16_t cmd, const uint16_t *payload, uint16_t len)
 {
     uint16_t frame[SXL_MAX_FRAME];
-    const uint16_t flen = sxl_encode(cmd, payload, len, frame, (uint16_t)SXL_MAX_FRAME);
+    uint16_t armed[SXL_MAX_PAYLOAD] = {0};
+    uint16_t flen, i;
+    if (SXL_ARMED_COMMAND(cmd)) { /* the ARM request, then the command: token 00 00 00 00 */
+        if (len > SXL_MAX_PAYLOAD - SXL_TOKEN_BYTES) {
+            return fail(EXIT_USAGE, "cannot encode the request");
+        }
+        print_frame(frame, sxl_encode(SXL_CMD_ARM, NULL, 0u, frame, (uint16_t)SXL_MAX_FRAME));
+        for (i = 0u; i < len; i++) {
+            armed[SXL_TOKEN_BYTES + i] = payload[i];
+        }
+        payload = armed;
+        len = (uint16_t)(len + SXL_TOKEN_BYTES);
+    }
+    flen = sxl_encode(cmd, payload, len, frame, (uint16_t)SXL_MAX_FRAME);
     if (flen == 0u) {
         return fail(EXIT_USAGE, "cannot encode the request");
     }

@@ -28,13 +28,42 @@ static int setup(void **state)
     return 0;
 }
 
-static uint16_t send(uint16_t cmd)
+static uint16_t send_raw(uint16_t cmd)
 {
     req.cmd = cmd;
     drive_link_handle(&d, &req, &rep, 7u);
     assert_int_equal(rep.cmd, cmd | SXL_REPLY);
     assert_true(rep.len >= 1u);
     return rep.payload[0];
+}
+
+/* A session armed, its token in front of req's payload. */
+static uint32_t arm_into_request(void)
+{
+    sxl_frame_t arm = {SXL_CMD_ARM, 0u, {0}};
+    sxl_frame_t arm_reply;
+    uint32_t token;
+    uint16_t i;
+    drive_link_handle(&d, &arm, &arm_reply, 7u);
+    assert_int_equal(arm_reply.payload[0], SXL_OK);
+    assert_int_equal(arm_reply.len, 1u + SXL_TOKEN_BYTES);
+    token = sxl_get_u32(&arm_reply.payload[1]);
+    assert_true(token != 0u);
+    for (i = req.len; i > 0u; i--) {
+        req.payload[i - 1u + SXL_TOKEN_BYTES] = req.payload[i - 1u];
+    }
+    sxl_put_u32(req.payload, token);
+    req.len = (uint16_t)(req.len + SXL_TOKEN_BYTES);
+    return token;
+}
+
+/* A request as the host tool sends it: a command that moves the motor in an armed session. */
+static uint16_t send(uint16_t cmd)
+{
+    if (SXL_ARMED_COMMAND(cmd)) {
+        (void)arm_into_request();
+    }
+    return send_raw(cmd);
 }
 
 static void calibrate(void)
@@ -45,6 +74,45 @@ static void calibrate(void)
         drive_control_isr(&d);
     }
     assert_int_equal(d.state, DRIVE_STATE_READY);
+}
+
+/* Commands that move the motor need the armed session's token (protocol 7): none, a wrong
+ * one, one replaced by a new ARM or taken back by DISARM: refused as NOT_ARMED, nothing moves.
+ * Before, a noise frame that passed its CRC could carry RUN. */
+static void test_motion_commands_need_the_armed_token(void **state)
+{
+    static const uint16_t motion[4] = {SXL_CMD_RUN, SXL_CMD_COMMISSION_START, SXL_CMD_ISOLATE_LEG,
+                                       SXL_CMD_RESTORE_LEGS};
+    uint32_t token;
+    uint16_t k;
+    (void)state;
+    calibrate();
+    for (k = 0u; k < 4u; k++) {
+        req.len = 0u;
+        assert_int_equal(send_raw(motion[k]), SXL_ERR_NOT_ARMED);
+        req.len = SXL_TOKEN_BYTES; /* a token, but not the session's */
+        sxl_put_u32(req.payload, 0x12345678u);
+        assert_int_equal(send_raw(motion[k]), SXL_ERR_NOT_ARMED);
+    }
+    req.len = 0u;
+    token = arm_into_request();
+    (void)arm_into_request(); /* a new session: the first token is void */
+    sxl_put_u32(req.payload, token);
+    req.len = SXL_TOKEN_BYTES;
+    assert_int_equal(send_raw(SXL_CMD_RUN), SXL_ERR_NOT_ARMED);
+    req.len = 0u;
+    (void)arm_into_request();
+    {
+        sxl_frame_t disarm = {SXL_CMD_DISARM, 0u, {0}};
+        sxl_frame_t r;
+        drive_link_handle(&d, &disarm, &r, 7u);
+        assert_int_equal(r.payload[0], SXL_OK);
+    }
+    assert_int_equal(send_raw(SXL_CMD_RUN), SXL_ERR_NOT_ARMED);
+    assert_false(d.run_requested);
+    req.len = 0u;
+    assert_int_equal(send(SXL_CMD_RUN), SXL_OK); /* armed: taken */
+    assert_true(d.run_requested);
 }
 
 static void test_ping_and_unknown(void **state)
@@ -579,6 +647,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test_setup(test_ping_and_unknown, setup),
+        cmocka_unit_test_setup(test_motion_commands_need_the_armed_token, setup),
         cmocka_unit_test_setup(test_status, setup),
         cmocka_unit_test_setup(test_status_stack, setup),
         cmocka_unit_test_setup(test_speed_and_torque, setup),

@@ -56,7 +56,8 @@ static void isr_periods(int n)
 }
 
 /* Send a request over the emulated SCI-A and return the decoded reply. */
-static sxl_rx_t transact(uint16_t cmd, const uint16_t *payload, uint16_t len, sxl_frame_t *reply)
+static sxl_rx_t transact_frame(uint16_t cmd, const uint16_t *payload, uint16_t len,
+                               sxl_frame_t *reply)
 {
     uint16_t frame[SXL_MAX_FRAME];
     uint16_t tx[256];
@@ -79,6 +80,25 @@ static sxl_rx_t transact(uint16_t cmd, const uint16_t *payload, uint16_t len, sx
         }
     }
     return r;
+}
+
+/* As the host tool sends it: a command that moves the motor in a session armed just before. */
+static sxl_rx_t transact(uint16_t cmd, const uint16_t *payload, uint16_t len, sxl_frame_t *reply)
+{
+    uint16_t armed[SXL_MAX_PAYLOAD];
+    uint16_t i;
+    if (!SXL_ARMED_COMMAND(cmd)) {
+        return transact_frame(cmd, payload, len, reply);
+    }
+    assert_int_equal(transact_frame(SXL_CMD_ARM, NULL, 0u, reply), SXL_RX_FRAME);
+    assert_int_equal(reply->payload[0], SXL_OK);
+    for (i = 0u; i < SXL_TOKEN_BYTES; i++) {
+        armed[i] = reply->payload[1u + i];
+    }
+    for (i = 0u; i < len; i++) {
+        armed[SXL_TOKEN_BYTES + i] = payload[i];
+    }
+    return transact_frame(cmd, armed, (uint16_t)(len + SXL_TOKEN_BYTES), reply);
 }
 
 /* The whole start-up writes EALLOW-protected registers only between EALLOW and EDIS (the

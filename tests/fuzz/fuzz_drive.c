@@ -138,6 +138,25 @@ static void serial_noise(stream_t *s)
     }
 }
 
+/* Arms a session over the link and puts its token in front of the payload (the payload's
+ * tail is cut to make room); the new length. */
+static uint16_t arm_and_prefix(uint16_t *payload, uint16_t len)
+{
+    const uint16_t room = (uint16_t)(SXL_MAX_PAYLOAD - SXL_TOKEN_BYTES);
+    uint16_t bytes[SXL_MAX_FRAME];
+    const uint16_t n = sxl_encode(SXL_CMD_ARM, NULL, 0u, bytes, (uint16_t)SXL_MAX_FRAME);
+    uint16_t i;
+    for (i = 0u; i < n; i++) {
+        serve_byte(bytes[i]);
+    }
+    len = (len < room) ? len : room;
+    for (i = len; i > 0u; i--) {
+        payload[i - 1u + SXL_TOKEN_BYTES] = payload[i - 1u];
+    }
+    sxl_put_u32(payload, drive.link_token);
+    return (uint16_t)(len + SXL_TOKEN_BYTES);
+}
+
 static void serial_frame(stream_t *s)
 {
     static const uint16_t commands[] = {SXL_CMD_PING,
@@ -162,13 +181,16 @@ static void serial_frame(stream_t *s)
     const uint16_t cmd = (pick < 240u)   ? commands[pick % 14u]
                          : (pick < 248u) ? commission[pick % 4u]
                                          : take8(s);
-    const uint16_t len = (uint16_t)(take8(s) % (SXL_MAX_PAYLOAD + 1u));
+    uint16_t len = (uint16_t)(take8(s) % (SXL_MAX_PAYLOAD + 1u));
     uint16_t payload[SXL_MAX_PAYLOAD];
     uint16_t bytes[SXL_MAX_FRAME];
     uint16_t i;
     uint16_t n;
     for (i = 0u; i < len; i++) {
         payload[i] = take8(s);
+    }
+    if (SXL_ARMED_COMMAND(cmd)) { /* as the host tool sends it: ARM, then the token in front */
+        len = arm_and_prefix(payload, len);
     }
     n = sxl_encode(cmd, payload, len, bytes, (uint16_t)SXL_MAX_FRAME);
     for (i = 0u; i < n; i++) {

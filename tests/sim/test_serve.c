@@ -70,7 +70,7 @@ static void send_bytes(const uint16_t *b, uint16_t n)
 }
 
 /* One request and its reply within timeout_s; the reply's result byte is returned (or -1). */
-static int request(uint16_t cmd, const uint16_t *payload, uint16_t len, sxl_frame_t *reply)
+static int request_frame(uint16_t cmd, const uint16_t *payload, uint16_t len, sxl_frame_t *reply)
 {
     uint16_t frame[SXL_MAX_FRAME];
     const uint16_t n = sxl_encode(cmd, payload, len, frame, (uint16_t)SXL_MAX_FRAME);
@@ -86,6 +86,26 @@ static int request(uint16_t cmd, const uint16_t *payload, uint16_t len, sxl_fram
         }
     }
     return -1;
+}
+
+/* As the host tool sends it: a command that moves the motor in a session armed just before. */
+static int request(uint16_t cmd, const uint16_t *payload, uint16_t len, sxl_frame_t *reply)
+{
+    uint16_t armed[SXL_MAX_PAYLOAD];
+    uint16_t i;
+    if (!SXL_ARMED_COMMAND(cmd)) {
+        return request_frame(cmd, payload, len, reply);
+    }
+    if (request_frame(SXL_CMD_ARM, NULL, 0u, reply) != (int)SXL_OK) {
+        return -1;
+    }
+    for (i = 0u; i < SXL_TOKEN_BYTES; i++) {
+        armed[i] = reply->payload[1u + i];
+    }
+    for (i = 0u; i < len; i++) {
+        armed[SXL_TOKEN_BYTES + i] = payload[i];
+    }
+    return request_frame(cmd, armed, (uint16_t)(len + SXL_TOKEN_BYTES), reply);
 }
 
 static void status(sxl_frame_t *r) { assert_int_equal(request(SXL_CMD_GET_STATUS, NULL, 0, r), 0); }

@@ -31,7 +31,9 @@ def write_build(d, code_words, isr_words, from_flash):
                                "ramconsts": {"words": 4502, "load": ["FLASHA"],
                                              "run": ["RAML4L5"]},
                                ".ebss": {"words": 6901, "load": ["RAML6L7"],
-                                         "run": ["RAML6L7"]}},
+                                         "run": ["RAML6L7"]},
+                               ".text": {"words": 28000, "load": ["FLASHC", "FLASHB"],
+                                         "run": ["FLASHC", "FLASHB"]}},
                    "rts_in_ram": ["l_div28.asm.obj"], "boot_path": ["_c_int00", "main"],
                    "from_flash": from_flash, "code_factor": [1.0, 1.5], "data_factor": 1.5,
                    "ram_limit": 0.9}, f)
@@ -64,6 +66,8 @@ class TargetMemoryDoc(unittest.TestCase):
             self.assertIn("Boot path before the RAM copy (runs where it is loaded): `_c_int00`, "
                           "`main`.", text)
             self.assertIn("| 600 + 676 + 56 = 1332 words (26 % left; -fno-inline) |", text)
+            self.assertIn("All code of the float image: `.text` 28000 + `ramfuncs` 10237 = 38237 "
+                          "words, against 34816 words of SARAM", text)
             self.assertIn("| 600 + 744 + 56 = 1400 words (22 % left; -fno-inline) |", text)
             self.assertIn("Deepest paths (float, -fno-inline): background `main -> fw_startup`; "
                           "control interrupt `fw_adc_isr -> ctl_step`.", text)

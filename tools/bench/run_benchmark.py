@@ -295,11 +295,10 @@ def freestanding_sizes(root, work):
 
 
 def target_memory(root, work):
-    """Stack bound (background + nested ISR, tools/check_stack_bound.sh) and RAM budget
-    (tools/check_target_memory.sh) of the F28335 image, as CI runs them."""
+    """The F28335 image (tools/image_check.py) and its stack bound
+    (tools/check_stack_bound.sh), both run by tools/check_target_memory.sh as CI runs it."""
     out = os.path.join(work, "memory")
-    return (run([os.path.join(root, "tools", "check_stack_bound.sh"), out]) +
-            run([os.path.join(root, "tools", "check_target_memory.sh"), out])).strip().splitlines()
+    return run([os.path.join(root, "tools", "check_target_memory.sh"), out]).strip().splitlines()
 
 
 def machine():
@@ -509,15 +508,16 @@ def main():
     w("")
     w("## Stack and RAM of the F28335 image")
     w("")
-    w("`tools/check_stack_bound.sh` and `tools/check_target_memory.sh` (CI runs both and fails")
-    w("if anything does not fit): the stack bound - the deepest background path (from `main`,")
+    w("`tools/check_target_memory.sh` (CI runs it and fails if anything does not fit): the")
+    w("image as TI's linker would build it (tools/image_check.py: output sections, where they")
+    w("load and run, the use of every memory range, the boot path, the run-time library")
+    w("members in RAM), and the stack bound - the deepest background path (from `main`,")
     w("parameter builds included) plus the deepest control interrupt nested on top of it plus")
     w("the interrupt context, each function at its largest frame over three register-poor")
     w("proxies (Cortex-M0, AVR, i386) at -O2 and -fno-inline, in C28x words by the rule of")
-    w("docs/porting.md section 7 - against the stack the TI link reserves (20 % must be left);")
-    w("and the per-period code and tables the flash linker file copies to RAM, against L0..L3")
-    w("and L4..L7 (32-bit Arm proxy). No recursion and no variable-size frames anywhere, so the")
-    w("depth is bounded. The path entries are (C28x words, the proxy that set the frame):")
+    w("docs/porting.md section 7 - against the stack the TI link reserves (20 % must be left).")
+    w("No recursion and no variable-size frames anywhere, so the depth is bounded. The stack")
+    w("path entries are (C28x words, the proxy that set the frame):")
     w("")
     w("```")
     for line in memory:
