@@ -112,8 +112,10 @@ static void loop_row_start(const sim_run_t *rs, const plant_out_t *o, double t,
     row->psi_s = o->psi_s;
     row->tref = st->torque_ref_nm;
     row->psi_ref = st->flux_ref_wb;
-    row->vector = rs->applied_vector;
-    row->duty = rs->applied_duty;
+    /* the command in force, unless the outputs went off at this period's start (a trip: the
+     * plant runs the period with every switch open, whatever the last command was) */
+    row->vector = hal_sim_bus.forced_off ? 0 : rs->applied_vector;
+    row->duty = hal_sim_bus.forced_off ? 0.0 : rs->applied_duty;
 }
 
 /* A plant sample of the analysis window: metrics, fine.csv, observer. */
