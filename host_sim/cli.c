@@ -24,7 +24,7 @@ void sim_cli_usage(FILE *f)
         "  sixphase-sim run --controller {ddc,mptc49,mptc13} --scenario "
         "{steady,load-step,accel,reversal,commission,fault-<name>}\n"
         "                   [--lambda X] [--fs HZ] [--speed RPM] [--load NM] [--duration S]\n"
-        "                   [--arith {fixed,float}] [--seed N] [--out DIR]\n"
+        "                   [--arith {fixed,float}] [--seed N] [--out DIR [--out-limit-mb MB]]\n"
         "                   [--ddc-direction {flux-error,xy-table}] [--duty-levels N] "
         "[--ddc-torque-guard | --paper-ddc]\n"
         "                   [--delay-angle {period-start,mid-period}] "
@@ -67,6 +67,8 @@ void sim_cli_usage(FILE *f)
         "numbers are plain decimals (1500, -0.5, 2e-6); each option at most once\n"
         "--duration: 0.01 to 36000 s (10 h); memory stays flat, trace.csv grows by about 1.7 MB\n"
         "per simulated second at 10 kHz (--no-trace leaves it out)\n"
+        "--out-limit-mb: run and serve stop when their files in --out reach it (default 512 MB,\n"
+        "1 MB = 1e6 bytes; exit 1, the files kept up to there)\n"
         "fault scenarios (rated operation, the fault at 0.25 s; docs/faults.md):\n");
     {
         int k;
@@ -136,6 +138,7 @@ static const char *const open_models[] = {"resistor", "open", NULL};
 enum {
     G_QUIET = 1,
     G_OUT,
+    G_OUT_LIMIT,
     G_JOBS,
     G_CONTROLLER,
     G_SCENARIO,
@@ -207,6 +210,7 @@ static const opt_t options[] = {
     {"--quiet", OPT_SET_INT, OPT_RUN | OPT_REPRODUCE | OPT_SERVE, F(quiet), G_QUIET, 0.0, 0.0, 1,
      NULL},
     {"--out", OPT_DIRECTORY, OPT_RUN | OPT_REPRODUCE, F(cfg.out_dir), G_OUT, 0.0, 0.0, 0, NULL},
+    NUM("--out-limit-mb", cfg.out_limit_mb, G_OUT_LIMIT, 0.01, 1e6),
     {"--jobs", OPT_INTEGER, OPT_REPRODUCE, F(jobs), G_JOBS, 1.0, 64.0, 0, NULL},
     {"--rate", OPT_NUMBER, OPT_SERVE, F(serve_rate), G_PACING, 0.01, 1000.0, 0, NULL},
     {"--plot", OPT_SET_INT, OPT_RUN, F(plot), G_RUN_PLOT, 0.0, 0.0, 1, NULL},
@@ -601,6 +605,10 @@ static int check_combination(const sim_cli_t *o, const int *seen, unsigned where
     }
     if (where == OPT_RUN && !seen[G_SCENARIO]) {
         return cli_fail(err, len, "missing %s%s", "--scenario", "");
+    }
+    if (seen[G_OUT_LIMIT] && !c->out_dir) {
+        return cli_fail(err, len, "%s needs --out (it limits the files written there)%s",
+                        "--out-limit-mb", "");
     }
     if (o->plot && !c->out_dir) {
         return cli_fail(err, len, "--plot needs --out (the figure is drawn from trace.csv)%s%s", "",

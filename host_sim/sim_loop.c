@@ -223,6 +223,18 @@ int sim_loop_period(sim_run_t *rs, sim_result_t *r, long k)
     return 0;
 }
 
+int sim_loop_out_limit(const sim_run_t *rs, long k, char *err, size_t err_len)
+{
+    if (!rs->rec.limit_reached) {
+        return 0;
+    }
+    (void)snprintf(err, err_len,
+                   "the output files reached --out-limit-mb %g (MB) at %.4f s simulated: stopped "
+                   "there, the files end at the last whole row",
+                   rs->cfg->out_limit_mb, (double)k * rs->ts);
+    return -1;
+}
+
 int sim_loop_run(sim_run_t *rs, sim_result_t *r, char *err, size_t err_len)
 {
     const sim_plan_t *pl = &rs->plan;
@@ -236,6 +248,9 @@ int sim_loop_run(sim_run_t *rs, sim_result_t *r, char *err, size_t err_len)
     for (k = 0; k < rs->n_periods; k++) {
         if (sim_loop_period(rs, r, k) != 0) {
             (void)snprintf(err, err_len, "plant state diverged");
+            return -1;
+        }
+        if (sim_loop_out_limit(rs, k, err, err_len) != 0) {
             return -1;
         }
     }

@@ -534,6 +534,76 @@ static void test_executable_writes_nothing_on_bad_argument(void **state)
     (void)rmdir(dir);
 }
 
+static long file_size(const char *dir, const char *name, char *last)
+{
+    char path[700];
+    struct stat st;
+    FILE *f;
+    (void)snprintf(path, sizeof path, "%s/%s", dir, name);
+    if (stat(path, &st) != 0) {
+        return -1;
+    }
+    f = fopen(path, "r");
+    assert_non_null(f);
+    assert_int_equal(fseek(f, -1L, SEEK_END), 0);
+    *last = (char)fgetc(f);
+    fclose(f);
+    return (long)st.st_size;
+}
+
+/* --out-limit-mb: a run whose files would pass it stops at it in one line naming the limit, exit
+ * 1, the files kept up to the last whole row, no metrics.json; without --out it is refused. */
+static void test_run_stops_at_the_out_limit(void **state)
+{
+    char tmpl[] = "/tmp/sixphase-limit-XXXXXX";
+    char err[1024], last = 0;
+    const char *dir = mkdtemp(tmpl);
+    long trace, fine;
+    (void)state;
+    assert_non_null(dir);
+    {
+        const char *const a[] = {SIXPHASE_SIM_EXE,
+                                 "run",
+                                 "--controller",
+                                 "ddc",
+                                 "--scenario",
+                                 "steady",
+                                 "--duration",
+                                 "1",
+                                 "--out",
+                                 dir,
+                                 "--out-limit-mb",
+                                 "0.5",
+                                 NULL};
+        const int rc = run_exe(a, err, sizeof err);
+        print_message("exit %d, stderr: %s", rc, err);
+        assert_int_equal(rc, 1);
+        assert_non_null(strstr(err, "--out-limit-mb 0.5 (MB)"));
+        assert_true(strchr(err, '\n') && strchr(err, '\n')[1] == '\0'); /* one line */
+    }
+    trace = file_size(dir, "trace.csv", &last);
+    assert_true(last == '\n'); /* the last row whole */
+    fine = file_size(dir, "fine.csv", &last);
+    print_message("trace.csv %ld bytes, fine.csv %ld bytes\n", trace, fine);
+    assert_true(trace > 400000 && trace + fine <= 500000);
+    assert_true(file_size(dir, "metrics.json", &last) < 0);
+    {
+        const char *const a[] = {SIXPHASE_SIM_EXE,
+                                 "run",
+                                 "--controller",
+                                 "ddc",
+                                 "--scenario",
+                                 "steady",
+                                 "--out-limit-mb",
+                                 "5",
+                                 NULL};
+        assert_int_equal(run_exe(a, err, sizeof err), 2);
+        assert_non_null(strstr(err, "--out-limit-mb needs --out"));
+    }
+    (void)snprintf(err, sizeof err, "rm -rf %s", dir);
+    assert_int_equal(system(err), 0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -545,6 +615,7 @@ int main(void)
         cmocka_unit_test(test_serve_and_fault_time_arguments),
         cmocka_unit_test(test_open_phase_arguments),
         cmocka_unit_test(test_executable_writes_nothing_on_bad_argument),
+        cmocka_unit_test(test_run_stops_at_the_out_limit),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
