@@ -2,7 +2,6 @@
  * and stored the same way, and checked once against the others at the end. */
 #include "cli.h"
 
-#include <ctype.h>
 #include <errno.h>
 #include <math.h>
 #include <stddef.h>
@@ -10,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "decimal_arg.h"
 #include "motor_params_file.h"
 #include "scenario.h"
 #include "sxlink_commission.h"
@@ -300,66 +300,16 @@ static int cli_fail(char *err, size_t len, const char *fmt, const char *a, const
     return -1;
 }
 
-/* A plain decimal: optional sign, digits with an optional fraction, optional exponent.
- * No spaces, no hexadecimal, no inf or nan, nothing after it. */
-static int strict_decimal(const char *s, int integer_only)
-{
-    int digits = 0;
-    if (*s == '+' || *s == '-') {
-        s++;
-    }
-    while (isdigit((unsigned char)*s)) {
-        s++;
-        digits++;
-    }
-    if (!integer_only && *s == '.') {
-        s++;
-        while (isdigit((unsigned char)*s)) {
-            s++;
-            digits++;
-        }
-    }
-    if (digits == 0) {
-        return 0;
-    }
-    if (!integer_only && (*s == 'e' || *s == 'E')) {
-        int exp_digits = 0;
-        s++;
-        if (*s == '+' || *s == '-') {
-            s++;
-        }
-        while (isdigit((unsigned char)*s)) {
-            s++;
-            exp_digits++;
-        }
-        if (exp_digits == 0) {
-            return 0;
-        }
-    }
-    return *s == '\0';
-}
-
 static int parse_number(const char *s, double lo, double hi, double *out)
 {
-    char *end;
-    double v;
-    if (!s || !strict_decimal(s, 0)) {
-        return -1;
-    }
-    errno = 0;
-    v = strtod(s, &end);
-    if (errno != 0 || *end != '\0' || !isfinite(v) || v < lo || v > hi) {
-        return -1;
-    }
-    *out = v;
-    return 0;
+    return decimal_parse(s, 0, lo, hi, out);
 }
 
 static int parse_seed(const char *s, uint64_t *out)
 {
     char *end;
     unsigned long long v;
-    if (!s || !strict_decimal(s, 1) || s[0] == '-' || s[0] == '+') {
+    if (!decimal_is_plain(s, 1) || s[0] == '-' || s[0] == '+') {
         return -1;
     }
     errno = 0;
@@ -436,7 +386,7 @@ static int apply_option(const opt_t *opt, const char *v, sim_cli_t *o, char *err
         }
         return 2;
     case OPT_INTEGER:
-        if (!v || !strict_decimal(v, 1) || parse_number(v, opt->lo, opt->hi, &x) != 0) {
+        if (decimal_parse(v, 1, opt->lo, opt->hi, &x) != 0) {
             return cli_fail(err, len, "bad value for %s: '%s'", opt->name, v);
         }
         *(int *)(void *)(base + opt->field) = (int)x;

@@ -102,7 +102,6 @@ static int cap_parse_trigger(const char *t, uint16_t *setup)
     const char *sig = strchr(t, ':');
     const char *lvl = sig ? strchr(sig + 1, ':') : NULL;
     int s;
-    char *end = NULL;
     double level;
     if (strcmp(t, "immediate") == 0 || strcmp(t, "fault") == 0) {
         setup[SXL_CA_TRIGGER] = (t[0] == 'i') ? 0u : 3u;
@@ -118,9 +117,7 @@ static int cap_parse_trigger(const char *t, uint16_t *setup)
     if (s < 0) {
         return cap_unknown_signal(sig + 1, (size_t)(lvl - sig - 1));
     }
-    level = strtod(lvl + 1, &end);
-    if (*end != '\0' || end == lvl + 1 || !isfinite(level) ||
-        fabs(level / cap_scale[s]) > 32767.0) {
+    if (!parse_double(lvl + 1, -32767.0 * cap_scale[s], 32767.0 * cap_scale[s], &level)) {
         return fail(EXIT_USAGE, "bad trigger signal or level in '%s'", t);
     }
     setup[SXL_CA_TRIGGER] = (t[0] == 'r') ? 1u : 2u;

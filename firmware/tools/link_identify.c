@@ -75,7 +75,6 @@ static int identify_parse(int argc, char **argv, identify_request_t *r)
     for (i = 0; i < argc; i++) {
         const char *v = (i + 1 < argc) ? argv[i + 1] : NULL;
         double x;
-        char *end = NULL;
         if (strcmp(argv[i], "--apply") == 0) {
             r->apply = 1;
             continue;
@@ -95,8 +94,7 @@ static int identify_parse(int argc, char **argv, identify_request_t *r)
                             v);
             }
         } else if (strcmp(argv[i], "--current") == 0) {
-            x = strtod(v, &end);
-            if (end == v || *end != '\0' || !(x >= 0.1 && x <= 0.8)) {
+            if (!parse_double(v, 0.1, 0.8, &x)) {
                 return fail(EXIT_USAGE,
                             "identify: bad --current '%s' (a fraction of rated, "
                             "0.1..0.8)",
@@ -104,8 +102,7 @@ static int identify_parse(int argc, char **argv, identify_request_t *r)
             }
             r->permille = (uint16_t)floor(x * 1000.0 + 0.5);
         } else if (strcmp(argv[i], "--wait") == 0) {
-            x = strtod(v, &end);
-            if (end == v || *end != '\0' || !(x >= 1.0 && x <= 3600.0)) {
+            if (!parse_double(v, 1.0, 3600.0, &x)) {
                 return fail(EXIT_USAGE, "identify: bad --wait '%s' (1..3600 s)", v);
             }
             r->wait_s = x;

@@ -7,6 +7,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "decimal_arg.h"
+
 #define MP_NAME(id, name, text, unit, lo, hi, integer) name,
 #define MP_TEXT(id, name, text, unit, lo, hi, integer) text,
 #define MP_UNIT(id, name, text, unit, lo, hi, integer) unit,
@@ -39,45 +41,20 @@ void motor_params_set(motor_params_t *m, motor_param_t id, double value, double 
     m->note[id] = note;
 }
 
-/* A plain decimal (digits, optional fraction and exponent) with an optional f suffix, or for
- * an integer entry digits with an optional u suffix; nothing else. */
+/* A plain decimal without a sign (decimal_arg.h: no leading zero, no hexadecimal) with an
+ * optional f suffix, or for an integer entry digits with an optional u suffix; nothing else. */
 static int mp_parse_value(const char *s, int integer, double *out)
 {
     char buf[64];
     const size_t n = strlen(s);
-    size_t i = 0, digits = 0;
-    char *end = NULL;
-    if (n == 0u || n >= sizeof buf) {
+    if (n == 0u || n >= sizeof buf || s[0] == '+' || s[0] == '-') {
         return -1;
     }
     memcpy(buf, s, n + 1u);
     if (buf[n - 1u] == (integer ? 'u' : 'f')) {
         buf[n - 1u] = '\0';
     }
-    for (; isdigit((unsigned char)buf[i]); i++) {
-        digits++;
-    }
-    if (!integer && buf[i] == '.') {
-        for (i++; isdigit((unsigned char)buf[i]); i++) {
-            digits++;
-        }
-    }
-    if (!integer && digits > 0u && (buf[i] == 'e' || buf[i] == 'E')) {
-        size_t exp_digits = 0;
-        i += (buf[i + 1u] == '-' || buf[i + 1u] == '+') ? 2u : 1u;
-        for (; isdigit((unsigned char)buf[i]); i++) {
-            exp_digits++;
-        }
-        if (exp_digits == 0u) {
-            return -1;
-        }
-    }
-    if (digits == 0u || buf[i] != '\0') {
-        return -1;
-    }
-    errno = 0;
-    *out = strtod(buf, &end);
-    return (errno == 0 && end && *end == '\0' && isfinite(*out)) ? 0 : -1;
+    return decimal_parse(buf, integer, -HUGE_VAL, HUGE_VAL, out);
 }
 
 static int mp_fail(char *err, size_t len, const char *path, int line, const char *why)

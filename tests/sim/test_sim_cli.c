@@ -257,6 +257,9 @@ static const bad_case_t bad_cases[] = {
     {{"--controller", "ddc", "--scenario", "steady", "--lambda", "0x0.1"}, 6, "'0x0.1'"},
     {{"--controller", "ddc", "--scenario", "steady", "--lambda", " 20"}, 6, "' 20'"},
     {{"--controller", "ddc", "--scenario", "steady", "--lambda", "20 "}, 6, "'20 '"},
+    /* a leading zero (octal to a C reader): refused, as sixphase-link refuses it (decimal_arg.h) */
+    {{"--controller", "ddc", "--scenario", "steady", "--lambda", "010"}, 6, "'010'"},
+    {{"--controller", "ddc", "--scenario", "steady", "--seed", "007"}, 6, "'007'"},
     {{"--controller", "ddc", "--scenario", "steady", "--lambda", "nan"}, 6, "'nan'"},
     {{"--controller", "ddc", "--scenario", "steady", "--duty-levels", "6.0"}, 6, "'6.0'"},
     {{"--controller", "ddc", "--scenario", "steady", "--lambda", "20", "--lambda", "30"},
