@@ -215,6 +215,31 @@ static void test_ctl_params_file(void **state)
     assert_non_null(strstr(err, "cannot read"));
 }
 
+/* A NUL byte in a motor parameter file is refused: it hid the rest of its line from the reader
+ * but not from the C compiler, so here the compiler reads R 9 ohm as part of a comment opened
+ * after the NUL while the reader took it (and a value with a leading zero is refused too). */
+static void test_ctl_params_file_nul_refused(void **state)
+{
+    static const char hidden[] = "/* ok */\0 /*\n#define SIXPHASE_MOTOR_R_OHM 9.0f\n/* */\n"
+                                 "#define SIXPHASE_MOTOR_LD_H 0.03f\n";
+    const char *path = "/tmp/sixphase-cli-params-nul.h";
+    const char *args[] = {"--controller", "ddc", "--scenario", "steady", "--ctl-params", path};
+    sim_cli_t o;
+    char err[256] = "";
+    FILE *f = fopen(path, "wb");
+    (void)state;
+    assert_non_null(f);
+    assert_int_equal(fwrite(hidden, 1, sizeof hidden - 1, f), sizeof hidden - 1);
+    assert_int_equal(fclose(f), 0);
+    assert_int_not_equal(parse(args, 6, &o, err, sizeof err), 0);
+    print_message("%s\n", err);
+    assert_non_null(strstr(err, "line 1: a NUL byte"));
+    write_file(path, "#define SIXPHASE_MOTOR_POLE_PAIRS 03u\n");
+    assert_int_not_equal(parse(args, 6, &o, err, sizeof err), 0);
+    assert_non_null(strstr(err, "line 1"));
+    assert_int_equal(remove(path), 0);
+}
+
 typedef struct {
     const char *args[8];
     int n;
@@ -613,6 +638,7 @@ int main(void)
         cmocka_unit_test(test_good_arguments),
         cmocka_unit_test(test_plant_and_controller_apart),
         cmocka_unit_test(test_ctl_params_file),
+        cmocka_unit_test(test_ctl_params_file_nul_refused),
         cmocka_unit_test(test_bad_arguments_rejected),
         cmocka_unit_test(test_open_phase_option_combinations),
         cmocka_unit_test(test_serve_and_fault_time_arguments),
