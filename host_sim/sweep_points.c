@@ -189,7 +189,7 @@ static int point_check(const sweep_grid_t *g, long p, const char *binary_id, cha
         return 0;
     }
     if (!sweep_table_metrics_whole(at)) {
-        (void)snprintf(err, len, "no result: the metrics in %s are cut short", path);
+        (void)snprintf(err, len, "no result: the metrics in %s are cut short or unreadable", path);
         return 0;
     }
     *json = at;
