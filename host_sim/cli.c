@@ -2,7 +2,6 @@
  * and stored the same way, and checked once against the others at the end. */
 #include "cli.h"
 
-#include <ctype.h>
 #include <errno.h>
 #include <math.h>
 #include <stddef.h>
@@ -10,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "decimal_arg.h"
 #include "motor_params_file.h"
 #include "scenario.h"
 #include "sxlink_commission.h"
@@ -24,7 +24,7 @@ void sim_cli_usage(FILE *f)
         "  sixphase-sim run --controller {ddc,mptc49,mptc13} --scenario "
         "{steady,load-step,accel,reversal,commission,fault-<name>}\n"
         "                   [--lambda X] [--fs HZ] [--speed RPM] [--load NM] [--duration S]\n"
-        "                   [--arith {fixed,float}] [--seed N] [--out DIR]\n"
+        "                   [--arith {fixed,float}] [--seed N] [--out DIR [--out-limit-mb MB]]\n"
         "                   [--ddc-direction {flux-error,xy-table}] [--duty-levels N] "
         "[--ddc-torque-guard | --paper-ddc]\n"
         "                   [--delay-angle {period-start,mid-period}] "
@@ -67,6 +67,8 @@ void sim_cli_usage(FILE *f)
         "numbers are plain decimals (1500, -0.5, 2e-6); each option at most once\n"
         "--duration: 0.01 to 36000 s (10 h); memory stays flat, trace.csv grows by about 1.7 MB\n"
         "per simulated second at 10 kHz (--no-trace leaves it out)\n"
+        "--out-limit-mb: run and serve stop when their files in --out reach it (default 512 MB,\n"
+        "1 MB = 1e6 bytes; exit 1, the files kept up to there)\n"
         "fault scenarios (rated operation, the fault at 0.25 s; docs/faults.md):\n");
     {
         int k;
@@ -136,6 +138,7 @@ static const char *const open_models[] = {"resistor", "open", NULL};
 enum {
     G_QUIET = 1,
     G_OUT,
+    G_OUT_LIMIT,
     G_JOBS,
     G_CONTROLLER,
     G_SCENARIO,
@@ -207,6 +210,7 @@ static const opt_t options[] = {
     {"--quiet", OPT_SET_INT, OPT_RUN | OPT_REPRODUCE | OPT_SERVE, F(quiet), G_QUIET, 0.0, 0.0, 1,
      NULL},
     {"--out", OPT_DIRECTORY, OPT_RUN | OPT_REPRODUCE, F(cfg.out_dir), G_OUT, 0.0, 0.0, 0, NULL},
+    NUM("--out-limit-mb", cfg.out_limit_mb, G_OUT_LIMIT, 0.01, 1e6),
     {"--jobs", OPT_INTEGER, OPT_REPRODUCE, F(jobs), G_JOBS, 1.0, 64.0, 0, NULL},
     {"--rate", OPT_NUMBER, OPT_SERVE, F(serve_rate), G_PACING, 0.01, 1000.0, 0, NULL},
     {"--plot", OPT_SET_INT, OPT_RUN, F(plot), G_RUN_PLOT, 0.0, 0.0, 1, NULL},
@@ -296,66 +300,16 @@ static int cli_fail(char *err, size_t len, const char *fmt, const char *a, const
     return -1;
 }
 
-/* A plain decimal: optional sign, digits with an optional fraction, optional exponent.
- * No spaces, no hexadecimal, no inf or nan, nothing after it. */
-static int strict_decimal(const char *s, int integer_only)
-{
-    int digits = 0;
-    if (*s == '+' || *s == '-') {
-        s++;
-    }
-    while (isdigit((unsigned char)*s)) {
-        s++;
-        digits++;
-    }
-    if (!integer_only && *s == '.') {
-        s++;
-        while (isdigit((unsigned char)*s)) {
-            s++;
-            digits++;
-        }
-    }
-    if (digits == 0) {
-        return 0;
-    }
-    if (!integer_only && (*s == 'e' || *s == 'E')) {
-        int exp_digits = 0;
-        s++;
-        if (*s == '+' || *s == '-') {
-            s++;
-        }
-        while (isdigit((unsigned char)*s)) {
-            s++;
-            exp_digits++;
-        }
-        if (exp_digits == 0) {
-            return 0;
-        }
-    }
-    return *s == '\0';
-}
-
 static int parse_number(const char *s, double lo, double hi, double *out)
 {
-    char *end;
-    double v;
-    if (!s || !strict_decimal(s, 0)) {
-        return -1;
-    }
-    errno = 0;
-    v = strtod(s, &end);
-    if (errno != 0 || *end != '\0' || !isfinite(v) || v < lo || v > hi) {
-        return -1;
-    }
-    *out = v;
-    return 0;
+    return decimal_parse(s, 0, lo, hi, out);
 }
 
 static int parse_seed(const char *s, uint64_t *out)
 {
     char *end;
     unsigned long long v;
-    if (!s || !strict_decimal(s, 1) || s[0] == '-' || s[0] == '+') {
+    if (!decimal_is_plain(s, 1) || s[0] == '-' || s[0] == '+') {
         return -1;
     }
     errno = 0;
@@ -432,7 +386,7 @@ static int apply_option(const opt_t *opt, const char *v, sim_cli_t *o, char *err
         }
         return 2;
     case OPT_INTEGER:
-        if (!v || !strict_decimal(v, 1) || parse_number(v, opt->lo, opt->hi, &x) != 0) {
+        if (decimal_parse(v, 1, opt->lo, opt->hi, &x) != 0) {
             return cli_fail(err, len, "bad value for %s: '%s'", opt->name, v);
         }
         *(int *)(void *)(base + opt->field) = (int)x;
@@ -601,6 +555,10 @@ static int check_combination(const sim_cli_t *o, const int *seen, unsigned where
     }
     if (where == OPT_RUN && !seen[G_SCENARIO]) {
         return cli_fail(err, len, "missing %s%s", "--scenario", "");
+    }
+    if (seen[G_OUT_LIMIT] && !c->out_dir) {
+        return cli_fail(err, len, "%s needs --out (it limits the files written there)%s",
+                        "--out-limit-mb", "");
     }
     if (o->plot && !c->out_dir) {
         return cli_fail(err, len, "--plot needs --out (the figure is drawn from trace.csv)%s%s", "",

@@ -56,12 +56,16 @@ static int csv_file_close(sim_csv_file_t *cf)
     return rc;
 }
 
-int sim_recorder_open(sim_recorder_t *r, const char *dir, bool trace, bool fine, char *err,
-                      size_t err_len)
+int sim_recorder_open(sim_recorder_t *r, const char *dir, bool trace, bool fine, double limit_mb,
+                      char *err, size_t err_len)
 {
     r->trace.f = r->fine.f = NULL;
     r->trace_on = dir != NULL && trace;
     r->fine_on = dir != NULL && fine;
+    r->limit_bytes = limit_mb * 1e6;
+    r->bytes = (double)((r->trace_on ? sizeof trace_header - 1u : 0u) +
+                        (r->fine_on ? sizeof fine_header - 1u : 0u));
+    r->limit_reached = false;
     if (r->trace_on && csv_file_open(&r->trace, dir, "trace.csv", trace_header) != 0) {
         (void)snprintf(err, err_len, "cannot write %s: %s", r->trace.path, strerror(errno));
         return -1;
@@ -121,19 +125,31 @@ char *sim_fine_row_text(char *out, const sim_fine_row_t *row)
     return out;
 }
 
+/* Takes the row written at start into cf's buffer when it fits under the limit. */
+static void recorder_take(sim_recorder_t *r, sim_csv_file_t *cf, const char *start, const char *end)
+{
+    const double n = (double)(end - start);
+    if (r->limit_reached || r->bytes + n > r->limit_bytes) {
+        r->limit_reached = true; /* the files end at the last whole row before the limit */
+        return;
+    }
+    r->bytes += n;
+    cf->used += (size_t)(end - start);
+}
+
 void sim_recorder_trace(sim_recorder_t *r, const sim_trace_row_t *row)
 {
-    if (r->trace_on) {
+    if (r->trace_on && !r->limit_reached) {
         char *start = csv_file_room(&r->trace);
-        r->trace.used += (size_t)(sim_trace_row_text(start, row) - start);
+        recorder_take(r, &r->trace, start, sim_trace_row_text(start, row));
     }
 }
 
 void sim_recorder_fine(sim_recorder_t *r, const sim_fine_row_t *row)
 {
-    if (r->fine_on) {
+    if (r->fine_on && !r->limit_reached) {
         char *start = csv_file_room(&r->fine);
-        r->fine.used += (size_t)(sim_fine_row_text(start, row) - start);
+        recorder_take(r, &r->fine, start, sim_fine_row_text(start, row));
     }
 }
 

@@ -41,12 +41,16 @@ typedef struct {
 typedef struct {
     sim_csv_file_t trace, fine;
     bool trace_on, fine_on;
+    double limit_bytes; /* both files together */
+    double bytes;       /* written so far (headers and whole rows) */
+    bool limit_reached; /* a row did not fit: nothing more is written */
 } sim_recorder_t;
 
-/* Creates the files that are on (their headers written); nothing when dir is NULL. 0 on
- * success, else a one-line message in err. */
-int sim_recorder_open(sim_recorder_t *r, const char *dir, bool trace, bool fine, char *err,
-                      size_t err_len);
+/* Creates the files that are on (their headers written); nothing when dir is NULL. Together
+ * they stop at limit_mb (1e6 bytes): the row that would pass it and every later one are left
+ * out, and limit_reached is set. 0 on success, else a one-line message in err. */
+int sim_recorder_open(sim_recorder_t *r, const char *dir, bool trace, bool fine, double limit_mb,
+                      char *err, size_t err_len);
 
 void sim_recorder_trace(sim_recorder_t *r, const sim_trace_row_t *row);
 void sim_recorder_fine(sim_recorder_t *r, const sim_fine_row_t *row);

@@ -80,6 +80,7 @@ void sim_config_default(sim_config_t *c)
     c->commission_permille = SXL_COMM_CURRENT_DEFAULT_PERMILLE;
     c->out_dir = NULL;
     c->write_trace = true;
+    c->out_limit_mb = SIM_DEFAULT_OUT_LIMIT_MB;
     c->write_fine = true;
     c->fine_rate_hz = SIM_FINE_RATE_HZ;
     c->observer = NULL;

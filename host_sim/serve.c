@@ -167,12 +167,14 @@ static void serve_linger(const serve_line_t *l)
     }
 }
 
-/* The periods until the duration, a signal or the host's shutdown (the stop's reason in
- * *why); 0, or 1 when the plant diverged. */
+/* The periods until the duration, a signal, the host's shutdown (the stop's reason in *why) or
+ * the output files' size limit; 0, or 1 when the plant diverged or the limit was reached (its
+ * one-line message printed). */
 static int serve_loop(sim_run_t *rs, serve_line_t *line, const sim_serve_options_t *o,
                       long *periods, const char **why)
 {
     sim_result_t r;
+    char err[300];
     const double wall0 = sim_wall_now();
     long k;
     memset(&r, 0, sizeof r);
@@ -191,6 +193,11 @@ static int serve_loop(sim_run_t *rs, serve_line_t *line, const sim_serve_options
         }
         if (sim_loop_period(rs, &r, k) != 0) {
             fprintf(stderr, "sixphase-sim: plant state diverged at %.4f s\n", (double)k * rs->ts);
+            return 1;
+        }
+        if (sim_loop_out_limit(rs, k, err, sizeof err) != 0) {
+            fprintf(stderr, "sixphase-sim: %s\n", err);
+            *periods = k + 1;
             return 1;
         }
         serve_line_period(line);

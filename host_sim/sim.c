@@ -80,6 +80,10 @@ int sim_run(const sim_config_t *c, sim_result_t *r, char *err, size_t err_len)
         sim_result_fill(&rs, r);
         rc = sim_finish_files(&rs, r, err, err_len);
     }
+    if (rc != 0 && rs.rec.limit_reached) {
+        char close_err[64]; /* the files up to the limit are kept, flushed and closed */
+        (void)sim_recorder_close(&rs.rec, close_err, sizeof close_err);
+    }
     sim_teardown(&rs, rc == 0);
     return rc;
 }

@@ -81,6 +81,7 @@ typedef struct {
     const char *out_dir; /* NULL: write nothing */
     bool write_trace;
     bool write_fine;
+    double out_limit_mb; /* trace.csv and fine.csv together stop at this size (MB, 1e6 bytes) */
     const struct sim_observer *observer; /* NULL: none (tests watch a run through it) */
 } sim_config_t;
 
@@ -89,6 +90,9 @@ typedef struct {
 /* Longest run: 10 h of simulated time (at 10 kHz, 3.6e8 periods; memory does not grow with the
  * duration, trace.csv does: about 1.7 MB per simulated second at 10 kHz). */
 #define SIM_MAX_DURATION_S 36000.0
+/* The output files' default size limit: a 10 h run's trace would be about 61 GB, a `serve --fast`
+ * session writes about 116 MB/s; 512 MB is about 300 s of a run's trace. */
+#define SIM_DEFAULT_OUT_LIMIT_MB 512.0
 
 /* What the inverter applied in one control period, to the plant as it then was. */
 typedef struct {

@@ -112,8 +112,10 @@ static void loop_row_start(const sim_run_t *rs, const plant_out_t *o, double t,
     row->psi_s = o->psi_s;
     row->tref = st->torque_ref_nm;
     row->psi_ref = st->flux_ref_wb;
-    row->vector = rs->applied_vector;
-    row->duty = rs->applied_duty;
+    /* the command in force, unless the outputs went off at this period's start (a trip: the
+     * plant runs the period with every switch open, whatever the last command was) */
+    row->vector = hal_sim_bus.forced_off ? 0 : rs->applied_vector;
+    row->duty = hal_sim_bus.forced_off ? 0.0 : rs->applied_duty;
 }
 
 /* A plant sample of the analysis window: metrics, fine.csv, observer. */
@@ -221,6 +223,18 @@ int sim_loop_period(sim_run_t *rs, sim_result_t *r, long k)
     return 0;
 }
 
+int sim_loop_out_limit(const sim_run_t *rs, long k, char *err, size_t err_len)
+{
+    if (!rs->rec.limit_reached) {
+        return 0;
+    }
+    (void)snprintf(err, err_len,
+                   "the output files reached --out-limit-mb %g (MB) at %.4f s simulated: stopped "
+                   "there, the files end at the last whole row",
+                   rs->cfg->out_limit_mb, (double)k * rs->ts);
+    return -1;
+}
+
 int sim_loop_run(sim_run_t *rs, sim_result_t *r, char *err, size_t err_len)
 {
     const sim_plan_t *pl = &rs->plan;
@@ -234,6 +248,9 @@ int sim_loop_run(sim_run_t *rs, sim_result_t *r, char *err, size_t err_len)
     for (k = 0; k < rs->n_periods; k++) {
         if (sim_loop_period(rs, r, k) != 0) {
             (void)snprintf(err, err_len, "plant state diverged");
+            return -1;
+        }
+        if (sim_loop_out_limit(rs, k, err, err_len) != 0) {
             return -1;
         }
     }

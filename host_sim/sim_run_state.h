@@ -64,6 +64,10 @@ void sim_teardown(sim_run_t *rs, bool ok);
  * recorder and metrics); -1 when the plant diverged. */
 int sim_loop_period(sim_run_t *rs, sim_result_t *r, long k);
 
+/* After period k: 0, or -1 with a one-line message when the output files reached their size
+ * limit (the run or session stops there; the files end at the last whole row). */
+int sim_loop_out_limit(const sim_run_t *rs, long k, char *err, size_t err_len);
+
 /* The commissioning scenario after the calibration: the sequence until the drive leaves
  * COMMISSION, its results into r (sim_commission.c). */
 int sim_commission_loop(sim_run_t *rs, sim_result_t *r, char *err, size_t err_len);

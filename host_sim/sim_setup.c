@@ -164,7 +164,8 @@ int sim_setup(sim_run_t *rs, const sim_config_t *c, char *err, size_t err_len)
             return setup_fail(err, err_len, "out of memory");
         }
     }
-    if (sim_recorder_open(&rs->rec, c->out_dir, c->write_trace, c->write_fine, err, err_len) != 0 ||
+    if (sim_recorder_open(&rs->rec, c->out_dir, c->write_trace, c->write_fine, c->out_limit_mb, err,
+                          err_len) != 0 ||
         setup_drive(rs, err, err_len) != 0) {
         return -1;
     }

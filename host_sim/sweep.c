@@ -21,7 +21,8 @@
 typedef struct {
     const sweep_grid_t *grid;
     const char *binary_id;
-    double t0; /* wall clock at the start, for the time left */
+    double t0;   /* wall clock at the start, for the time left */
+    int unsaved; /* points whose file could not be written */
 } sweep_progress_t;
 
 static double sweep_now(void)
@@ -35,7 +36,11 @@ static void sweep_done(void *ctx, const sim_case_t *c, int done, int total)
 {
     sweep_progress_t *pr = (sweep_progress_t *)ctx;
     const long p = strtol(c->name + 1, NULL, 10);
-    sweep_point_save(pr->grid, pr->binary_id, p, c);
+    char err[1400];
+    if (sweep_point_save(pr->grid, pr->binary_id, p, c, err, sizeof err) != 0) {
+        fprintf(stderr, "%ssixphase-sim: %s\n", isatty(2) ? "\n" : "", err);
+        pr->unsaved++;
+    }
     if (!pr->grid->quiet && isatty(2)) {
         const double el = sweep_now() - pr->t0;
         fprintf(stderr, "\rsweep: %d of %d points run (%.0f %%), about %.0f s left   ", done, total,
@@ -67,7 +72,8 @@ static int sweep_configure(const sweep_grid_t *g, long points, sim_case_t *cases
     return 0;
 }
 
-/* Runs the points no earlier sweep of this binary finished; returns how many failed. */
+/* Runs the points no earlier sweep of this binary finished; returns how many failed or could
+ * not be saved. */
 static int sweep_run_missing(const sweep_grid_t *g, long points, sim_case_t *cases, long *resumed)
 {
     sim_case_t *run;
@@ -93,15 +99,16 @@ static int sweep_run_missing(const sweep_grid_t *g, long points, sim_case_t *cas
     pr.grid = g;
     pr.binary_id = binary_id;
     pr.t0 = sweep_now();
+    pr.unsaved = 0;
     failed = (n > 0) ? sim_batch_run(run, 0, n, g->jobs, sweep_done, &pr) : 0;
     sim_batch_free(run, n);
-    return failed;
+    return failed + pr.unsaved;
 }
 
 /* The grid, its size and the output directory; 0, or the exit status. */
 static int sweep_prepare(int argc, char **argv, sweep_grid_t *g, long *points)
 {
-    char err[1400] = "", dir[1300];
+    char err[1400] = "";
     if (sweep_grid_parse(argc, argv, g, err, sizeof err) != 0) {
         fprintf(stderr, "sixphase-sim: %s\n", err);
         return 2;
@@ -116,8 +123,10 @@ static int sweep_prepare(int argc, char **argv, sweep_grid_t *g, long *points)
         fprintf(stderr, "sixphase-sim: %s\n", err);
         return 1;
     }
-    (void)snprintf(dir, sizeof dir, "%s/points", g->out);
-    (void)mkdir(dir, 0777);
+    if (sweep_points_prepare(g, err, sizeof err) != 0) {
+        fprintf(stderr, "sixphase-sim: %s\n", err);
+        return 1;
+    }
     return 0;
 }
 

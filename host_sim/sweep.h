@@ -14,9 +14,9 @@
  * the run's metrics.json holds but the host timings (sweep_table.h), and the point's outcome
  * (ok, fault: the drive stopped in a fault, failed: the run did not finish). DIR/points/ keeps
  * one file per finished point (sweep_points.h), so an interrupted sweep rerun by the same
- * binary with the same arguments runs only the missing points. DIR/plots/ (plot_sweep.py):
- * each metric against the first swept option and the trade-off of THD and torque ripple
- * against switching frequency with the Pareto front, from the ok points only. At most
+ * binary with the same arguments runs only the missing or damaged points. DIR/plots/
+ * (plot_sweep.py): each metric against the first swept option and the trade-off of THD and torque
+ * ripple against switching frequency with the Pareto front, from the ok points only. At most
  * SWEEP_MAX_POINTS points without --force. A summary line on stderr counts the points of each
  * outcome and names the faults.
  */

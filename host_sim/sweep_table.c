@@ -90,9 +90,10 @@ static int flat_members(flat_t *f, const char *prefix, int object)
         }
         if (object) {
             flat_space(f);
-            if (*f->s++ != ':') {
+            if (*f->s != ':') { /* not *f->s++: a cut text must not step past its end */
                 return -1;
             }
+            f->s++;
             (void)snprintf(key, sizeof key, "%s%s%s", prefix, prefix[0] ? "_" : "", name);
         } else {
             (void)snprintf(key, sizeof key, "%s_%c", prefix, (char)('A' + k % 26));
@@ -105,9 +106,10 @@ static int flat_members(flat_t *f, const char *prefix, int object)
             f->s++;
             return 0;
         }
-        if (*f->s++ != ',') {
+        if (*f->s != ',') {
             return -1;
         }
+        f->s++;
     }
 }
 
@@ -158,6 +160,21 @@ static int flat_value(flat_t *f, const char *key)
     }
     f->row->n++;
     return 0;
+}
+
+int sweep_table_metrics_whole(const char *json)
+{
+    static table_row_t scratch;
+    flat_t f;
+    scratch.n = 0;
+    f.s = json;
+    f.row = &scratch;
+    flat_space(&f);
+    if (*f.s != '{' || flat_members(&f, "", 1) != 0) {
+        return 0;
+    }
+    flat_space(&f);
+    return *f.s == '\0';
 }
 
 /* ---- one point's row ---- */

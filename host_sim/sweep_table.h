@@ -25,6 +25,10 @@ typedef struct {
     char faults[256]; /* the faults that stopped points, with their counts: "OVERCURRENT 30" */
 } sweep_summary_t;
 
+/* 1 when json is one whole metrics object the table can flatten (nothing but white space
+ * after it), 0 when it is cut short or malformed. */
+int sweep_table_metrics_whole(const char *json);
+
 /* Writes both tables; 0, or -1 when they cannot be written. */
 int sweep_table_write(const sweep_grid_t *g, long points, sweep_summary_t *sum);
 

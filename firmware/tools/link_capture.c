@@ -102,7 +102,6 @@ static int cap_parse_trigger(const char *t, uint16_t *setup)
     const char *sig = strchr(t, ':');
     const char *lvl = sig ? strchr(sig + 1, ':') : NULL;
     int s;
-    char *end = NULL;
     double level;
     if (strcmp(t, "immediate") == 0 || strcmp(t, "fault") == 0) {
         setup[SXL_CA_TRIGGER] = (t[0] == 'i') ? 0u : 3u;
@@ -118,9 +117,7 @@ static int cap_parse_trigger(const char *t, uint16_t *setup)
     if (s < 0) {
         return cap_unknown_signal(sig + 1, (size_t)(lvl - sig - 1));
     }
-    level = strtod(lvl + 1, &end);
-    if (*end != '\0' || end == lvl + 1 || !isfinite(level) ||
-        fabs(level / cap_scale[s]) > 32767.0) {
+    if (!parse_double(lvl + 1, -32767.0 * cap_scale[s], 32767.0 * cap_scale[s], &level)) {
         return fail(EXIT_USAGE, "bad trigger signal or level in '%s'", t);
     }
     setup[SXL_CA_TRIGGER] = (t[0] == 'r') ? 1u : 2u;
@@ -193,6 +190,36 @@ static int cap_parse(int argc, char **argv, capture_request_t *q)
     return 0;
 }
 
+/* A status reply checked before any of it is used: its result, its length, and the setup it
+ * reports against the one asked for (a drive's answer is not trusted). */
+static int cap_status_valid(const capture_request_t *q, const sxl_frame_t *st)
+{
+    const uint16_t *s = &st->payload[1];
+    int k;
+    if (st->payload[0] != SXL_OK) {
+        return fail(EXIT_IO, "capture status: %s", result_name(st->payload[0]));
+    }
+    if (st->len < 1u + SXL_CS_SIZE) {
+        return fail(EXIT_IO, "capture status: short reply (%u bytes, %u expected)",
+                    (unsigned)st->len, 1u + SXL_CS_SIZE);
+    }
+    if (s[SXL_CS_STATE] != 3u) {
+        return 0; /* not done yet: only the state is read */
+    }
+    for (k = 0; k < q->n_channels && s[SXL_CS_CHANNELS] == (uint16_t)q->n_channels; k++) {
+        if (s[SXL_CS_SIGNAL + (uint16_t)k] != (uint16_t)q->signal[k]) {
+            break;
+        }
+    }
+    if (k != q->n_channels || sxl_get_u16(&s[SXL_CS_DECIMATION]) == 0u ||
+        sxl_get_u16(&s[SXL_CS_COUNT]) > CAP_MAX_SAMPLES ||
+        sxl_get_u16(&s[SXL_CS_TRIGGER]) > sxl_get_u16(&s[SXL_CS_COUNT])) {
+        return fail(EXIT_IO, "capture status: a record unlike the one asked for (channels, "
+                             "decimation, count or trigger)");
+    }
+    return 0;
+}
+
 /* Arm, then poll the status until the record is done (or the wait runs out). */
 static int cap_arm_and_wait(int fd, const options_t *o, const capture_request_t *q, sxl_frame_t *st)
 {
@@ -207,8 +234,11 @@ static int cap_arm_and_wait(int fd, const options_t *o, const capture_request_t 
     }
     while (rc == 0) {
         rc = exchange(fd, o, SXL_CMD_CAPTURE_STATUS, NULL, 0, st);
-        if (rc == 0 && st->payload[1 + SXL_CS_STATE] == 3u) {
-            return 0;
+        if (rc == 0) {
+            rc = cap_status_valid(q, st);
+        }
+        if (rc != 0 || st->payload[1 + SXL_CS_STATE] == 3u) {
+            return rc;
         }
         if (waited >= q->wait_s) {
             sxl_frame_t r;
@@ -235,9 +265,14 @@ static int cap_read(int fd, const options_t *o, int ch, int count, int16_t *out)
         if (rc != 0) {
             return rc;
         }
-        n = (int)r.payload[1 + SXL_CR_COUNT];
-        if (r.payload[0] != SXL_OK || n == 0 || n > (int)SXL_CR_MAX) {
-            return fail(EXIT_IO, "capture read failed at sample %d", j);
+        if (r.payload[0] != SXL_OK) {
+            return fail(EXIT_IO, "capture read at sample %d: %s", j, result_name(r.payload[0]));
+        }
+        n = (r.len >= 1u + SXL_CR_SAMPLES) ? (int)r.payload[1 + SXL_CR_COUNT] : -1;
+        /* every sample the reply counts must be in it: no byte past its length is used */
+        if (n <= 0 || n > (int)SXL_CR_MAX || (int)r.len < 1 + (int)SXL_CR_SAMPLES + 2 * n) {
+            return fail(EXIT_IO, "capture read at sample %d: short or malformed reply (%u bytes)",
+                        j, (unsigned)r.len);
         }
         for (k = 0; k < n && j < count; k++) {
             out[j++] = sxl_get_i16(&r.payload[1u + SXL_CR_SAMPLES + 2u * (unsigned)k]);
@@ -349,10 +384,7 @@ int cmd_capture(const options_t *o, int argc, char **argv)
     if ((rc = open_port(o, &fd)) != 0) {
         return cap_discard(&q, out, rc);
     }
-    rc = cap_arm_and_wait(fd, o, &q, &st);
-    if (rc == 0 && sxl_get_u16(&st.payload[1 + SXL_CS_COUNT]) > CAP_MAX_SAMPLES) {
-        rc = fail(EXIT_IO, "the drive reports more samples than a capture holds");
-    }
+    rc = cap_arm_and_wait(fd, o, &q, &st); /* a done status, checked (cap_status_valid) */
     for (k = 0; rc == 0 && k < q.n_channels; k++) {
         rc = cap_read(fd, o, k, (int)sxl_get_u16(&st.payload[1 + SXL_CS_COUNT]), samples[k]);
     }

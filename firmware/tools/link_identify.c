@@ -75,7 +75,6 @@ static int identify_parse(int argc, char **argv, identify_request_t *r)
     for (i = 0; i < argc; i++) {
         const char *v = (i + 1 < argc) ? argv[i + 1] : NULL;
         double x;
-        char *end = NULL;
         if (strcmp(argv[i], "--apply") == 0) {
             r->apply = 1;
             continue;
@@ -95,8 +94,7 @@ static int identify_parse(int argc, char **argv, identify_request_t *r)
                             v);
             }
         } else if (strcmp(argv[i], "--current") == 0) {
-            x = strtod(v, &end);
-            if (end == v || *end != '\0' || !(x >= 0.1 && x <= 0.8)) {
+            if (!parse_double(v, 0.1, 0.8, &x)) {
                 return fail(EXIT_USAGE,
                             "identify: bad --current '%s' (a fraction of rated, "
                             "0.1..0.8)",
@@ -104,8 +102,7 @@ static int identify_parse(int argc, char **argv, identify_request_t *r)
             }
             r->permille = (uint16_t)floor(x * 1000.0 + 0.5);
         } else if (strcmp(argv[i], "--wait") == 0) {
-            x = strtod(v, &end);
-            if (end == v || *end != '\0' || !(x >= 1.0 && x <= 3600.0)) {
+            if (!parse_double(v, 1.0, 3600.0, &x)) {
                 return fail(EXIT_USAGE, "identify: bad --wait '%s' (1..3600 s)", v);
             }
             r->wait_s = x;
@@ -181,9 +178,13 @@ static int identify_result(int fd, const options_t *o, uint16_t q, motor_params_
     int rc;
     payload[0] = q;
     rc = exchange(fd, o, SXL_CMD_COMMISSION_RESULT, payload, 1u, &reply);
-    if (rc == 0 && (reply.payload[0] != SXL_OK || reply.len < 1u + SXL_CR2_SIZE)) {
+    if (rc == 0 && reply.payload[0] != SXL_OK) {
         rc = fail(EXIT_IO, "commissioning result %u: %s", (unsigned)q,
                   result_name(reply.payload[0]));
+    } else if (rc == 0 && (reply.len < 1u + SXL_CR2_SIZE || r[SXL_CR2_QUANTITY] != q)) {
+        rc =
+            fail(EXIT_IO, "commissioning result %u: a short or another quantity's reply (%u bytes)",
+                 (unsigned)q, (unsigned)reply.len);
     }
     if (rc != 0) {
         return rc;
@@ -239,7 +240,19 @@ static int identify_write(const char *path, const motor_params_t *m)
     return 0;
 }
 
-/* The sequence after a start that was accepted: wait, read, apply, write. */
+/* The identified values against the parameter ranges (MOTOR_PARAM_LIST, the ranges the control
+ * core checks) before anything is applied or written: a drive's answer is not trusted. */
+static int identify_check(const motor_params_t *m, const identify_request_t *req)
+{
+    char why[200];
+    if (motor_params_check(m, why, sizeof why) == 0) {
+        return 0;
+    }
+    return fail(EXIT_IO, "identify: the drive's %s: refused, nothing applied%s%s", why,
+                req->out ? " or written to " : "", req->out ? req->out : "");
+}
+
+/* The sequence after a start that was accepted: wait, read, check, apply, write. */
 static int identify_finish(int fd, const options_t *o, const identify_request_t *req)
 {
     uint16_t st[SXL_CT_SIZE];
@@ -255,6 +268,9 @@ static int identify_finish(int fd, const options_t *o, const identify_request_t 
            (double)sxl_get_u32(&st[SXL_CT_PERIODS]) * 1e-4);
     for (q = 0u; q < SXL_COMM_QUANTITY_COUNT && rc == 0; q++) {
         rc = identify_result(fd, o, q, &m);
+    }
+    if (rc == 0) {
+        rc = identify_check(&m, req);
     }
     if (rc == 0 && req->apply && st[SXL_CT_STATE] == SXL_COMM_STATE_DONE) {
         rc = identify_apply(fd, o);

@@ -19,7 +19,9 @@ typedef struct {
 
 /* "sixphase-link: error: ..." on stderr; returns code. */
 int fail(int code, const char *fmt, ...);
+/* A plain decimal in [lo, hi] (decimal_arg.h); 1, or 0 when refused. */
 int parse_long(const char *s, long lo, long hi, long *out);
+int parse_double(const char *s, double lo, double hi, double *out);
 int open_port(const options_t *o, int *fd_out);
 /* One request and its reply (a BUSY reply is retried); 0 or the exit status. */
 int exchange(int fd, const options_t *o, uint16_t cmd, const uint16_t *payload, uint16_t len,

@@ -7,6 +7,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "decimal_arg.h"
+
 #define MP_NAME(id, name, text, unit, lo, hi, integer) name,
 #define MP_TEXT(id, name, text, unit, lo, hi, integer) text,
 #define MP_UNIT(id, name, text, unit, lo, hi, integer) unit,
@@ -39,45 +41,41 @@ void motor_params_set(motor_params_t *m, motor_param_t id, double value, double 
     m->note[id] = note;
 }
 
-/* A plain decimal (digits, optional fraction and exponent) with an optional f suffix, or for
- * an integer entry digits with an optional u suffix; nothing else. */
+/* A plain decimal without a sign (decimal_arg.h: no leading zero, no hexadecimal) with an
+ * optional f suffix, or for an integer entry digits with an optional u suffix; nothing else. */
 static int mp_parse_value(const char *s, int integer, double *out)
 {
     char buf[64];
     const size_t n = strlen(s);
-    size_t i = 0, digits = 0;
-    char *end = NULL;
-    if (n == 0u || n >= sizeof buf) {
+    if (n == 0u || n >= sizeof buf || s[0] == '+' || s[0] == '-') {
         return -1;
     }
     memcpy(buf, s, n + 1u);
     if (buf[n - 1u] == (integer ? 'u' : 'f')) {
         buf[n - 1u] = '\0';
     }
-    for (; isdigit((unsigned char)buf[i]); i++) {
-        digits++;
-    }
-    if (!integer && buf[i] == '.') {
-        for (i++; isdigit((unsigned char)buf[i]); i++) {
-            digits++;
-        }
-    }
-    if (!integer && digits > 0u && (buf[i] == 'e' || buf[i] == 'E')) {
-        size_t exp_digits = 0;
-        i += (buf[i + 1u] == '-' || buf[i + 1u] == '+') ? 2u : 1u;
-        for (; isdigit((unsigned char)buf[i]); i++) {
-            exp_digits++;
-        }
-        if (exp_digits == 0u) {
+    return decimal_parse(buf, integer, -HUGE_VAL, HUGE_VAL, out);
+}
+
+/* Whether v is a valid value of entry id: within its range and, for an integer entry, whole. */
+static int mp_in_range(int id, double v)
+{
+    return v >= mp_lo[id] && v <= mp_hi[id] && (!mp_integer[id] || v == floor(v));
+}
+
+int motor_params_check(const motor_params_t *m, char *err, size_t err_len)
+{
+    int id;
+    for (id = 0; id < (int)MOTOR_PARAM_COUNT; id++) {
+        if ((m->have & (1u << id)) != 0u && !mp_in_range(id, m->value[id])) {
+            (void)snprintf(err, err_len, "%s %s %.6g%s%s is outside %g..%g%s%s%s", mp_text[id],
+                           mp_name[id], m->value[id], mp_unit[id][0] ? " " : "", mp_unit[id],
+                           mp_lo[id], mp_hi[id], mp_unit[id][0] ? " " : "", mp_unit[id],
+                           mp_integer[id] ? " (a whole number)" : "");
             return -1;
         }
     }
-    if (digits == 0u || buf[i] != '\0') {
-        return -1;
-    }
-    errno = 0;
-    *out = strtod(buf, &end);
-    return (errno == 0 && end && *end == '\0' && isfinite(*out)) ? 0 : -1;
+    return 0;
 }
 
 static int mp_fail(char *err, size_t len, const char *path, int line, const char *why)
@@ -110,7 +108,7 @@ static int mp_define(motor_params_t *m, char *text, const char *path, int line, 
     if ((m->have & (1u << id)) != 0u) {
         return mp_fail(err, len, path, line, "name given twice");
     }
-    if (mp_parse_value(value, mp_integer[id], &v) != 0 || v < mp_lo[id] || v > mp_hi[id]) {
+    if (mp_parse_value(value, mp_integer[id], &v) != 0 || !mp_in_range(id, v)) {
         return mp_fail(err, len, path, line, "value not a plain number in range");
     }
     motor_params_set(m, (motor_param_t)id, v, 0.0, NULL);
@@ -128,26 +126,50 @@ static int mp_ignorable(const char *t)
            strstr(t + 2, "*/") == t + n - 2u;
 }
 
+/* One line into buf (its newline kept); 1, 0 at the end of the file, -1 too long, -2 when it
+ * holds a NUL byte (which would hide the rest of the line from this reader but not from the C
+ * compiler: a comment opened after it would swallow the defines below). */
+static int mp_read_line(FILE *f, char *buf, size_t cap)
+{
+    size_t n = 0u;
+    int c;
+    while ((c = getc(f)) != EOF) {
+        if (c == '\0') {
+            return -2;
+        }
+        if (n + 1u == cap) {
+            return -1;
+        }
+        buf[n++] = (char)c;
+        if (c == '\n') {
+            break;
+        }
+    }
+    buf[n] = '\0';
+    return n > 0u ? 1 : 0;
+}
+
 int motor_params_read(const char *path, motor_params_t *m, char *err, size_t err_len)
 {
     char buf[MP_LINE_MAX];
     int line = 0;
     int rc = 0;
+    int got;
     FILE *f = fopen(path, "r");
     motor_params_clear(m);
     if (!f) {
         (void)snprintf(err, err_len, "cannot read %s: %s", path, strerror(errno));
         return -1;
     }
-    while (rc == 0 && fgets(buf, sizeof buf, f)) {
+    while (rc == 0 && (got = mp_read_line(f, buf, sizeof buf)) != 0) {
         char *t = buf;
         size_t n;
         line++;
-        n = strlen(t);
-        if (n + 1u == sizeof buf && t[n - 1u] != '\n') {
-            rc = mp_fail(err, err_len, path, line, "line too long");
+        if (got < 0) {
+            rc = mp_fail(err, err_len, path, line, got == -1 ? "line too long" : "a NUL byte");
             break;
         }
+        n = strlen(t);
         while (n > 0u && isspace((unsigned char)t[n - 1u])) {
             t[--n] = '\0';
         }
@@ -186,8 +208,11 @@ static void mp_float_literal(char *out, size_t len, double v)
 
 int motor_params_write(FILE *f, const motor_params_t *m, const char *origin)
 {
-    char lit[48];
+    char lit[48], why[200];
     int id;
+    if (motor_params_check(m, why, sizeof why) != 0) {
+        return -1; /* a value the reader and the control core would refuse is not written */
+    }
     fprintf(f, "/* Motor parameters of this drive's machine: %s. */\n", origin);
     fprintf(f, "/* The firmware takes it with -DSIXPHASE_MOTOR_PARAMS_FILE=<path> "
                "(docs/porting.md). */\n");

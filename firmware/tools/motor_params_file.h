@@ -49,10 +49,17 @@ void motor_params_clear(motor_params_t *m);
 void motor_params_set(motor_params_t *m, motor_param_t id, double value, double sigma,
                       const char *note);
 
-/* Read path into m; 0, or -1 with one line in err (the file and line that are refused). */
+/* Every entry m has within its range of MOTOR_PARAM_LIST (and whole where it is an integer);
+ * 0, or -1 with one line naming the first that is not ("stator resistance R_OHM -2147.48 ohm is
+ * outside 0..1000 ohm"). */
+int motor_params_check(const motor_params_t *m, char *err, size_t err_len);
+
+/* Read path into m; 0, or -1 with one line in err (the file and line that are refused). A NUL
+ * byte anywhere is refused. */
 int motor_params_read(const char *path, motor_params_t *m, char *err, size_t err_len);
 
-/* Write m as the header, a comment line with its origin first; 0, or -1 on a write error. */
+/* Write m as the header, a comment line with its origin first; 0, or -1 on a write error or
+ * when motor_params_check refuses m (then nothing is written). */
 int motor_params_write(FILE *f, const motor_params_t *m, const char *origin);
 
 #endif /* MOTOR_PARAMS_FILE_H */

@@ -18,6 +18,7 @@
  */
 #define _DEFAULT_SOURCE 1
 
+#include <ctype.h>
 #include <errno.h>
 #include <fcntl.h>
 #include <math.h>
@@ -31,6 +32,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "decimal_arg.h"
 #include "link_tool.h"
 #include "sxlink.h"
 
@@ -75,30 +77,39 @@ static int usage(const char *why)
                 why);
 }
 
+/* Numbers are plain decimals, sixphase-sim's rule (decimal_arg.h): 010, 0x10, " 5", "5ms" and
+ * an overflow are refused, not read as octal, hexadecimal or a prefix. */
+/* A refused number, named: "bad value for -t: '010' (a plain decimal, 1..60000 ms)". */
+static int bad_number(const char *what, const char *v, const char *range)
+{
+    return fail(EXIT_USAGE, "bad value for %s: '%s' (a plain decimal, %s)", what, v, range);
+}
+
 int parse_long(const char *s, long lo, long hi, long *out)
 {
-    char *end = NULL;
-    long v;
-    errno = 0;
-    v = strtol(s, &end, 0);
-    if (errno != 0 || end == s || *end != '\0' || v < lo || v > hi) {
+    double v;
+    if (decimal_parse(s, 1, (double)lo, (double)hi, &v) != 0) {
         return 0;
     }
-    *out = v;
+    *out = (long)v;
     return 1;
 }
 
-static int parse_double(const char *s, double lo, double hi, double *out)
+int parse_double(const char *s, double lo, double hi, double *out)
+{
+    return decimal_parse(s, 0, lo, hi, out) == 0;
+}
+
+/* One frame byte for decode: one or two hex digits, nothing else. */
+static int parse_hex_byte(const char *s, long *out)
 {
     char *end = NULL;
-    double v;
-    errno = 0;
-    v = strtod(s, &end);
-    if (errno != 0 || end == s || *end != '\0' || !isfinite(v) || v < lo || v > hi) {
+    if (!isxdigit((unsigned char)s[0]) || (s[1] != '\0' && !isxdigit((unsigned char)s[1])) ||
+        (s[1] != '\0' && s[2] != '\0')) {
         return 0;
     }
-    *out = v;
-    return 1;
+    *out = strtol(s, &end, 16);
+    return *end == '\0';
 }
 
 static int32_t round_i32(double x)
@@ -525,13 +536,7 @@ static int cmd_decode(int argc, char **argv)
     for (i = 0; i < argc; i++) {
         long v;
         sxl_rx_t r;
-        char buf[8];
-        if (strlen(argv[i]) > 4u) {
-            return fail(EXIT_USAGE, "bad byte '%s'", argv[i]);
-        }
-        snprintf(buf, sizeof buf, "0x%s", argv[i]);
-        if (strncmp(argv[i], "0x", 2) == 0 || strncmp(argv[i], "0X", 2) == 0 ||
-            !parse_long(buf, 0, 255, &v)) {
+        if (!parse_hex_byte(argv[i], &v)) {
             return fail(EXIT_USAGE, "bad byte '%s' (hex 00..FF)", argv[i]);
         }
         r = sxl_decoder_push(&dec, (uint16_t)v, &f);
@@ -576,8 +581,11 @@ static int build_request(int argc, char **argv, uint16_t *cmd, uint16_t *payload
         *cmd = SXL_CMD_SIM_SHUTDOWN;
     } else if (strcmp(c, "speed") == 0) {
         double rpm;
-        if (argc != 2 || !parse_double(argv[1], -20000.0, 20000.0, &rpm)) {
+        if (argc != 2) {
             return usage("speed needs one value in r/min, -20000..20000");
+        }
+        if (!parse_double(argv[1], -20000.0, 20000.0, &rpm)) {
+            return bad_number("speed", argv[1], "-20000..20000 r/min");
         }
         *cmd = SXL_CMD_SET_SPEED;
         sxl_put_i32(payload, round_i32(rpm * 10.0));
@@ -585,8 +593,11 @@ static int build_request(int argc, char **argv, uint16_t *cmd, uint16_t *payload
         return 0;
     } else if (strcmp(c, "torque") == 0) {
         double nm;
-        if (argc != 2 || !parse_double(argv[1], -1000.0, 1000.0, &nm)) {
+        if (argc != 2) {
             return usage("torque needs one value in N*m, -1000..1000");
+        }
+        if (!parse_double(argv[1], -1000.0, 1000.0, &nm)) {
+            return bad_number("torque", argv[1], "-1000..1000 N*m");
         }
         *cmd = SXL_CMD_SET_TORQUE;
         sxl_put_i32(payload, round_i32(nm * 1000.0));
@@ -607,7 +618,7 @@ static int build_request(int argc, char **argv, uint16_t *cmd, uint16_t *payload
             return usage("controller must be ddc, mptc49 or mptc13");
         }
         if (!parse_double(argv[2], 0.0, 2000.0, &lambda)) {
-            return usage("lambda must be a number in 0..2000 (N*m/Wb)");
+            return bad_number("lambda", argv[2], "0..2000 N*m/Wb");
         }
         *cmd = SXL_CMD_SET_CONTROLLER;
         payload[0] = id;
@@ -659,11 +670,11 @@ static int parse_options(int argc, char **argv, options_t *o, int *next)
             o->device = argv[i + 1];
         } else if (strcmp(opt, "-b") == 0) {
             if (!parse_long(argv[i + 1], 1, 4000000, &o->baud)) {
-                return usage("bad baud rate");
+                return bad_number("-b", argv[i + 1], "a baud rate");
             }
         } else if (strcmp(opt, "-t") == 0) {
             if (!parse_long(argv[i + 1], 1, 60000, &o->timeout_ms)) {
-                return usage("bad timeout (1..60000 ms)");
+                return bad_number("-t", argv[i + 1], "1..60000 ms");
             }
         } else {
             return usage("unknown option");

@@ -25,6 +25,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <termios.h>
 #include <time.h>
@@ -758,6 +759,47 @@ static void test_fast_pacing_and_bad_rate(void **state)
     assert_true(WIFEXITED(rc) && WEXITSTATUS(rc) == 2);
 }
 
+/* serve --fast --out stops at --out-limit-mb (it writes about 116 MB/s): one line naming the
+ * limit, exit 1, trace.csv up to the last whole row before it (even with --quiet). */
+static void test_fast_session_stops_at_the_out_limit(void **state)
+{
+    char cmd[400], dir[] = "/tmp/sixphase-limit-XXXXXX", path[200], text[2048];
+    const double t0 = now_s();
+    struct stat st;
+    FILE *f;
+    size_t n;
+    int rc;
+    (void)state;
+    assert_non_null(mkdtemp(dir));
+    (void)snprintf(cmd, sizeof cmd,
+                   "%s serve --fast --duration 600 --out %s --out-limit-mb 1 --quiet > /dev/null "
+                   "2> %s/err.txt",
+                   SIXPHASE_SIM_EXE, dir, dir);
+    rc = system(cmd);
+    print_message("stopped after %.2f s\n", now_s() - t0);
+    assert_true(WIFEXITED(rc) && WEXITSTATUS(rc) == 1);
+    assert_true(now_s() - t0 < 30.0);
+    (void)snprintf(path, sizeof path, "%s/err.txt", dir);
+    f = fopen(path, "r");
+    assert_non_null(f);
+    n = fread(text, 1, sizeof text - 1, f);
+    text[n] = '\0';
+    fclose(f);
+    print_message("%s", text);
+    assert_non_null(strstr(text, "--out-limit-mb 1 (MB)"));
+    assert_true(strchr(text, '\n') && strchr(text, '\n')[1] == '\0'); /* one line */
+    (void)snprintf(path, sizeof path, "%s/trace.csv", dir);
+    assert_int_equal(stat(path, &st), 0);
+    assert_true(st.st_size > 900000 && st.st_size <= 1000000);
+    f = fopen(path, "r");
+    assert_non_null(f);
+    assert_int_equal(fseek(f, -1L, SEEK_END), 0);
+    assert_int_equal(fgetc(f), '\n');
+    fclose(f);
+    (void)snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
+    assert_int_equal(system(cmd), 0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -776,7 +818,8 @@ int main(void)
     const struct CMUnitTest post_mortem[] = {cmocka_unit_test(test_post_mortem_over_current),
                                              cmocka_unit_test(test_post_mortem_records_in_order)};
     const struct CMUnitTest shutdown[] = {cmocka_unit_test(test_host_shuts_the_board_down)};
-    const struct CMUnitTest pacing[] = {cmocka_unit_test(test_fast_pacing_and_bad_rate)};
+    const struct CMUnitTest pacing[] = {cmocka_unit_test(test_fast_pacing_and_bad_rate),
+                                        cmocka_unit_test(test_fast_session_stops_at_the_out_limit)};
     const struct CMUnitTest slow[] = {cmocka_unit_test(test_slow_line)};
     const struct CMUnitTest frozen[] = {
         cmocka_unit_test(test_frozen_adc_cannot_be_cleared_into_run)};

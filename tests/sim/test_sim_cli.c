@@ -215,6 +215,31 @@ static void test_ctl_params_file(void **state)
     assert_non_null(strstr(err, "cannot read"));
 }
 
+/* A NUL byte in a motor parameter file is refused: it hid the rest of its line from the reader
+ * but not from the C compiler, so here the compiler reads R 9 ohm as part of a comment opened
+ * after the NUL while the reader took it (and a value with a leading zero is refused too). */
+static void test_ctl_params_file_nul_refused(void **state)
+{
+    static const char hidden[] = "/* ok */\0 /*\n#define SIXPHASE_MOTOR_R_OHM 9.0f\n/* */\n"
+                                 "#define SIXPHASE_MOTOR_LD_H 0.03f\n";
+    const char *path = "/tmp/sixphase-cli-params-nul.h";
+    const char *args[] = {"--controller", "ddc", "--scenario", "steady", "--ctl-params", path};
+    sim_cli_t o;
+    char err[256] = "";
+    FILE *f = fopen(path, "wb");
+    (void)state;
+    assert_non_null(f);
+    assert_int_equal(fwrite(hidden, 1, sizeof hidden - 1, f), sizeof hidden - 1);
+    assert_int_equal(fclose(f), 0);
+    assert_int_not_equal(parse(args, 6, &o, err, sizeof err), 0);
+    print_message("%s\n", err);
+    assert_non_null(strstr(err, "line 1: a NUL byte"));
+    write_file(path, "#define SIXPHASE_MOTOR_POLE_PAIRS 03u\n");
+    assert_int_not_equal(parse(args, 6, &o, err, sizeof err), 0);
+    assert_non_null(strstr(err, "line 1"));
+    assert_int_equal(remove(path), 0);
+}
+
 typedef struct {
     const char *args[8];
     int n;
@@ -257,6 +282,9 @@ static const bad_case_t bad_cases[] = {
     {{"--controller", "ddc", "--scenario", "steady", "--lambda", "0x0.1"}, 6, "'0x0.1'"},
     {{"--controller", "ddc", "--scenario", "steady", "--lambda", " 20"}, 6, "' 20'"},
     {{"--controller", "ddc", "--scenario", "steady", "--lambda", "20 "}, 6, "'20 '"},
+    /* a leading zero (octal to a C reader): refused, as sixphase-link refuses it (decimal_arg.h) */
+    {{"--controller", "ddc", "--scenario", "steady", "--lambda", "010"}, 6, "'010'"},
+    {{"--controller", "ddc", "--scenario", "steady", "--seed", "007"}, 6, "'007'"},
     {{"--controller", "ddc", "--scenario", "steady", "--lambda", "nan"}, 6, "'nan'"},
     {{"--controller", "ddc", "--scenario", "steady", "--duty-levels", "6.0"}, 6, "'6.0'"},
     {{"--controller", "ddc", "--scenario", "steady", "--lambda", "20", "--lambda", "30"},
@@ -534,17 +562,89 @@ static void test_executable_writes_nothing_on_bad_argument(void **state)
     (void)rmdir(dir);
 }
 
+static long file_size(const char *dir, const char *name, char *last)
+{
+    char path[700];
+    struct stat st;
+    FILE *f;
+    (void)snprintf(path, sizeof path, "%s/%s", dir, name);
+    if (stat(path, &st) != 0) {
+        return -1;
+    }
+    f = fopen(path, "r");
+    assert_non_null(f);
+    assert_int_equal(fseek(f, -1L, SEEK_END), 0);
+    *last = (char)fgetc(f);
+    fclose(f);
+    return (long)st.st_size;
+}
+
+/* --out-limit-mb: a run whose files would pass it stops at it in one line naming the limit, exit
+ * 1, the files kept up to the last whole row, no metrics.json; without --out it is refused. */
+static void test_run_stops_at_the_out_limit(void **state)
+{
+    char tmpl[] = "/tmp/sixphase-limit-XXXXXX";
+    char err[1024], last = 0;
+    const char *dir = mkdtemp(tmpl);
+    long trace, fine;
+    (void)state;
+    assert_non_null(dir);
+    {
+        const char *const a[] = {SIXPHASE_SIM_EXE,
+                                 "run",
+                                 "--controller",
+                                 "ddc",
+                                 "--scenario",
+                                 "steady",
+                                 "--duration",
+                                 "1",
+                                 "--out",
+                                 dir,
+                                 "--out-limit-mb",
+                                 "0.5",
+                                 NULL};
+        const int rc = run_exe(a, err, sizeof err);
+        print_message("exit %d, stderr: %s", rc, err);
+        assert_int_equal(rc, 1);
+        assert_non_null(strstr(err, "--out-limit-mb 0.5 (MB)"));
+        assert_true(strchr(err, '\n') && strchr(err, '\n')[1] == '\0'); /* one line */
+    }
+    trace = file_size(dir, "trace.csv", &last);
+    assert_true(last == '\n'); /* the last row whole */
+    fine = file_size(dir, "fine.csv", &last);
+    print_message("trace.csv %ld bytes, fine.csv %ld bytes\n", trace, fine);
+    assert_true(trace > 400000 && trace + fine <= 500000);
+    assert_true(file_size(dir, "metrics.json", &last) < 0);
+    {
+        const char *const a[] = {SIXPHASE_SIM_EXE,
+                                 "run",
+                                 "--controller",
+                                 "ddc",
+                                 "--scenario",
+                                 "steady",
+                                 "--out-limit-mb",
+                                 "5",
+                                 NULL};
+        assert_int_equal(run_exe(a, err, sizeof err), 2);
+        assert_non_null(strstr(err, "--out-limit-mb needs --out"));
+    }
+    (void)snprintf(err, sizeof err, "rm -rf %s", dir);
+    assert_int_equal(system(err), 0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_good_arguments),
         cmocka_unit_test(test_plant_and_controller_apart),
         cmocka_unit_test(test_ctl_params_file),
+        cmocka_unit_test(test_ctl_params_file_nul_refused),
         cmocka_unit_test(test_bad_arguments_rejected),
         cmocka_unit_test(test_open_phase_option_combinations),
         cmocka_unit_test(test_serve_and_fault_time_arguments),
         cmocka_unit_test(test_open_phase_arguments),
         cmocka_unit_test(test_executable_writes_nothing_on_bad_argument),
+        cmocka_unit_test(test_run_stops_at_the_out_limit),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -2,8 +2,12 @@
  * Fault injection regression (issue 6): for every fault scenario the firmware's drive,
  * running the paper's operating point through the simulator, must report the expected
  * fault code, within the latency bound of fault_inject.c, with every leg off from the
- * detection on and the detection in the fault log. Healthy runs must not trip.
+ * detection on and the detection in the fault log. Healthy runs must not trip. The trace row of
+ * every period the plant runs with the outputs off shows them off (vector 0, duty 0), the trip
+ * period included, for every fault and the hardware trip, and so does trace.csv.
  */
+#define _POSIX_C_SOURCE 200809L /* mkdtemp */
+
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -11,7 +15,10 @@
 
 #include <cmocka.h>
 #include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "sim.h"
 #include "sxlink.h"
@@ -226,6 +233,102 @@ static void test_encoder_clear_waits_for_the_index(void **state)
     }
 }
 
+/* Periods the plant ran with the outputs off, and those whose trace row showed a command. */
+typedef struct {
+    long off, off_with_command;
+    double first_off_s, first_shown_s;
+} off_probe_t;
+
+static void off_period(void *ctx, const sim_trace_row_t *row, const sim_period_input_t *in)
+{
+    off_probe_t *p = (off_probe_t *)ctx;
+    if (!in->forced_off) {
+        return;
+    }
+    if (p->off++ == 0) {
+        p->first_off_s = row->t;
+    }
+    if (row->vector != 0 || row->duty != 0.0) {
+        if (p->off_with_command++ == 0) {
+            p->first_shown_s = row->t;
+        }
+    }
+}
+
+/* Every fault (and the hardware comparator): from the trip period on the rows show the outputs
+ * off (before: the trip row showed the command of the period before). */
+static void test_trace_shows_outputs_off_from_the_trip(void **state)
+{
+    int k;
+    (void)state;
+    for (k = 0; k <= (int)SIM_FAULT_COUNT; k++) {
+        off_probe_t p;
+        sim_observer_t ob = {&p, off_period, NULL};
+        sim_config_t c;
+        sim_result_t r;
+        memset(&p, 0, sizeof p);
+        sim_config_default(&c);
+        c.observer = &ob;
+        if (k == (int)SIM_FAULT_COUNT) {
+            c.trip_current_a = 12.0; /* below the software limit: the comparator trips first */
+            c.fault = SIM_FAULT_OVERCURRENT;
+        } else if (k == 0 || sim_fault_at_power_up((sim_fault_t)k)) {
+            continue; /* no fault, or none after RUN */
+        } else {
+            c.fault = (sim_fault_t)k;
+        }
+        run(&c, &r);
+        print_message("%-16s outputs off in %ld periods from %.4f s, %ld of them showing a "
+                      "command (first %.4f s)\n",
+                      k == (int)SIM_FAULT_COUNT ? "hardware trip" : sim_fault_info(c.fault)->name,
+                      p.off, p.first_off_s, p.off_with_command, p.first_shown_s);
+        assert_true(p.off > 0);
+        assert_int_equal(p.off_with_command, 0);
+    }
+}
+
+/* trace.csv's row of the trip period: legs 000000, duty 0, vector 0. */
+static void test_trace_csv_trip_row(void **state)
+{
+    char dir[] = "/tmp/sixphase-trip-XXXXXX", path[200], line[512], cmd[240];
+    sim_config_t c;
+    sim_result_t r;
+    char err[200] = "";
+    FILE *f;
+    int rows_checked = 0;
+    (void)state;
+    assert_non_null(mkdtemp(dir));
+    sim_config_default(&c);
+    c.fault = SIM_FAULT_OVERCURRENT;
+    c.out_dir = dir;
+    c.write_fine = false;
+    assert_int_equal(sim_run(&c, &r, err, sizeof err), 0);
+    assert_true(r.fault_time_s > 0.0);
+    (void)snprintf(path, sizeof path, "%s/trace.csv", dir);
+    f = fopen(path, "r");
+    assert_non_null(f);
+    while (fgets(line, sizeof line, f)) {
+        const char *legs = line;
+        int comma;
+        if (line[0] == 't' || atof(line) < r.fault_time_s - 0.5e-4) {
+            continue;
+        }
+        for (comma = 0; comma < 18 && legs; comma++) {
+            legs = strchr(legs, ',') ? strchr(legs, ',') + 1 : NULL;
+        }
+        assert_non_null(legs);
+        if (rows_checked == 0) {
+            print_message("trip row: %s", line);
+        }
+        assert_int_equal(strncmp(legs, "000000,0.0000,0\n", 16), 0);
+        rows_checked++;
+    }
+    fclose(f);
+    assert_true(rows_checked > 100);
+    (void)snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
+    assert_int_equal(system(cmd), 0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -235,6 +338,8 @@ int main(void)
         cmocka_unit_test(test_healthy_runs_do_not_trip),
         cmocka_unit_test(test_mptc49_trips_the_protection),
         cmocka_unit_test(test_encoder_clear_waits_for_the_index),
+        cmocka_unit_test(test_trace_shows_outputs_off_from_the_trip),
+        cmocka_unit_test(test_trace_csv_trip_row),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -4,6 +4,10 @@
  *   sweep.csv and in sweep.json, equals the metrics.json of a single `run` of that point (the
  *   host timings aside); the summary names the workers (default: the online processors);
  * - resume: only a removed point runs again; a rebuilt binary runs every point again;
+ * - resume after damage: point files cut at each kind of place (empty, in the header, right
+ *   after the "ok" line, in the middle of the JSON) run again, exactly those, and the table
+ *   lists each point's own metrics; a points folder that cannot be written is reported as
+ *   such before anything runs;
  * - bad grids are refused with exit 2 and one line; --force lifts the point cap;
  * - a point whose run fails fails the sweep and runs again on a rerun;
  * - points the drive stopped in a fault (MPTC-49 trips its over-current protection) are
@@ -24,6 +28,8 @@
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
+
+#include <dirent.h>
 
 #include <cmocka.h>
 
@@ -75,6 +81,47 @@ static void assert_one_line(const char *text)
     const char *nl = strchr(text, '\n');
     if (strncmp(text, "sixphase-sim: ", 14) != 0 || !nl || nl[1] != '\0') {
         print_error("not one 'sixphase-sim:' line: '%s'\n", text);
+        fail();
+    }
+}
+
+/* The point file in DIR/points whose second line (the point's arguments) ends with args. */
+static void point_file(const char *d, const char *args, char *path, size_t len)
+{
+    char folder[300], text[8192];
+    struct dirent *e;
+    DIR *dh;
+    int found = 0;
+    (void)snprintf(folder, sizeof folder, "%s/points", d);
+    dh = opendir(folder);
+    assert_non_null(dh);
+    while ((e = readdir(dh)) != NULL) {
+        char candidate[600];
+        const char *line2, *end;
+        FILE *f;
+        size_t n;
+        if (e->d_name[0] == '.') {
+            continue;
+        }
+        (void)snprintf(candidate, sizeof candidate, "%s/%s", folder, e->d_name);
+        f = fopen(candidate, "r");
+        if (!f) {
+            continue;
+        }
+        n = fread(text, 1, sizeof text - 1, f);
+        text[n] = '\0';
+        fclose(f);
+        line2 = strchr(text, '\n');
+        end = line2 ? strchr(line2 + 1, '\n') : NULL;
+        if (end && (size_t)(end - line2 - 1) >= strlen(args) &&
+            strncmp(end - strlen(args), args, strlen(args)) == 0) {
+            (void)snprintf(path, len, "%s", candidate);
+            found++;
+        }
+    }
+    closedir(dh);
+    if (found != 1) {
+        print_error("%d point files end their arguments with '%s'\n", found, args);
         fail();
     }
 }
@@ -321,15 +368,15 @@ static void test_resume_runs_only_the_missing_point(void **state)
     struct stat kept, again;
     (void)state;
     (void)snprintf(before, sizeof before, "%s", read_in_dir(dir, "sweep.csv"));
-    (void)snprintf(path, sizeof path, "%s/points/p0000.txt", dir);
+    point_file(dir, "--controller ddc --lambda 20", path, sizeof path);
     assert_int_equal(stat(path, &kept), 0);
-    (void)snprintf(path, sizeof path, "%s/points/p0002.txt", dir);
+    point_file(dir, "--controller mptc13 --lambda 20", path, sizeof path);
     assert_int_equal(remove(path), 0);
     sleep(1); /* a rewritten point file would show a later time */
     assert_int_equal(shf("%s sweep --out %s " GRID " 2> %s/summary.txt", EXE, dir, dir), 0);
     assert_non_null(strstr(read_in_dir(dir, "summary.txt"), "(3 from an earlier run"));
     assert_int_equal(access(path, R_OK), 0); /* run again */
-    (void)snprintf(path, sizeof path, "%s/points/p0000.txt", dir);
+    point_file(dir, "--controller ddc --lambda 20", path, sizeof path);
     assert_int_equal(stat(path, &again), 0);
     assert_true(again.st_mtime == kept.st_mtime); /* p0000 was not run again */
     assert_string_equal(read_in_dir(dir, "sweep.csv"), before);
@@ -348,6 +395,102 @@ static void test_rebuilt_binary_reruns_every_point(void **state)
     assert_int_equal(shf("%s sweep --out %s " GRID " 2> %s/summary.txt", copy, dir, dir), 0);
     assert_non_null(strstr(read_in_dir(dir, "summary.txt"), "(4 from an earlier run"));
     assert_int_equal(remove(copy), 0);
+}
+
+#define DAMAGE_GRID "--controller ddc --lambda 20,40,60,80,100 --duration 0.1 --no-plots --jobs 2"
+
+/* Point file path cut to keep bytes: -1 keeps them all; else the file's first keep bytes. */
+static long cut_point(const char *path, const char *where)
+{
+    static char text[1 << 16];
+    const char *ok;
+    long keep;
+    (void)read_file(path, text, sizeof text);
+    ok = strstr(text, "\nok\n");
+    assert_non_null(ok);
+    if (strcmp(where, "empty") == 0) {
+        keep = 0;
+    } else if (strcmp(where, "header") == 0) {
+        keep = (long)(strchr(text, '\n') - text) + 5; /* inside the arguments' line */
+    } else if (strcmp(where, "after ok") == 0) {
+        keep = (long)(ok - text) + 4;
+    } else {
+        keep = (long)(ok - text) + 4 + (long)(strlen(ok + 4) / 2); /* the JSON in half */
+    }
+    assert_int_equal(truncate(path, keep), 0);
+    return keep;
+}
+
+/* A point file cut at any place is run again on the resume, exactly those, and the table lists
+ * each point's own metrics (before: a file cut after its "ok" line showed another point's
+ * metrics; one cut in its JSON was never run again and every resume exited 1). */
+static void test_resume_reruns_exactly_the_damaged_points(void **state)
+{
+    static const char *const where[5] = {"intact", "empty", "header", "after ok", "json"};
+    static const char *const lambda[5] = {"20", "40", "60", "80", "100"};
+    static char before[1 << 20];
+    char d5[] = "/tmp/sixphase-sweep5-XXXXXX", path[5][600], args[64];
+    struct stat st[5], again;
+    int k;
+    (void)state;
+    assert_non_null(mkdtemp(d5));
+    assert_int_equal(shf("%s sweep --out %s " DAMAGE_GRID " 2> %s/summary.txt", EXE, d5, d5), 0);
+    (void)snprintf(before, sizeof before, "%s", read_in_dir(d5, "sweep.csv"));
+    for (k = 0; k < 5; k++) {
+        (void)snprintf(args, sizeof args, "--lambda %s", lambda[k]);
+        point_file(d5, args, path[k], sizeof path[k]);
+        if (k > 0) {
+            print_message("cut %s at %ld bytes (%s)\n", path[k], cut_point(path[k], where[k]),
+                          where[k]);
+        }
+        assert_int_equal(stat(path[k], &st[k]), 0);
+    }
+    sleep(1); /* a rewritten point file shows a later time */
+    assert_int_equal(shf("%s sweep --out %s " DAMAGE_GRID " 2> %s/summary.txt", EXE, d5, d5), 0);
+    assert_non_null(strstr(read_in_dir(d5, "summary.txt"), "(1 from an earlier run"));
+    assert_non_null(strstr(read_in_dir(d5, "summary.txt"), "5 ok, 0 stopped by a drive fault, 0 "
+                                                           "failed"));
+    for (k = 0; k < 5; k++) {
+        assert_int_equal(stat(path[k], &again), 0);
+        if (k == 0) {
+            assert_true(again.st_mtime == st[0].st_mtime); /* the intact point: not run again */
+        } else {
+            assert_true(again.st_mtime > st[k].st_mtime); /* each damaged one: run again */
+        }
+    }
+    assert_string_equal(read_in_dir(d5, "sweep.csv"), before); /* each point's own metrics */
+    /* and once more: nothing left to run */
+    assert_int_equal(shf("%s sweep --out %s " DAMAGE_GRID " 2> %s/summary.txt", EXE, d5, d5), 0);
+    assert_non_null(strstr(read_in_dir(d5, "summary.txt"), "(5 from an earlier run"));
+    assert_int_equal(shf("rm -rf %s", d5), 0);
+}
+
+/* A points folder the sweep cannot write is reported as such, in one line, before any point
+ * runs: a file where the folder should be (fails for root too, as CI runs) and, when not root,
+ * a read-only folder. */
+static void test_unwritable_points_folder_reported(void **state)
+{
+    char d6[] = "/tmp/sixphase-sweep6-XXXXXX";
+    const char *msg;
+    (void)state;
+    assert_non_null(mkdtemp(d6));
+    assert_int_equal(shf("echo not-a-folder > %s/points", d6), 0);
+    assert_int_equal(shf("%s sweep --out %s " DAMAGE_GRID " 2> %s/err.txt", EXE, d6, d6), 1);
+    msg = read_in_dir(d6, "err.txt");
+    assert_one_line(msg);
+    assert_non_null(strstr(msg, "cannot write"));
+    assert_non_null(strstr(msg, "/points/: Not a directory"));
+    assert_int_not_equal(shf("test -e %s/sweep.csv", d6), 0); /* nothing ran */
+    if (geteuid() != 0) {
+        assert_int_equal(shf("rm %s/points && mkdir -m 555 %s/points", d6, d6), 0);
+        assert_int_equal(shf("%s sweep --out %s " DAMAGE_GRID " 2> %s/err.txt", EXE, d6, d6), 1);
+        msg = read_in_dir(d6, "err.txt");
+        assert_one_line(msg);
+        assert_non_null(strstr(msg, "/points/: Permission denied"));
+    } else {
+        print_message("running as root: the read-only folder case is skipped\n");
+    }
+    assert_int_equal(shf("chmod -R u+w %s && rm -rf %s", d6, d6), 0);
 }
 
 static void test_bad_grids_refused(void **state)
@@ -514,6 +657,8 @@ int main(void)
         cmocka_unit_test(test_table_equals_single_runs),
         cmocka_unit_test(test_resume_runs_only_the_missing_point),
         cmocka_unit_test(test_rebuilt_binary_reruns_every_point),
+        cmocka_unit_test(test_resume_reruns_exactly_the_damaged_points),
+        cmocka_unit_test(test_unwritable_points_folder_reported),
         cmocka_unit_test(test_bad_grids_refused),
         cmocka_unit_test(test_force_lifts_the_cap),
         cmocka_unit_test(test_failed_points_rerun_and_json_numbers),
