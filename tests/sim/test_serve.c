@@ -41,6 +41,7 @@ static pid_t server;
 static const char *server_scenario = "fault-encoder-jump";
 static const char *server_fault_time = "1.5";
 static const char *server_baud = "115200";
+static const char *server_load = "0"; /* N*m: serve's own default */
 static char trace_dir[] = "/tmp/sixphase-serve-XXXXXX";
 static int port = -1;
 static char port_path[160];
@@ -169,7 +170,7 @@ static int start_server(void **state)
         (void)dup2(out[1], 1);
         execl(SIXPHASE_SIM_EXE, SIXPHASE_SIM_EXE, "serve", "--scenario", server_scenario,
               "--fault-time", server_fault_time, "--duration", "60", "--out", trace_dir, "--baud",
-              server_baud, "--speed", "800", "--quiet", (char *)NULL);
+              server_baud, "--speed", "800", "--load", server_load, "--quiet", (char *)NULL);
         _exit(127);
     }
     (void)close(out[1]);
@@ -623,7 +624,8 @@ static int start_over_current_server(void **state)
     return start_server(state);
 }
 
-/* A frozen converter (the ADC result registers stop at 0.15 s) is never cleared back into RUN:
+/* A frozen converter (the ADC result registers stop at 1.5 s, the drive running under 3 N m,
+ * so current flows and the words must move) is never cleared back into RUN:
  * a host that clears and restarts in a loop gets every clear refused and no restart. Before,
  * a clear reset the channels' history: 332 clear-and-run cycles in 6 s, each running 49
  * periods without a current measurement. */
@@ -635,7 +637,7 @@ static void test_frozen_adc_cannot_be_cleared_into_run(void **state)
     (void)state;
     assert_true(wait_for(is_ready, 2.0, &r));
     assert_int_equal(request(SXL_CMD_RUN, NULL, 0, &r), 0);
-    assert_true(wait_for(is_fault, 2.0, &r));
+    assert_true(wait_for(is_fault, 3.0, &r));
     status(&r);
     assert_int_equal(st_u8(&r, SXL_ST_FAULT), DRIVE_FAULT_ADC_STUCK);
     records = sxl_get_u16(&r.payload[1 + SXL_ST_RECORDS]); /* a restart would trip anew */
@@ -657,7 +659,8 @@ static void test_frozen_adc_cannot_be_cleared_into_run(void **state)
 static int start_adc_stuck_server(void **state)
 {
     server_scenario = "fault-adc-stuck";
-    server_fault_time = "0.15"; /* while the drive accelerates: current flows, words must move */
+    server_fault_time = "1.5"; /* long after RUN, whatever the host's load */
+    server_load = "3";
     (void)snprintf(trace_dir, sizeof trace_dir, "/tmp/sixphase-serve-XXXXXX");
     return start_server(state);
 }
