@@ -517,11 +517,13 @@ static int check_open_phase_options(const sim_config_t *c, const int *seen, char
     const bool open_fault = c->fault == SIM_FAULT_OPEN_PHASE;
     const int first = (c->fault_phase >= 0) ? c->fault_phase : 2;
     if ((seen[G_OPEN_PHASE] || seen[G_SECOND_FAULT] || seen[G_OPEN_MODEL]) && !open_fault) {
-        return cli_fail(err, len, "%s needs --scenario fault-open-phase%s",
-                        seen[G_OPEN_PHASE]   ? "--open-phase"
-                        : seen[G_OPEN_MODEL] ? "--open-model"
-                                             : "--second-fault",
-                        "");
+        return cli_fail(
+            err, len,
+            "%s needs an open phase (fault-open-phase, or --open-phase in a motion scenario)%s",
+            seen[G_OPEN_PHASE]   ? "--open-phase"
+            : seen[G_OPEN_MODEL] ? "--open-model"
+                                 : "--second-fault",
+            "");
     }
     if (seen[G_SECOND_FAULT_TIME] && !seen[G_SECOND_FAULT]) {
         return cli_fail(err, len, "%s needs --second-fault%s", "--second-fault-time", "");
@@ -697,6 +699,10 @@ static int cli_derive(sim_cli_t *o, const int *seen, char *err, size_t len)
     }
     if (seen[G_LXY] && !seen[G_CTL_LXY]) {
         o->cfg.ctl.lxy_h = o->cfg.plant.lxy_h;
+    }
+    if (seen[G_OPEN_PHASE] && o->cfg.fault == SIM_FAULT_NONE &&
+        o->cfg.scenario != SIM_SCEN_COMMISSION) {
+        o->cfg.fault = SIM_FAULT_OPEN_PHASE; /* --open-phase X opens X in a motion scenario too */
     }
     o->cfg.plant.encoder_offset_rad = o->encoder_offset_deg * CLI_DEG_TO_RAD;
     o->cfg.ctl.encoder_offset_rad = o->ctl_encoder_offset_deg * CLI_DEG_TO_RAD;

@@ -171,6 +171,7 @@ typedef struct {
     double isolation_ms;        /* event to the leg's isolation; < 0: never */
     double postfault_start_ms;  /* event to the first period on five legs; < 0: never */
     double speed_dip_rpm;       /* deepest fall below the reference from the event on */
+    double peak_after_event_a;  /* largest |i| of any phase from the event on (period starts) */
     double recover_ms;          /* event until the speed stays within 2 % of its reference */
     double torque_limit_end_nm; /* the speed loop's limit in force at the end */
     double phase_rms_a[6];      /* each phase over the analysis window (plant samples) */

@@ -46,6 +46,7 @@ static void bridge_protect_out_of_reach(ctl_protect_settings_t *s)
     s->encoder_torque_nm = big;
     s->encoder_jump_turns = big;
     s->open_phase_min_current_a = big;
+    s->open_phase_fast_min_a = big;
 }
 
 static int bridge_init(const sim_ctl_config_t *cfg)

@@ -200,7 +200,7 @@ int sim_loop_period(sim_run_t *rs, sim_result_t *r, long k)
     }
     loop_row_start(rs, &o, t, &st, &row);
     if (rs->open_phase.t_event >= 0.0) {
-        sim_open_phase_track(rs, t, row.speed_rpm, rs->plan.speed);
+        sim_open_phase_track(rs, t, row.speed_rpm, rs->plan.speed, row.i_phase);
     }
     for (j = 0; j < 6; j++) {
         in.duty[j] = rs->duty[j];

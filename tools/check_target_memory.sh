@@ -54,8 +54,10 @@ for arith in float fixed; do
   from_flash=ctl_postfault_step,drive_open_phase_faults,drive_isolate,hal_pwm_restore_legs
   from_flash+=,drive_commission_begin,drive_commission_period,drive_commission_angle
   from_flash+=,drive_phase_verify_start,drive_phase_verify_period,comm_abort
-  # and a fault's latching, once in the period that latches it
-  from_flash+=,drive_latch_fault,drive_enter_fault,drive_report_overrun
+  # and a fault's latching, once in the period that latches it, with the writing of its record;
+  # a clear (in FAULT, outputs off); the protection's quiet phases (with a leg isolated)
+  from_flash+=,drive_latch_fault,drive_enter_fault,drive_report_overrun,record,ctl_protect_raise
+  from_flash+=,ctl_protect_clear,ctl_protect_quiet
   if [ $arith = float ]; then
     flags+=(-DCTL_MATH_FLOAT=1)
   else

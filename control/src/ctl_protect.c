@@ -3,8 +3,10 @@
 #include "ctl_barrier.h"
 #include "ctl_constants.h"
 #include "ctl_pu.h"
+#include "ctl_vsd.h"
 
 static void open_phase_restart(ctl_protect_t *p);
+static void open_phase_fast_reset(ctl_protect_t *p);
 
 void ctl_protect_settings_default(ctl_protect_settings_t *s)
 {
@@ -28,6 +30,8 @@ void ctl_protect_settings_default(ctl_protect_settings_t *s)
     s->encoder_jump_turns = 0.05f;
     s->open_phase_min_current_a = 1.0f;
     s->open_phase_ratio = 0.2f;
+    s->open_phase_fast_min_a = 0.1f;
+    s->open_phase_fast_ratio = 0.2f;
 }
 
 static bool periods_valid(int16_t n) { return n >= 1 && n <= 10000; }
@@ -46,7 +50,9 @@ bool ctl_protect_settings_valid(const ctl_protect_settings_t *s)
                             ctl_float_in_range(s->encoder_expected_turns, 0.01f, big) &&
                             ctl_float_in_range(s->encoder_jump_turns, 0.001f, big) &&
                             ctl_float_in_range(s->open_phase_min_current_a, 0.0f, big) &&
-                            ctl_float_in_range(s->open_phase_ratio, 0.0f, 1.0f);
+                            ctl_float_in_range(s->open_phase_ratio, 0.0f, 1.0f) &&
+                            ctl_float_in_range(s->open_phase_fast_min_a, 0.0f, big) &&
+                            ctl_float_in_range(s->open_phase_fast_ratio, 0.0f, 1.0f);
     const bool filters =
         periods_valid(s->overcurrent_periods) && periods_valid(s->dc_overvoltage_periods) &&
         periods_valid(s->dc_undervoltage_periods) && periods_valid(s->overspeed_periods) &&
@@ -87,6 +93,11 @@ void ctl_protect_limits_build(ctl_protect_limits_t *l, const ctl_protect_setting
     l->ts_turns = ctl_from_float(sample_time_s * wb / CTL_TWO_PI_F);
     l->open_phase_min_mean = ctl_from_float(s->open_phase_min_current_a / ib);
     l->open_phase_ratio = ctl_from_float(s->open_phase_ratio);
+    /* compared with a window's deficit: ratio times the expected current, summed */
+    l->open_phase_fast_ratio = ctl_from_float(s->open_phase_fast_ratio);
+    l->open_phase_fast_min =
+        ctl_from_float(s->open_phase_fast_min_a / ib * s->open_phase_fast_ratio *
+                       (float)CTL_PROTECT_OPEN_PHASE_FAST_WINDOW);
 }
 
 static void reset_filters(ctl_protect_t *p)
@@ -107,6 +118,7 @@ static void reset_filters(ctl_protect_t *p)
     p->have_last = false;
     p->last_theta = CTL_Q(0.0);
     open_phase_restart(p);
+    open_phase_fast_reset(p);
 }
 
 void ctl_protect_init(ctl_protect_t *p)
@@ -305,6 +317,90 @@ static uint16_t check_open_phase(ctl_protect_t *p, const ctl_protect_limits_t *l
     return open_phase_verdict(p, l);
 }
 
+static void open_phase_fast_restart(ctl_protect_t *p)
+{
+    int16_t k;
+    for (k = 0; k < 6; k++) {
+        p->fast_deficit[k] = CTL_Q(0.0);
+    }
+    p->fast_count = 0;
+}
+
+/* The fast check starts over: no window in progress, no suspect. */
+static void open_phase_fast_reset(ctl_protect_t *p)
+{
+    open_phase_fast_restart(p);
+    p->fast_suspect = -1;
+    p->fast_strikes = 0;
+}
+
+/* The fast window's verdict: the phase with the largest deficit, if above the minimum, is the
+ * suspect; open when the same phase is so in consecutive windows (a start's x-y transient may
+ * hold one phase low for a window or two). A window that judges no phase keeps the suspect unless
+ * its deficit fell below minus the minimum, as a healthy phase's does (an open phase's share may
+ * be too small to judge for a window near its zero crossing, while the open connection's leakage
+ * still flows). Starts the next window. */
+static uint16_t open_phase_fast_verdict(ctl_protect_t *p, const ctl_protect_limits_t *l)
+{
+    int16_t worst = -1;
+    int16_t k;
+    bool keep;
+    for (k = 0; k < 6; k++) {
+        if (p->fast_deficit[k] > l->open_phase_fast_min &&
+            (worst < 0 || p->fast_deficit[k] > p->fast_deficit[worst])) {
+            worst = k;
+        }
+    }
+    keep = worst < 0 && p->fast_suspect >= 0 &&
+           p->fast_deficit[p->fast_suspect] > ctl_sub(CTL_Q(0.0), l->open_phase_fast_min);
+    open_phase_fast_restart(p);
+    if (keep) {
+        return 0u;
+    }
+    if (worst < 0 || worst != p->fast_suspect) {
+        p->fast_suspect = worst;
+        p->fast_strikes = (worst < 0) ? 0 : 1;
+        return 0u;
+    }
+    p->fast_strikes++;
+    if (p->fast_strikes < CTL_PROTECT_OPEN_PHASE_FAST_WINDOWS) {
+        return 0u;
+    }
+    p->open_phase = worst;
+    return CTL_FAULT_OPEN_PHASE;
+}
+
+/* The fast check, on the x-y residual (docs/faults.md, "Two open-phase checks"): while the DDC's
+ * six-leg step holds the x-y currents near zero, each phase carries its share of the alpha-beta
+ * current, be the machine motoring, braking or at a standstill. An open phase carries nothing
+ * whatever its share. Each phase's deficit sums ratio * |share| - |i| over a short window: a
+ * healthy phase's stays below zero (it carries its share), an open phase's grows with its share;
+ * above the minimum (ratio times the expected current that makes a phase judged) it is open.
+ * Needs no turn of the rotor. */
+static uint16_t check_open_phase_fast(ctl_protect_t *p, const ctl_protect_limits_t *l,
+                                      const ctl_protect_input_t *in)
+{
+    ctl_vsd_t v;
+    ctl_q share[6];
+    int16_t k;
+    if (!in->running || !in->xy_held || p->quiet != 0u) {
+        open_phase_fast_reset(p);
+        return 0u;
+    }
+    ctl_vsd_forward(in->i_phase, &v);
+    ctl_vsd_alpha_beta_phases(ctl_mul(v.alpha, l->open_phase_fast_ratio),
+                              ctl_mul(v.beta, l->open_phase_fast_ratio), share);
+    for (k = 0; k < 6; k++) { /* saturated sums */
+        p->fast_deficit[k] =
+            ctl_add(p->fast_deficit[k], ctl_sub(ctl_abs(share[k]), ctl_abs(in->i_phase[k])));
+    }
+    p->fast_count++;
+    if (p->fast_count < CTL_PROTECT_OPEN_PHASE_FAST_WINDOW) {
+        return 0u;
+    }
+    return open_phase_fast_verdict(p, l);
+}
+
 static void drop_one(ctl_protect_t *p)
 {
     if (p->log_dropped < UINT16_MAX) {
@@ -400,6 +496,7 @@ uint16_t ctl_protect_check(ctl_protect_t *p, const ctl_protect_limits_t *l,
     f |= check_encoder(p, l, in);
     f |= check_adc(p, l, in);
     f |= check_open_phase(p, l, in);
+    f |= check_open_phase_fast(p, l, in);
 
     p->active = f;
     if ((f & (uint16_t)~p->latched) != 0u) {
@@ -429,6 +526,7 @@ void ctl_protect_quiet(ctl_protect_t *p, uint16_t quiet)
         judged = (int16_t)(judged + (((((unsigned)quiet >> k) & 1u) == 0u) ? 1 : 0));
     }
     p->quiet = quiet;
+    open_phase_fast_reset(p);
     /* no phase judged: the mean stays 0 and nothing is ever below it */
     p->inv_judged = (judged == 6)  ? CTL_K_ONE_SIXTH
                     : (judged > 0) ? ctl_div(CTL_Q(1.0), ctl_mul_int(CTL_Q(1.0), judged))

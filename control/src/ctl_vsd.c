@@ -31,6 +31,14 @@ void ctl_vsd_forward(const ctl_q phase[6], ctl_vsd_t *out)
     out->y = ctl_sub(b, q);
 }
 
+void ctl_vsd_alpha_beta_phases(ctl_q alpha, ctl_q beta, ctl_q phase[6])
+{
+    int16_t k;
+    for (k = 0; k < 6; k++) {
+        phase[k] = ctl_mul_add(alpha, vsd_cos1[k], beta, vsd_sin1[k]);
+    }
+}
+
 void ctl_vsd_inverse(const ctl_vsd_t *v, ctl_q phase[6])
 {
     int16_t k;

@@ -109,15 +109,18 @@ SECTIONS
 #endif
                    /* control/src/ctl_postfault.c: the open-phase step (ctl_postfault_step and
                     * its helpers) runs from flash in both images: L0..L3 would be 93 % full */
-                   /* control/src/ctl_protect.c */
-                   *(.text:_any_nan) *(.text:_check_adc) *(.text:_check_encoder)
-                   *(.text:_check_open_phase) *(.text:_ctl_protect_check)
-                   *(.text:_ctl_protect_clear) *(.text:_ctl_protect_converter_alive)
-                   *(.text:_ctl_protect_quiet)
-                   *(.text:_ctl_protect_raise) *(.text:_drop_one) *(.text:_fill_record)
-                   *(.text:_filtered) *(.text:_open_phase_restart) *(.text:_open_phase_verdict)
-                   *(.text:_record)
-                   *(.text:_reset_filters) *(.text:_turn_difference)
+                   /* control/src/ctl_protect.c. In flash: the writing of a fault record (once
+                    * in the period that latches a fault, with the latching), a clear (in
+                    * FAULT, outputs off) and the quiet phases (with a leg isolated, beside the
+                    * open-phase step) */
+                   *(.text:_any_nan) *(.text:_check_adc)
+                   *(.text:_check_encoder) *(.text:_check_open_phase)
+                   *(.text:_check_open_phase_fast) *(.text:_ctl_protect_check)
+                   *(.text:_ctl_protect_converter_alive)
+                   *(.text:_filtered) *(.text:_open_phase_fast_reset)
+                   *(.text:_open_phase_fast_restart) *(.text:_open_phase_fast_verdict)
+                   *(.text:_open_phase_restart) *(.text:_open_phase_verdict)
+                   *(.text:_turn_difference)
                    /* control/src/ctl_q.c */
                    *(.text:_ctl_cos_pu) *(.text:_ctl_sector24) *(.text:_ctl_sin_pu)
                    *(.text:_ctl_sincos_pu) *(.text:_ctl_sqrt) *(.text:_ctl_sqrtf)
@@ -126,7 +129,7 @@ SECTIONS
                    /* control/src/ctl_speed_pi.c */
                    *(.text:_ctl_speed_pi_reset) *(.text:_ctl_speed_pi_run)
                    /* control/src/ctl_vsd.c */
-                   *(.text:_ctl_vsd_forward)
+                   *(.text:_ctl_vsd_alpha_beta_phases) *(.text:_ctl_vsd_forward)
                    /* firmware/app/capture.c */
                    *(.text:_capture_due) *(.text:_capture_sample) *(.text:_capture_triggered)
                    /* firmware/app/drive.c */

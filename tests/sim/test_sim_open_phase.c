@@ -66,8 +66,9 @@ static void check_ride_through(const sim_config_t *c, const sim_result_t *r, int
     assert_true(fabs(r->speed_mean_rpm - 1500.0) < 15.0);
     assert_true(r->phase_rms_a[phase] < 0.01);
     /* MPTC leaves the x-y currents to themselves (healthy MPTC-13 at this load already peaks at
-     * 4.4 A): its peak is only bounded */
-    assert_true(max_peak(r) < ((c->controller == 0) ? 1.0 : 2.0) * r->phase_limit_peak_a);
+     * 4.4 A): its peak is only bounded. The DDC's bound is the fundamental's amplitude at the
+     * derated limit, against a peak with the ripple between samples in it: 3.83 to 4.16 A. */
+    assert_true(max_peak(r) < ((c->controller == 0) ? 1.05 : 2.0) * r->phase_limit_peak_a);
     assert_true(r->torque_ripple_nm < ((c->controller == 0) ? 0.4 : 1.0));
     assert_int_equal(r->fault_records, 1); /* the OPEN_PHASE it rode through */
     assert_true(r->have_first_record);
@@ -204,6 +205,64 @@ static void test_paper_ddc_rides_through(void **state)
     check_ride_through(&c, &r, 2);
 }
 
+/* A ride-through that started in time: OPEN_PHASE found within 10 ms, before any other fault (an
+ * OVERCURRENT would be a second record, or the only one), and the drive still runs on five legs. */
+static void check_found_in_time(const sim_result_t *r, int phase, const char *what)
+{
+    print_message("%s, %c open: isolated %d after %.1f ms, state %d, records %d (first 0x%04x), "
+                  "mean %.0f r/min\n",
+                  what, 'A' + phase, r->isolated_leg, r->isolation_ms, r->final_state,
+                  r->fault_records, r->have_first_record ? r->first_record.faults : 0u,
+                  r->speed_mean_rpm);
+    assert_int_equal(r->final_state, 3); /* RUN */
+    assert_int_equal(r->isolated_leg, phase);
+    assert_true(r->isolation_ms >= 0.0 && r->isolation_ms <= 10.0);
+    assert_int_equal(r->fault_records, 1);
+    assert_int_equal(r->first_record.faults, 0x0400u);
+}
+
+/* The issue's reproducer: phase C opens while the drive brakes an overhauling load (460 r/min,
+ * -6.8 N m). Before the fast check the six-leg step collapsed the flux and a phase reached the
+ * 15 A trip 18-52 ms after the opening, before the 40 ms window ended (8 of 10 seeds). */
+static void test_open_while_braking(void **state)
+{
+    int seed;
+    (void)state;
+    for (seed = 1; seed <= 10; seed++) {
+        sim_config_t c;
+        sim_result_t r;
+        ride_config(&c, 2);
+        c.speed_rpm = 460.0;
+        c.load_nm = -6.8;
+        c.seed = (uint64_t)seed;
+        c.duration_s = 0.6;
+        c.arith = (seed == 5) ? 1 : 0; /* the float build at the seed */
+        run(&c, &r);
+        check_found_in_time(&r, 2, "braking");
+    }
+}
+
+/* A reversal (800 to -800 r/min from 0.1 s, no load) with a phase opening in its braking half, at
+ * 0.15 s (462 r/min, -6.8 N m: braking at the torque limit): each phase rides through. */
+static void test_open_during_reversal_braking(void **state)
+{
+    int phase;
+    (void)state;
+    for (phase = 0; phase < 6; phase++) {
+        sim_config_t c;
+        sim_result_t r;
+        sim_config_default(&c);
+        c.scenario = SIM_SCEN_REVERSAL;
+        c.fault = SIM_FAULT_OPEN_PHASE;
+        c.open_phase_action = 1;
+        c.fault_phase = phase;
+        c.fault_time_s = 0.15;
+        c.duration_s = 0.6;
+        run(&c, &r);
+        check_found_in_time(&r, phase, "reversal");
+    }
+}
+
 /* MPTC-49 post-fault in closed loop: its healthy x-y currents trip the protection (faults.md),
  * so with the protection out of reach the open phase is isolated by command as it opens (a
  * contactor's test) and the 20 + 1 post-fault candidates hold the speed on five legs. */
@@ -245,6 +304,8 @@ int main(void)
         cmocka_unit_test(test_isolation_command_on_a_connected_phase),
         cmocka_unit_test(test_mptc49_on_five_legs),
         cmocka_unit_test(test_paper_ddc_rides_through),
+        cmocka_unit_test(test_open_while_braking),
+        cmocka_unit_test(test_open_during_reversal_braking),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
