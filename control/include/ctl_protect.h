@@ -77,7 +77,7 @@ typedef struct {
     float encoder_torque_nm;        /* |Te| above this accumulates expected motion */
     float encoder_expected_turns;   /* electrical turns expected with no count -> fault */
     float encoder_jump_turns;       /* |angle step - omega Ts| above this -> fault */
-    float open_phase_min_current_a; /* mean |i| that makes the open-phase check meaningful */
+    float open_phase_min_current_a; /* mean |i| that makes the windowed check meaningful */
     float open_phase_ratio;         /* a phase below this fraction of the mean is open */
     float open_phase_fast_min_a;    /* fast check: mean |share of the alpha-beta current| a phase
                                      * must be expected to carry over its window to be judged */

@@ -28,7 +28,7 @@ void ctl_protect_settings_default(ctl_protect_settings_t *s)
     s->encoder_torque_nm = 1.0f;
     s->encoder_expected_turns = 0.25f;
     s->encoder_jump_turns = 0.05f;
-    s->open_phase_min_current_a = 1.0f;
+    s->open_phase_min_current_a = 0.1f;
     s->open_phase_ratio = 0.2f;
     s->open_phase_fast_min_a = 0.1f;
     s->open_phase_fast_ratio = 0.2f;

@@ -263,6 +263,59 @@ static void test_open_during_reversal_braking(void **state)
     }
 }
 
+/* Light load and no load (the windowed check judges down to a mean of 0.1 A): at 0.5 N m and at
+ * 0 N m, where the x-y currents the PM flux harmonics drive still flow, each tried phase is
+ * isolated within 100 ms at 460 and 1500 r/min. Before, nothing below a mean of 1 A was judged
+ * (about 45 % of rated torque): never found. */
+static void test_open_at_light_and_no_load(void **state)
+{
+    static const double loads[2] = {0.5, 0.0};
+    static const double speeds[2] = {460.0, 1500.0};
+    int i;
+    (void)state;
+    for (i = 0; i < 8; i++) {
+        sim_config_t c;
+        sim_result_t r;
+        const int phase = (i % 2 == 0) ? 2 : 4;
+        ride_config(&c, phase);
+        c.load_nm = loads[i / 4];
+        c.speed_rpm = speeds[(i / 2) % 2];
+        c.duration_s = 0.6;
+        run(&c, &r);
+        print_message("%.1f N m, %.0f r/min, %c open: isolated %d after %.1f ms, state %d\n",
+                      c.load_nm, c.speed_rpm, 'A' + phase, r.isolated_leg, r.isolation_ms,
+                      r.final_state);
+        assert_int_equal(r.final_state, 3);
+        assert_int_equal(r.isolated_leg, phase);
+        assert_true(r.isolation_ms >= 0.0 && r.isolation_ms <= 100.0);
+        assert_int_equal(r.fault_records, 1);
+    }
+}
+
+/* Two phases at light load: C opens at 0.5 N m, the drive rides through on five legs, then F
+ * opens: FAULT OPEN_PHASE within 100 ms of it, both records. Before, C was never found and the
+ * drive ran on with both open. */
+static void test_two_phases_at_light_load(void **state)
+{
+    sim_config_t c;
+    sim_result_t r;
+    (void)state;
+    ride_config(&c, 2);
+    c.load_nm = 0.5;
+    c.second_fault_phase = 5;
+    c.second_fault_s = 0.55;
+    run(&c, &r);
+    print_message("0.5 N m, C then F: C isolated after %.1f ms, state %d fault %d at %.1f ms, "
+                  "records %d\n",
+                  r.isolation_ms, r.final_state, r.fault, 1e3 * r.fault_time_s, r.fault_records);
+    assert_int_equal(r.isolated_leg, 2);
+    assert_true(r.isolation_ms >= 0.0 && r.isolation_ms <= 100.0);
+    assert_int_equal(r.final_state, 4); /* FAULT */
+    assert_int_equal(r.fault, 15);      /* OPEN_PHASE */
+    assert_true(r.fault_time_s > 0.55 && r.fault_time_s <= 0.65);
+    assert_int_equal(r.fault_records, 2);
+}
+
 /* MPTC-49 post-fault in closed loop: its healthy x-y currents trip the protection (faults.md),
  * so with the protection out of reach the open phase is isolated by command as it opens (a
  * contactor's test) and the 20 + 1 post-fault candidates hold the speed on five legs. */
@@ -306,6 +359,8 @@ int main(void)
         cmocka_unit_test(test_paper_ddc_rides_through),
         cmocka_unit_test(test_open_while_braking),
         cmocka_unit_test(test_open_during_reversal_braking),
+        cmocka_unit_test(test_open_at_light_and_no_load),
+        cmocka_unit_test(test_two_phases_at_light_load),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
