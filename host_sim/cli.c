@@ -700,9 +700,8 @@ static int cli_derive(sim_cli_t *o, const int *seen, char *err, size_t len)
     if (seen[G_LXY] && !seen[G_CTL_LXY]) {
         o->cfg.ctl.lxy_h = o->cfg.plant.lxy_h;
     }
-    if (seen[G_OPEN_PHASE] && o->cfg.fault == SIM_FAULT_NONE &&
-        o->cfg.scenario != SIM_SCEN_COMMISSION) {
-        o->cfg.fault = SIM_FAULT_OPEN_PHASE; /* --open-phase X opens X in a motion scenario too */
+    if (seen[G_OPEN_PHASE] && o->cfg.fault == SIM_FAULT_NONE) {
+        o->cfg.fault = SIM_FAULT_OPEN_PHASE; /* --open-phase X opens X in any scenario too */
     }
     o->cfg.plant.encoder_offset_rad = o->encoder_offset_deg * CLI_DEG_TO_RAD;
     o->cfg.ctl.encoder_offset_rad = o->ctl_encoder_offset_deg * CLI_DEG_TO_RAD;

@@ -138,7 +138,7 @@ static void sim_plan_scenario(const sim_config_t *c, sim_plan_t *pl)
 void sim_plan(const sim_config_t *c, sim_plan_t *pl)
 {
     sim_plan_scenario(c, pl);
-    if (c->fault != SIM_FAULT_NONE) {
+    if (c->fault != SIM_FAULT_NONE && c->scenario != SIM_SCEN_COMMISSION) {
         pl->duration = SIM_FAULT_DURATION_S; /* rated operation, injection, aftermath */
     }
     if ((c->fault == SIM_FAULT_OPEN_PHASE && c->open_phase_action == 1) || c->isolate_leg >= 0) {

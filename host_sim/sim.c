@@ -11,12 +11,12 @@
 
 #include "sim_run_state.h"
 
-/* An open phase can happen in any motion (braking, accelerating, reversing); the other faults are
- * injected into rated steady operation. */
+/* An open phase can happen in any motion (braking, accelerating, reversing) and during
+ * commissioning; the other faults are injected into rated steady operation. */
 static bool sim_fault_scenario_ok(sim_fault_t f, sim_scenario_t s)
 {
     if (f == SIM_FAULT_OPEN_PHASE) {
-        return s != SIM_SCEN_COMMISSION;
+        return true; /* commissioning included: every step watches for it */
     }
     return s == SIM_SCEN_STEADY;
 }

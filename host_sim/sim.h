@@ -118,8 +118,9 @@ typedef struct {
     double value[SIM_COMM_QUANTITIES], sigma[SIM_COMM_QUANTITIES], extra[SIM_COMM_QUANTITIES];
     int quality[SIM_COMM_QUANTITIES], reason_q[SIM_COMM_QUANTITIES];
     double truth[SIM_COMM_QUANTITIES]; /* the plant's (NaN where there is none) */
-    int apply_result;                  /* drive_commission_apply's, after a DONE sequence */
-    unsigned applied;                  /* quantities applied */
+    int apply_result;    /* drive_commission_apply's, after a DONE sequence or one failed on an open
+                            phase */
+    unsigned applied;    /* quantities applied */
     double phase_peak_a; /* largest |phase current| of the plant, at each period's end */
 } sim_commission_result_t;
 

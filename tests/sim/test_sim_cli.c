@@ -294,7 +294,7 @@ static const bad_case_t bad_cases[] = {
      "quarter of the 10 us PWM period"},
     {{"--controller", "ddc", "--scenario", "steady", "--out", "--quiet"}, 6, "'--quiet'"},
     /* open-phase operation: each option belongs to its scenario or to another option */
-    {{"--controller", "ddc", "--scenario", "commission", "--open-phase", "A"},
+    {{"--controller", "ddc", "--scenario", "fault-overspeed", "--open-phase", "A"},
      6,
      "fault-open-phase"},
     {{"--controller", "ddc", "--scenario", "fault-open-phase", "--open-phase", "G"}, 6, "'G'"},
