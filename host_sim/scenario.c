@@ -66,6 +66,8 @@ void sim_config_default(sim_config_t *c)
     c->fault_time_s = 0.0;
     c->open_phase_action = -1;
     c->postfault_strategy = -1;
+    c->torque_limited_action = -1;
+    c->torque_limited_stop_s = 0.0;
     c->fault_phase = -1;
     c->open_model = 0;
     c->second_fault_phase = -1;

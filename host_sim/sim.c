@@ -54,6 +54,7 @@ static void sim_result_clear(sim_result_t *r)
     r->isolation_ms = -1.0;
     r->postfault_start_ms = -1.0;
     r->recover_ms = -1.0;
+    r->torque_limited_first_s = -1.0;
 }
 
 /* The files that are written once the run is over: close the CSVs, write metrics.json. */

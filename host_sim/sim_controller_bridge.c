@@ -113,6 +113,13 @@ static int bridge_init(const sim_ctl_config_t *cfg)
                                      p.postfault_strategy)) {
         return 1;
     }
+    if (cfg->torque_limited_action >= 0 &&
+        !drive_set_torque_limited_action(&bridge_drive, (int16_t)cfg->torque_limited_action,
+                                         (cfg->torque_limited_stop_s > 0.0)
+                                             ? (float)cfg->torque_limited_stop_s
+                                             : DRIVE_TORQUE_LIMITED_STOP_S)) {
+        return 1;
+    }
     if (!drive_set_current_span(&bridge_drive, (float)cfg->current_full_span_a)) {
         return 1;
     }
@@ -185,6 +192,8 @@ static void bridge_period_status(sim_ctl_status_t *st)
     st->duty = q2d(bridge_drive.cmd.duty);
     st->enable = bridge_drive.cmd.enable ? 1 : 0;
     st->isolated_leg = (int)bridge_drive.isolated_leg;
+    st->torque_limited = bridge_drive.torque_limited ? 1 : 0;
+    st->torque_limited_stopped = bridge_drive.torque_limited_stopped ? 1 : 0;
     st->postfault_in_force =
         (bridge_drive.isolated_leg >= 0 &&
          ctl_postfault_config(&bridge_drive.ctl)->open_leg == bridge_drive.isolated_leg)

@@ -76,6 +76,13 @@ static void loop_control(sim_run_t *rs, sim_result_t *r, const plant_out_t *o, l
     if (rs->k_detect >= 0 && !hal_sim_bus.forced_off) {
         r->outputs_off = false;
     }
+    if (st->torque_limited) {
+        r->torque_limited_s += rs->ts;
+        if (r->torque_limited_first_s < 0.0) {
+            r->torque_limited_first_s = t;
+        }
+    }
+    r->torque_limited_stopped = r->torque_limited_stopped || st->torque_limited_stopped != 0;
 }
 
 /* The plant at the period start: the phase currents always (ADC, trip comparator); angle, flux

@@ -115,6 +115,12 @@ static void drive_init_open_phase(drive_t *d, const ctl_params_t *p)
     d->restore_request = false;
     d->open_phase_paused = false;
     d->params_bg.open_phase = -1; /* the drive owns it: no leg is isolated at start */
+    d->torque_limited_action = (int16_t)DRIVE_TORQUE_LIMITED_DEFAULT;
+    d->torque_limited_stop_s = DRIVE_TORQUE_LIMITED_STOP_S;
+    d->at_limit = false;
+    d->at_limit_since = 0u;
+    d->torque_limited = false;
+    d->torque_limited_stopped = false;
 }
 
 void drive_init(drive_t *d, const ctl_params_t *p)

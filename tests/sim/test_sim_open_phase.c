@@ -70,7 +70,8 @@ static void check_ride_through(const sim_config_t *c, const sim_result_t *r, int
      * derated limit, against a peak with the ripple between samples in it: 3.83 to 4.16 A. */
     assert_true(max_peak(r) < ((c->controller == 0) ? 1.05 : 2.0) * r->phase_limit_peak_a);
     assert_true(r->torque_ripple_nm < ((c->controller == 0) ? 0.4 : 1.0));
-    assert_int_equal(r->fault_records, 1); /* the OPEN_PHASE it rode through */
+    assert_int_equal(r->fault_records, 1);   /* the OPEN_PHASE it rode through */
+    assert_true(r->torque_limited_s == 0.0); /* within the derated limit: never flagged */
     assert_true(r->have_first_record);
     assert_int_equal(r->first_record.faults, 0x0400u);
 }
@@ -165,6 +166,20 @@ static void test_rated_load_exceeds_the_derated_limit(void **state)
     assert_true(r.recover_ms < 0.0);
     assert_true(r.speed_mean_rpm < 1000.0);
     assert_true(fabs(r.torque_mean_nm - r.torque_limit_end_nm) < 0.6);
+    /* visible: the torque-limited flag from 0.1 s at the limit on, to the end (continue) */
+    print_message("rated load: torque-limited from %.4f s, %.3f s in all\n",
+                  r.torque_limited_first_s, r.torque_limited_s);
+    assert_true(r.torque_limited_first_s > 0.25 && r.torque_limited_first_s < 0.45);
+    assert_true(r.torque_limited_s > 0.3);
+    assert_false(r.torque_limited_stopped);
+    /* the other choice: stop after 0.5 s at the limit */
+    c.torque_limited_action = 1;
+    run(&c, &r);
+    print_message("rated load, stop: state %d, stopped %d, flagged %.3f s\n", r.final_state,
+                  r.torque_limited_stopped ? 1 : 0, r.torque_limited_s);
+    assert_int_equal(r.final_state, 2); /* READY */
+    assert_true(r.torque_limited_stopped);
+    assert_true(fabs(r.torque_limited_s - 0.4) < 0.01); /* flagged at 0.1 s, stopped at 0.5 s */
 }
 
 /* Isolating a leg by command while its phase stays connected does not open the phase: the other
