@@ -112,6 +112,8 @@ typedef struct {
     ctl_q open_phase_fast_ratio; /* fast check: below this fraction of its share: open */
     ctl_q open_phase_fast_min;   /* fast check: a window's deficit above this is open (ratio
                                   * times the expected current that makes a phase judged) */
+    ctl_q open_phase_fast_keep;  /* fast check: a suspect not judged in a window stays one
+                                  * while its deficit is above this (-4 x the minimum) */
 } ctl_protect_limits_t;
 
 /* One control period's inputs. Raw counts are the ADC's (0..4095), per unit values the

@@ -93,10 +93,13 @@ void ctl_protect_limits_build(ctl_protect_limits_t *l, const ctl_protect_setting
     l->ts_turns = ctl_from_float(sample_time_s * wb / CTL_TWO_PI_F);
     l->open_phase_min_mean = ctl_from_float(s->open_phase_min_current_a / ib);
     l->open_phase_ratio = ctl_from_float(s->open_phase_ratio);
-    /* compared with a window's deficit: ratio times the expected current, summed */
     l->open_phase_fast_ratio = ctl_from_float(s->open_phase_fast_ratio);
+    /* compared with a window's deficit: ratio times the expected current, summed */
     l->open_phase_fast_min =
         ctl_from_float(s->open_phase_fast_min_a / ib * s->open_phase_fast_ratio *
+                       (float)CTL_PROTECT_OPEN_PHASE_FAST_WINDOW);
+    l->open_phase_fast_keep =
+        ctl_from_float(-4.0f * s->open_phase_fast_min_a / ib * s->open_phase_fast_ratio *
                        (float)CTL_PROTECT_OPEN_PHASE_FAST_WINDOW);
 }
 
@@ -337,9 +340,9 @@ static void open_phase_fast_reset(ctl_protect_t *p)
 /* The fast window's verdict: the phase with the largest deficit, if above the minimum, is the
  * suspect; open when the same phase is so in consecutive windows (a start's x-y transient may
  * hold one phase low for a window or two). A window that judges no phase keeps the suspect unless
- * its deficit fell below minus the minimum, as a healthy phase's does (an open phase's share may
- * be too small to judge for a window near its zero crossing, while the open connection's leakage
- * still flows). Starts the next window. */
+ * its deficit fell below minus four times the minimum, as a healthy phase's does (an open phase's
+ * share may be too small to judge for a window near its zero crossing, while the open connection's
+ * leakage still flows). Starts the next window. */
 static uint16_t open_phase_fast_verdict(ctl_protect_t *p, const ctl_protect_limits_t *l)
 {
     int16_t worst = -1;
@@ -352,14 +355,14 @@ static uint16_t open_phase_fast_verdict(ctl_protect_t *p, const ctl_protect_limi
         }
     }
     keep = worst < 0 && p->fast_suspect >= 0 &&
-           p->fast_deficit[p->fast_suspect] > ctl_sub(CTL_Q(0.0), l->open_phase_fast_min);
+           p->fast_deficit[p->fast_suspect] > l->open_phase_fast_keep;
     open_phase_fast_restart(p);
     if (keep) {
         return 0u;
     }
     if (worst < 0 || worst != p->fast_suspect) {
         p->fast_suspect = worst;
-        p->fast_strikes = (worst < 0) ? 0 : 1;
+        p->fast_strikes = 1; /* counts only while there is a suspect */
         return 0u;
     }
     p->fast_strikes++;

@@ -279,6 +279,7 @@ static void emit_config(const ctl_config_t *c)
     wr_q(l->open_phase_ratio);
     wr_q(l->open_phase_fast_ratio);
     wr_q(l->open_phase_fast_min);
+    wr_q(l->open_phase_fast_keep);
 }
 
 static void do_init(void)
