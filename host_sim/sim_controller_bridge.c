@@ -193,7 +193,6 @@ static void bridge_period_status(sim_ctl_status_t *st)
     st->enable = bridge_drive.cmd.enable ? 1 : 0;
     st->isolated_leg = (int)bridge_drive.isolated_leg;
     st->torque_limited = bridge_drive.torque_limited ? 1 : 0;
-    st->torque_limited_stopped = bridge_drive.torque_limited_stopped ? 1 : 0;
     st->postfault_in_force =
         (bridge_drive.isolated_leg >= 0 &&
          ctl_postfault_config(&bridge_drive.ctl)->open_leg == bridge_drive.isolated_leg)
@@ -228,6 +227,7 @@ static void bridge_status(sim_ctl_status_t *st)
     st->run_refusal = (int)bridge_drive.run_refusal;
     st->run_refused = (unsigned)bridge_drive.run_refused;
     st->torque_limit_nm = q2d(ctl_config(c)->torque_limit) * CTL_BASE_TORQUE_NM;
+    st->torque_limited_stopped = bridge_drive.torque_limited_stopped ? 1 : 0;
 }
 
 /* The virtual board's own command (a board answers it "unknown"): SXL_CMD_SIM_SHUTDOWN is

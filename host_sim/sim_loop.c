@@ -82,7 +82,6 @@ static void loop_control(sim_run_t *rs, sim_result_t *r, const plant_out_t *o, l
             r->torque_limited_first_s = t;
         }
     }
-    r->torque_limited_stopped = r->torque_limited_stopped || st->torque_limited_stopped != 0;
 }
 
 /* The plant at the period start: the phase currents always (ADC, trip comparator); angle, flux

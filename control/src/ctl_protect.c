@@ -257,6 +257,16 @@ static uint16_t check_adc(ctl_protect_t *p, const ctl_protect_limits_t *l,
     return f;
 }
 
+/* x / 64 of a non-negative x: a shift in Q24 instead of a multiply (every period, six times) */
+static inline ctl_q sixty_fourth(ctl_q x)
+{
+#if CTL_MATH_FLOAT
+    return x * 0.015625f;
+#else
+    return x >> 6;
+#endif
+}
+
 /* The window's verdict: the mean |i| of the judged phases, and every judged phase below the
  * ratio of it is open; the one found is remembered (-1 for several). Starts the next window. */
 static uint16_t open_phase_verdict(ctl_protect_t *p, const ctl_protect_limits_t *l)
@@ -307,7 +317,7 @@ static uint16_t check_open_phase(ctl_protect_t *p, const ctl_protect_limits_t *l
         return 0u;
     }
     for (k = 0; k < 6; k++) { /* sums of |i| / 64: 1,600 periods at 3 pu stay in range */
-        p->open_sum[k] = ctl_add(p->open_sum[k], ctl_mul(ctl_abs(in->i_phase[k]), CTL_Q(0.015625)));
+        p->open_sum[k] = ctl_add(p->open_sum[k], sixty_fourth(ctl_abs(in->i_phase[k])));
     }
     p->open_turns = ctl_add(p->open_turns, ctl_abs(ctl_mul(in->omega_e, l->ts_turns)));
     p->open_count++;
@@ -393,9 +403,10 @@ static uint16_t check_open_phase_fast(ctl_protect_t *p, const ctl_protect_limits
     ctl_vsd_forward(in->i_phase, &v);
     ctl_vsd_alpha_beta_phases(ctl_mul(v.alpha, l->open_phase_fast_ratio),
                               ctl_mul(v.beta, l->open_phase_fast_ratio), share);
-    for (k = 0; k < 6; k++) { /* saturated sums */
+    for (k = 0; k < 6; k++) {
+        /* both magnitudes are non-negative: their difference cannot overflow; the sum saturates */
         p->fast_deficit[k] =
-            ctl_add(p->fast_deficit[k], ctl_sub(ctl_abs(share[k]), ctl_abs(in->i_phase[k])));
+            ctl_add(p->fast_deficit[k], ctl_abs(share[k]) - ctl_abs(in->i_phase[k]));
     }
     p->fast_count++;
     if (p->fast_count < CTL_PROTECT_OPEN_PHASE_FAST_WINDOW) {

@@ -97,6 +97,7 @@ typedef enum {
 #define DRIVE_TORQUE_LIMITED_FLAG_S 0.1f /* at the limit this long: flagged */
 #define DRIVE_TORQUE_LIMITED_STOP_S 0.5f /* default time before the stop action stops */
 #define DRIVE_TORQUE_LIMITED_STOP_MAX_S 60.0f
+#define DRIVE_TORQUE_LIMITED_EVERY 16u /* the watch runs in every 16th period */
 
 /* Why a leg is isolated. */
 typedef enum {

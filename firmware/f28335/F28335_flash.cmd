@@ -120,7 +120,7 @@ SECTIONS
                    *(.text:_filtered) *(.text:_open_phase_fast_reset)
                    *(.text:_open_phase_fast_restart) *(.text:_open_phase_fast_verdict)
                    *(.text:_open_phase_restart) *(.text:_open_phase_verdict)
-                   *(.text:_turn_difference)
+                   *(.text:_sixty_fourth) *(.text:_turn_difference)
                    /* control/src/ctl_q.c */
                    *(.text:_ctl_cos_pu) *(.text:_ctl_sector24) *(.text:_ctl_sin_pu)
                    *(.text:_ctl_sincos_pu) *(.text:_ctl_sqrt) *(.text:_ctl_sqrtf)

@@ -802,21 +802,22 @@ static void test_torque_limited_flag_and_stop(void **state)
     d.ctl.speed_pi.limit = CTL_Q(0.4);
     d.ctl.diag.torque_ref = CTL_Q(-0.4);
     d.state = DRIVE_STATE_RUN;
-    at_limit_for(999); /* 0.0998 s at the limit */
+    /* the watch runs every 16th period: flagged between 0.1 and 0.1032 s at the limit */
+    at_limit_for(990);
     assert_false(d.torque_limited);
-    at_limit_for(3); /* 0.1001 s */
+    at_limit_for(42);
     assert_true(d.torque_limited);
     assert_false(d.stop_requested); /* the default: run on at the limit */
     d.ctl.diag.torque_ref = CTL_Q(0.3);
-    at_limit_for(1);
+    at_limit_for(DRIVE_TORQUE_LIMITED_EVERY);
     assert_false(d.torque_limited);
     assert_false(drive_set_torque_limited_action(&d, 2, 0.5f));
     assert_false(drive_set_torque_limited_action(&d, DRIVE_TORQUE_LIMITED_STOP, 0.0f));
     assert_true(drive_set_torque_limited_action(&d, DRIVE_TORQUE_LIMITED_STOP, 0.2f));
     d.ctl.diag.torque_ref = CTL_Q(0.4);
-    at_limit_for(1999); /* 0.1998 s */
+    at_limit_for(1990);
     assert_false(d.stop_requested);
-    at_limit_for(3); /* 0.2001 s */
+    at_limit_for(42);
     assert_true(d.stop_requested);
     assert_true(d.torque_limited_stopped);
 }
