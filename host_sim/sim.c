@@ -32,8 +32,7 @@ static int sim_check_config(const sim_config_t *c, char *err, size_t err_len)
         msg = "fs must be in [1000, 100000] Hz";
     } else if (c->fault != SIM_FAULT_NONE && (!sim_fault_scenario_ok(c->fault, c->scenario) ||
                                               sim_fault_info(c->fault) == NULL)) {
-        msg = "fault injection runs on the steady scenario only (an open phase on any motion "
-              "scenario)";
+        msg = "fault injection runs on the steady scenario only (an open phase on any)";
     } else if (c->duration_s > SIM_MAX_DURATION_S) {
         msg = "duration above 36000 s (10 h)";
     }

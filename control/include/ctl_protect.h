@@ -173,7 +173,7 @@ typedef struct {
     ctl_q fast_deficit[6]; /* fast check: sum of ratio * |share of the alpha-beta current| - |i|
                             * per phase over its window */
     int16_t fast_count;    /* periods in the fast window */
-    int16_t fast_suspect;  /* the phase the last fast window found lowest, -1 none */
+    int16_t fast_suspect;  /* the phase with the largest deficit in the last window, -1 none */
     int16_t fast_strikes;  /* consecutive windows it was */
     uint16_t quiet;     /* bit k: phase k carries no current by design (an isolated leg, open-phase
                          * operation): the open-phase check judges the others (ctl_protect_quiet) */
