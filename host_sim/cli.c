@@ -54,7 +54,8 @@ void sim_cli_usage(FILE *f)
         "[--open-phase {A..F}] [--open-model {resistor,open}]\n"
         "                   [--second-fault {A..F}] [--second-fault-time S] "
         "[--isolate-leg {A..F}] [--isolate-time S]\n"
-        "                   [--handoff-delay S]\n"
+        "                   [--handoff-delay S] [--torque-limited {continue,stop}] "
+        "[--torque-limited-stop S]\n"
         "  sixphase-sim reproduce --out DIR [--jobs N] [--no-plots] [--quiet]\n"
         "  sixphase-sim sweep --out DIR [--jobs N] [--force] [--no-plots] [--quiet] run options,\n"
         "                   numbers and choices as lists (a,b,c) or ranges (start:stop:step);\n"
@@ -119,6 +120,7 @@ static const char *const pulse_patterns[] = {"by-ones", "fewest-transitions", "f
                                              NULL};
 static const char *const phases[] = {"A", "B", "C", "D", "E", "F", NULL};
 static const char *const postfault_strategies[] = {"min-loss", "max-torque", NULL};
+static const char *const torque_limited_actions[] = {"continue", "stop", NULL};
 static const char *const open_models[] = {"resistor", "open", NULL};
 
 #define F(member) offsetof(sim_cli_t, member)
@@ -184,6 +186,8 @@ enum {
     G_ISOLATE_LEG,
     G_ISOLATE_TIME,
     G_HANDOFF_DELAY,
+    G_TORQUE_LIMITED,
+    G_TORQUE_LIMITED_STOP,
     G_MOTOR_R, /* the plant's machine, the controller's left alone */
     G_MOTOR_LD,
     G_MOTOR_LQ,
@@ -289,6 +293,8 @@ static const opt_t options[] = {
     CHOICE("--isolate-leg", cfg.isolate_leg, G_ISOLATE_LEG, phases),
     NUM("--isolate-time", cfg.isolate_s, G_ISOLATE_TIME, 0.001, 100.0),
     NUM("--handoff-delay", cfg.handoff_delay_s, G_HANDOFF_DELAY, 0.0, 0.1),
+    CHOICE("--torque-limited", cfg.torque_limited_action, G_TORQUE_LIMITED, torque_limited_actions),
+    NUM("--torque-limited-stop", cfg.torque_limited_stop_s, G_TORQUE_LIMITED_STOP, 0.001, 60.0),
 };
 
 #define OPTION_COUNT ((int)(sizeof options / sizeof options[0]))
@@ -471,11 +477,16 @@ static int check_open_phase_options(const sim_config_t *c, const int *seen, char
     const bool open_fault = c->fault == SIM_FAULT_OPEN_PHASE;
     const int first = (c->fault_phase >= 0) ? c->fault_phase : 2;
     if ((seen[G_OPEN_PHASE] || seen[G_SECOND_FAULT] || seen[G_OPEN_MODEL]) && !open_fault) {
-        return cli_fail(err, len, "%s needs --scenario fault-open-phase%s",
-                        seen[G_OPEN_PHASE]   ? "--open-phase"
-                        : seen[G_OPEN_MODEL] ? "--open-model"
-                                             : "--second-fault",
-                        "");
+        return cli_fail(
+            err, len,
+            "%s needs an open phase (fault-open-phase, or --open-phase in a motion scenario)%s",
+            seen[G_OPEN_PHASE]   ? "--open-phase"
+            : seen[G_OPEN_MODEL] ? "--open-model"
+                                 : "--second-fault",
+            "");
+    }
+    if (seen[G_TORQUE_LIMITED_STOP] && c->torque_limited_action != 1) {
+        return cli_fail(err, len, "%s needs --torque-limited stop%s", "--torque-limited-stop", "");
     }
     if (seen[G_SECOND_FAULT_TIME] && !seen[G_SECOND_FAULT]) {
         return cli_fail(err, len, "%s needs --second-fault%s", "--second-fault-time", "");
@@ -655,6 +666,9 @@ static int cli_derive(sim_cli_t *o, const int *seen, char *err, size_t len)
     }
     if (seen[G_LXY] && !seen[G_CTL_LXY]) {
         o->cfg.ctl.lxy_h = o->cfg.plant.lxy_h;
+    }
+    if (seen[G_OPEN_PHASE] && o->cfg.fault == SIM_FAULT_NONE) {
+        o->cfg.fault = SIM_FAULT_OPEN_PHASE; /* --open-phase X opens X in any scenario too */
     }
     o->cfg.plant.encoder_offset_rad = o->encoder_offset_deg * CLI_DEG_TO_RAD;
     o->cfg.ctl.encoder_offset_rad = o->ctl_encoder_offset_deg * CLI_DEG_TO_RAD;

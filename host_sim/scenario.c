@@ -66,6 +66,8 @@ void sim_config_default(sim_config_t *c)
     c->fault_time_s = 0.0;
     c->open_phase_action = -1;
     c->postfault_strategy = -1;
+    c->torque_limited_action = -1;
+    c->torque_limited_stop_s = 0.0;
     c->fault_phase = -1;
     c->open_model = 0;
     c->second_fault_phase = -1;
@@ -139,7 +141,7 @@ static void sim_plan_scenario(const sim_config_t *c, sim_plan_t *pl)
 void sim_plan(const sim_config_t *c, sim_plan_t *pl)
 {
     sim_plan_scenario(c, pl);
-    if (c->fault != SIM_FAULT_NONE) {
+    if (c->fault != SIM_FAULT_NONE && c->scenario != SIM_SCEN_COMMISSION) {
         pl->duration = SIM_FAULT_DURATION_S; /* rated operation, injection, aftermath */
     }
     if ((c->fault == SIM_FAULT_OPEN_PHASE && c->open_phase_action == 1) || c->isolate_leg >= 0) {

@@ -11,6 +11,16 @@
 
 #include "sim_run_state.h"
 
+/* An open phase can happen in any motion (braking, accelerating, reversing) and during
+ * commissioning; the other faults are injected into rated steady operation. */
+static bool sim_fault_scenario_ok(sim_fault_t f, sim_scenario_t s)
+{
+    if (f == SIM_FAULT_OPEN_PHASE) {
+        return true; /* commissioning included: every step watches for it */
+    }
+    return s == SIM_SCEN_STEADY;
+}
+
 /* What can be refused before anything is set up. */
 static int sim_check_config(const sim_config_t *c, char *err, size_t err_len)
 {
@@ -20,9 +30,9 @@ static int sim_check_config(const sim_config_t *c, char *err, size_t err_len)
         msg = chk;
     } else if (!(c->fs_hz >= 1000.0 && c->fs_hz <= 100000.0)) {
         msg = "fs must be in [1000, 100000] Hz";
-    } else if (c->fault != SIM_FAULT_NONE &&
-               (c->scenario != SIM_SCEN_STEADY || sim_fault_info(c->fault) == NULL)) {
-        msg = "fault injection runs on the steady scenario only";
+    } else if (c->fault != SIM_FAULT_NONE && (!sim_fault_scenario_ok(c->fault, c->scenario) ||
+                                              sim_fault_info(c->fault) == NULL)) {
+        msg = "fault injection runs on the steady scenario only (an open phase on any)";
     } else if (c->duration_s > SIM_MAX_DURATION_S) {
         msg = "duration above 36000 s (10 h)";
     }
@@ -43,6 +53,7 @@ static void sim_result_clear(sim_result_t *r)
     r->isolation_ms = -1.0;
     r->postfault_start_ms = -1.0;
     r->recover_ms = -1.0;
+    r->torque_limited_first_s = -1.0;
 }
 
 /* The files that are written once the run is over: close the CSVs, write metrics.json. */

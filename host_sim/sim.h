@@ -56,22 +56,25 @@ typedef struct {
     sim_fault_t fault;      /* injected fault (scenario fault-<name>): steady scenario */
     double fault_time_s;    /* injection time; <= 0: SIM_FAULT_INJECT_S */
     /* open-phase operation (sim_open_phase.h, docs/faults.md) */
-    int open_phase_action;  /* < 0: the drive's default (stop); 1: ride through */
-    int postfault_strategy; /* < 0: the core's default (minimum loss); 1: maximum torque */
-    int fault_phase;        /* fault-open-phase: the phase that opens (0..5); < 0: C */
-    int open_model;         /* fault-open-phase: 0 2 kohm in series (default), 1 open circuit */
-    int second_fault_phase; /* a second phase that opens later, < 0: none */
-    double second_fault_s;  /* when; <= 0: 0.3 s after the first */
-    double handoff_delay_s; /* the background's build of the post-fault set takes this long
-                             * (the target's hand-off latency, docs/faults.md); 0: one period */
-    int isolate_leg;        /* a leg isolated by command (a healthy machine), < 0: none */
-    double isolate_s;       /* when; <= 0: SIM_FAULT_INJECT_S */
-    bool protect;           /* the firmware's software protection at its default limits; false:
-                             * thresholds out of reach (comparing controllers that overload the
-                             * drive, e.g. MPTC-49 peaks near 30 A) */
-    double fine_rate_hz;    /* plant sampling for the metrics in the analysis window */
-    bool passive_load;      /* the load only opposes motion (serve): a rotor at rest stays at
-                               rest; false: an ideal torque source (the scenarios) */
+    int open_phase_action;     /* < 0: the drive's default (stop); 1: ride through */
+    int postfault_strategy;    /* < 0: the core's default (minimum loss); 1: maximum torque */
+    int fault_phase;           /* fault-open-phase: the phase that opens (0..5); < 0: C */
+    int open_model;            /* fault-open-phase: 0 2 kohm in series (default), 1 open circuit */
+    int second_fault_phase;    /* a second phase that opens later, < 0: none */
+    double second_fault_s;     /* when; <= 0: 0.3 s after the first */
+    double handoff_delay_s;    /* the background's build of the post-fault set takes this long
+                                * (the target's hand-off latency, docs/faults.md); 0: one period */
+    int torque_limited_action; /* < 0: the drive's default (continue); 1: stop after
+                                * torque_limited_stop_s at the limit (docs/faults.md) */
+    double torque_limited_stop_s; /* <= 0: the drive's default (0.5 s) */
+    int isolate_leg;              /* a leg isolated by command (a healthy machine), < 0: none */
+    double isolate_s;             /* when; <= 0: SIM_FAULT_INJECT_S */
+    bool protect;        /* the firmware's software protection at its default limits; false:
+                          * thresholds out of reach (comparing controllers that overload the
+                          * drive, e.g. MPTC-49 peaks near 30 A) */
+    double fine_rate_hz; /* plant sampling for the metrics in the analysis window */
+    bool passive_load;   /* the load only opposes motion (serve): a rotor at rest stays at
+                            rest; false: an ideal torque source (the scenarios) */
     plant_params_t plant;
     sim_ctl_machine_t ctl; /* the controller's machine (the reference one unless set) */
     /* scenario commission: the steps (sxlink_commission.h bits) and the test current (per mille
@@ -122,8 +125,9 @@ typedef struct {
     double value[SIM_COMM_QUANTITIES], sigma[SIM_COMM_QUANTITIES], extra[SIM_COMM_QUANTITIES];
     int quality[SIM_COMM_QUANTITIES], reason_q[SIM_COMM_QUANTITIES];
     double truth[SIM_COMM_QUANTITIES]; /* the plant's (NaN where there is none) */
-    int apply_result;                  /* drive_commission_apply's, after a DONE sequence */
-    unsigned applied;                  /* quantities applied */
+    int apply_result;    /* drive_commission_apply's, after a DONE sequence or one failed on an open
+                            phase */
+    unsigned applied;    /* quantities applied */
     double phase_peak_a; /* largest |phase current| of the plant, at each period's end */
 } sim_commission_result_t;
 
@@ -170,14 +174,19 @@ typedef struct {
     double first_record_t_s;         /* its time on the scenario clock */
     /* open-phase operation (sim_open_phase.h): after a fault-open-phase injection or an
      * isolation command (the event) */
-    double open_phase_event_s;  /* < 0: no such event */
-    int isolated_leg;           /* at the end; -1: none */
-    double isolation_ms;        /* event to the leg's isolation; < 0: never */
-    double postfault_start_ms;  /* event to the first period on five legs; < 0: never */
-    double speed_dip_rpm;       /* deepest fall below the reference from the event on */
-    double recover_ms;          /* event until the speed stays within 2 % of its reference */
-    double torque_limit_end_nm; /* the speed loop's limit in force at the end */
-    double phase_rms_a[6];      /* each phase over the analysis window (plant samples) */
+    double open_phase_event_s; /* < 0: no such event */
+    int isolated_leg;          /* at the end; -1: none */
+    double isolation_ms;       /* event to the leg's isolation; < 0: never */
+    double postfault_start_ms; /* event to the first period on five legs; < 0: never */
+    double speed_dip_rpm;      /* deepest fall below the reference from the event on */
+    double peak_after_event_a; /* largest |i| of any phase from the event on (period starts) */
+    /* torque-limited operation (the drive's status flag, docs/faults.md) */
+    double torque_limited_s;       /* periods the flag was set, in seconds */
+    double torque_limited_first_s; /* first period it was, scenario clock; < 0: never */
+    bool torque_limited_stopped;   /* the stop action stopped the run */
+    double recover_ms;             /* event until the speed stays within 2 % of its reference */
+    double torque_limit_end_nm;    /* the speed loop's limit in force at the end */
+    double phase_rms_a[6];         /* each phase over the analysis window (plant samples) */
     double phase_peak_a[6];
     double phase_limit_peak_a; /* the peak the healthy torque limit allows: T_lim / (3 Pn psi_f) */
     double diode_conduction;   /* share of the analysis window in which an isolated leg whose

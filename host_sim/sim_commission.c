@@ -129,7 +129,8 @@ int sim_commission_loop(sim_run_t *rs, sim_result_t *r, char *err, size_t err_le
     rs->n_periods = (k > 0) ? k : 1;
     rs->k_win = rs->n_periods;
     comm_collect(rs, r);
-    if (r->comm.state == SXL_COMM_STATE_DONE) {
+    if (r->comm.state == SXL_COMM_STATE_DONE ||
+        (r->comm.state == SXL_COMM_STATE_FAILED && r->comm.reason == SXL_COMM_REASON_OPEN_PHASE)) {
         r->comm.apply_result = rs->ops->commission_apply(&r->comm.applied);
     }
     /* a failed or refused sequence writes no file: it would hold nothing worth building */

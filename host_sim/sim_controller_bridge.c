@@ -46,6 +46,7 @@ static void bridge_protect_out_of_reach(ctl_protect_settings_t *s)
     s->encoder_torque_nm = big;
     s->encoder_jump_turns = big;
     s->open_phase_min_current_a = big;
+    s->open_phase_fast_min_a = big;
 }
 
 static int bridge_init(const sim_ctl_config_t *cfg)
@@ -110,6 +111,13 @@ static int bridge_init(const sim_ctl_config_t *cfg)
     if (cfg->open_phase_action >= 0 &&
         !drive_set_open_phase_action(&bridge_drive, (int16_t)cfg->open_phase_action,
                                      p.postfault_strategy)) {
+        return 1;
+    }
+    if (cfg->torque_limited_action >= 0 &&
+        !drive_set_torque_limited_action(&bridge_drive, (int16_t)cfg->torque_limited_action,
+                                         (cfg->torque_limited_stop_s > 0.0)
+                                             ? (float)cfg->torque_limited_stop_s
+                                             : DRIVE_TORQUE_LIMITED_STOP_S)) {
         return 1;
     }
     if (!drive_set_current_span(&bridge_drive, (float)cfg->current_full_span_a)) {
@@ -184,6 +192,7 @@ static void bridge_period_status(sim_ctl_status_t *st)
     st->duty = q2d(bridge_drive.cmd.duty);
     st->enable = bridge_drive.cmd.enable ? 1 : 0;
     st->isolated_leg = (int)bridge_drive.isolated_leg;
+    st->torque_limited = bridge_drive.torque_limited ? 1 : 0;
     st->postfault_in_force =
         (bridge_drive.isolated_leg >= 0 &&
          ctl_postfault_config(&bridge_drive.ctl)->open_leg == bridge_drive.isolated_leg)
@@ -218,6 +227,7 @@ static void bridge_status(sim_ctl_status_t *st)
     st->run_refusal = (int)bridge_drive.run_refusal;
     st->run_refused = (unsigned)bridge_drive.run_refused;
     st->torque_limit_nm = q2d(ctl_config(c)->torque_limit) * CTL_BASE_TORQUE_NM;
+    st->torque_limited_stopped = bridge_drive.torque_limited_stopped ? 1 : 0;
 }
 
 /* The virtual board's own command (a board answers it "unknown"): SXL_CMD_SIM_SHUTDOWN is

@@ -32,6 +32,8 @@ typedef struct {
     double current_full_span_a; /* the board's phase-current sensors, -span/2 .. +span/2 A */
     int open_phase_action;      /* < 0: the drive's build default; 0 stop, 1 ride through */
     int postfault_strategy;     /* < 0: core default (minimum loss); 1 maximum torque */
+    int torque_limited_action;  /* < 0: drive default (continue); 1 stop */
+    double torque_limited_stop_s; /* <= 0: drive default */
 } sim_ctl_config_t;
 
 typedef struct {
@@ -55,13 +57,15 @@ typedef struct {
     int p_duty_levels, p_ddc_direction, p_flux_ref_mode, p_ddc_torque_guard;
     int p_mid_period_angle, p_pulse_pattern;
     double p_flux_tie_band;
-    unsigned faults_latched; /* ctl_fault_t bits since the last clear */
-    int fault_records;       /* unread records in the drive's fault log */
-    int run_refusal;         /* drive_run_refusal_t of the last refused run request */
-    unsigned run_refused;    /* run requests refused since init */
-    int isolated_leg;        /* leg off for good (open-phase operation), -1: none */
-    int postfault_in_force;  /* the parameter set of the isolated leg is in force */
-    double torque_limit_nm;  /* the speed loop's limit in force (derated with an open phase) */
+    unsigned faults_latched;    /* ctl_fault_t bits since the last clear */
+    int fault_records;          /* unread records in the drive's fault log */
+    int run_refusal;            /* drive_run_refusal_t of the last refused run request */
+    unsigned run_refused;       /* run requests refused since init */
+    int isolated_leg;           /* leg off for good (open-phase operation), -1: none */
+    int postfault_in_force;     /* the parameter set of the isolated leg is in force */
+    double torque_limit_nm;     /* the speed loop's limit in force (derated with an open phase) */
+    int torque_limited;         /* the status flag: at the limit, the speed not held */
+    int torque_limited_stopped; /* the stop action stopped the run */
 } sim_ctl_status_t;
 
 /* The commissioning sequence as the drive reports it (sxlink_commission.h lists, SI). */

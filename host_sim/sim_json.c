@@ -163,6 +163,10 @@ static void sim_print_results_json(FILE *f, const sim_config_t *c, const sim_res
     json_num(f, "trip_current_a", (c->trip_current_a > 0.0) ? c->trip_current_a : (double)NAN,
              true);
     fprintf(f, "  \"software_protection\": %s,\n", c->protect ? "true" : "false");
+    /* the drive's torque-limited flag: the speed loop at its limit, the speed not held */
+    json_num(f, "torque_limited_s", r->torque_limited_s, true);
+    json_num(f, "torque_limited_first_s", json_or_null(r->torque_limited_first_s), true);
+    fprintf(f, "  \"torque_limited_stopped\": %s,\n", r->torque_limited_stopped ? "true" : "false");
 }
 
 /* The plant's parameters and non-idealities in force. */

@@ -76,6 +76,12 @@ static void loop_control(sim_run_t *rs, sim_result_t *r, const plant_out_t *o, l
     if (rs->k_detect >= 0 && !hal_sim_bus.forced_off) {
         r->outputs_off = false;
     }
+    if (st->torque_limited) {
+        r->torque_limited_s += rs->ts;
+        if (r->torque_limited_first_s < 0.0) {
+            r->torque_limited_first_s = t;
+        }
+    }
 }
 
 /* The plant at the period start: the phase currents always (ADC, trip comparator); angle, flux
@@ -202,7 +208,7 @@ int sim_loop_period(sim_run_t *rs, sim_result_t *r, long k)
     }
     loop_row_start(rs, &o, t, &st, &row);
     if (rs->open_phase.t_event >= 0.0) {
-        sim_open_phase_track(rs, t, row.speed_rpm, rs->plan.speed);
+        sim_open_phase_track(rs, t, row.speed_rpm, rs->plan.speed, row.i_phase);
     }
     for (j = 0; j < 6; j++) {
         in.duty[j] = rs->duty[j];

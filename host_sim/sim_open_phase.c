@@ -19,6 +19,7 @@ int sim_open_phase_begin(struct sim_run *rs, char *err, size_t err_len)
     op->t_event = -1.0;
     op->t_isolated = -1.0;
     op->min_speed_rpm = 0.0;
+    op->peak_a = 0.0;
     if (c->fault == SIM_FAULT_OPEN_PHASE) {
         const double t2 = (c->second_fault_s > 0.0) ? c->second_fault_s
                                                     : rs->fault.t_inject + SIM_SECOND_FAULT_DELAY_S;
@@ -87,11 +88,16 @@ void sim_open_phase_period(struct sim_run *rs, sim_result_t *r, double t,
     }
 }
 
-void sim_open_phase_track(struct sim_run *rs, double t, double speed_rpm, double speed_ref_rpm)
+void sim_open_phase_track(struct sim_run *rs, double t, double speed_rpm, double speed_ref_rpm,
+                          const double i_phase[6])
 {
     sim_open_phase_t *op = &rs->open_phase;
+    int k;
     if (op->t_event < 0.0 || t < op->t_event) {
         return;
+    }
+    for (k = 0; k < 6; k++) {
+        op->peak_a = fmax(op->peak_a, fabs(i_phase[k]));
     }
     /* a fall is below a positive reference, above a negative one */
     op->min_speed_rpm = fmax(op->min_speed_rpm, (speed_ref_rpm >= 0.0) ? speed_ref_rpm - speed_rpm
@@ -111,6 +117,7 @@ void sim_open_phase_finish(const struct sim_run *rs, sim_result_t *r)
     r->isolated_leg = st.isolated_leg;
     r->torque_limit_end_nm = st.torque_limit_nm;
     r->speed_dip_rpm = op->min_speed_rpm;
+    r->peak_after_event_a = op->peak_a;
     r->recover_ms = -1.0;
     if (op->t_event >= 0.0 && metrics_settle_result(&op->settle) >= 0.0) {
         r->recover_ms = 1e3 * (metrics_settle_result(&op->settle) - op->t_event);
@@ -155,6 +162,7 @@ void sim_open_phase_json(FILE *f, const sim_config_t *c, const sim_result_t *r)
     json_ms(f, "recover_ms", r->recover_ms);
     fprintf(f, "\"speed_dip_rpm\": %.4g, \"torque_limit_nm\": %.4g, ", r->speed_dip_rpm,
             r->torque_limit_end_nm);
+    fprintf(f, "\"peak_after_event_a\": %.4g, ", r->peak_after_event_a);
     fprintf(f, "\"diode_conduction\": %.4g, ", r->diode_conduction);
     fprintf(f, "\"phase_limit_peak_a\": %.4g, \"phase_rms_a\": [", r->phase_limit_peak_a);
     for (k = 0; k < 6; k++) {

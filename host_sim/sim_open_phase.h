@@ -31,6 +31,7 @@ typedef struct {
     double t_event; /* the fault's injection or the isolation command, scenario clock; < 0 none */
     double t_isolated; /* the first isolation, scenario clock; < 0 none yet */
     double min_speed_rpm;
+    double peak_a; /* largest |i| of any phase from the event on */
     metrics_settle_t settle;
 } sim_open_phase_t;
 
@@ -45,7 +46,8 @@ void sim_open_phase_period(struct sim_run *rs, sim_result_t *r, double t,
                            const sim_ctl_status_t *st);
 
 /* Speed dip and recovery, one control period at a time. */
-void sim_open_phase_track(struct sim_run *rs, double t, double speed_rpm, double speed_ref_rpm);
+void sim_open_phase_track(struct sim_run *rs, double t, double speed_rpm, double speed_ref_rpm,
+                          const double i_phase[6]);
 
 /* The results into r: dip, recovery, the phases' rms and peak over the analysis window against
  * the current the healthy limit allows, the torque limit in force. */

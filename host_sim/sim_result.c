@@ -49,6 +49,7 @@ static void result_drive(const sim_run_t *rs, sim_result_t *r)
     }
     r->faults_latched = st.faults_latched;
     r->fault_records = st.fault_records;
+    r->torque_limited_stopped = st.torque_limited_stopped != 0; /* kept until the next run */
     r->have_first_record = rs->ops->read_fault_record(&rec) != 0;
     if (r->have_first_record) {
         r->first_record = rec;

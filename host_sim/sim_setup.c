@@ -83,6 +83,8 @@ static void setup_controller_config(const sim_run_t *rs, sim_ctl_config_t *cc)
     cc->current_full_span_a = 2.0 * p->current_sensor_span_a;
     cc->open_phase_action = c->open_phase_action;
     cc->postfault_strategy = c->postfault_strategy;
+    cc->torque_limited_action = c->torque_limited_action;
+    cc->torque_limited_stop_s = c->torque_limited_stop_s;
 }
 
 /* Periods, window and fine sampling of the run. */

@@ -46,24 +46,17 @@ compile() { # dir, extra flags...
 for arith in float fixed; do
   dir="$out/$arith"
   flags=(-std=c99 -ffreestanding -mthumb -O2 -DF28335_LINK_PROXY=1 --param=min-pagesize=0)
-  # The fixed (Q24) image leaves the MPTC-49/13 search in flash (F28335_flash.cmd, the
-  # SIXPHASE_FW_Q24 branch; docs/porting.md section 7): the linker's define and what it moves.
-  # Both leave the open-phase step in flash (it runs only with an isolated leg; in RAM it would
-  # take L0..L3 to 93 %), and what runs once when a leg is isolated or restored; and the
-  # commissioning, which runs in the interrupt instead of the control step: its entry points
-  # from the period, and what only they reach (docs/porting.md section 7).
+  # What runs from flash on purpose: tools/flash_on_purpose.txt, the one list ("fixed:" names
+  # are the Q24 image's only); the Q24 link's define (F28335_flash.cmd, SIXPHASE_FW_Q24).
   link=()
-  from_flash=ctl_postfault_step,drive_open_phase_faults,drive_isolate,hal_pwm_restore_legs
-  from_flash+=,drive_commission_begin,drive_commission_period,drive_commission_angle
-  from_flash+=,drive_phase_verify_start,drive_phase_verify_period,comm_abort
-  # and a fault's latching, once in the period that latches it
-  from_flash+=,drive_latch_fault,drive_enter_fault,drive_report_overrun
   if [ $arith = float ]; then
     flags+=(-DCTL_MATH_FLOAT=1)
+    from_flash=$(grep -v '^#' "$here/tools/flash_on_purpose.txt" | grep -v '^fixed:' | paste -sd, -)
   else
     flags+=(-DCTL_MATH_FLOAT=0)
     link=(--define SIXPHASE_FW_Q24=1)
-    from_flash=ctl_mptc_select,$from_flash
+    from_flash=$(grep -v '^#' "$here/tools/flash_on_purpose.txt" | sed 's/^fixed: *//' \
+      | paste -sd, -)
   fi
   for inc in "${includes[@]}"; do flags+=(-I "$here/$inc"); done
   compile "$dir/o2" -mcpu=cortex-m4 -ffunction-sections -fdata-sections -fcallgraph-info=su \

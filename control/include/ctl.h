@@ -107,6 +107,9 @@ typedef struct {
     /* a valid set without an open phase is in force: the healthy step runs; else
      * ctl_postfault.h's step, or all-off while none was ever valid (in initialised's padding) */
     bool healthy_step;
+    /* the healthy step of the DDC, which holds the x-y currents near zero: the protection's fast
+     * open-phase check may judge (ctl_protect_input_t.xy_held) */
+    bool xy_held;
     uint16_t params_rejected;            /* sets refused by ctl_request_params (background) */
     ctl_param_error_t params_last_error; /* reason of the last refusal */
     ctl_speed_pi_t speed_pi;             /* gains copied from the configuration in force */

@@ -50,6 +50,10 @@
 #define CTL_PROTECT_CHANNELS_ALL ((uint16_t)0x3Fu) /* the six current channels */
 /* Shortest open-phase window (periods: 40 ms at 10 kHz); it also spans an electrical turn. */
 #define CTL_PROTECT_OPEN_PHASE_WINDOW 400
+/* The fast open-phase check's window (periods: 2 ms at 10 kHz), judged on the x-y residual. */
+#define CTL_PROTECT_OPEN_PHASE_FAST_WINDOW 20
+/* Consecutive fast windows that must find the same phase open. */
+#define CTL_PROTECT_OPEN_PHASE_FAST_WINDOWS 3
 
 /* Thresholds and filters as a user sets them, in SI units; part of the parameter set
  * (ctl_params_t), so the per-unit limits below follow every applied set. Defaults in
@@ -74,8 +78,12 @@ typedef struct {
     float encoder_torque_nm;        /* |Te| above this accumulates expected motion */
     float encoder_expected_turns;   /* electrical turns expected with no count -> fault */
     float encoder_jump_turns;       /* |angle step - omega Ts| above this -> fault */
-    float open_phase_min_current_a; /* mean |i| that makes the open-phase check meaningful */
+    float open_phase_min_current_a; /* mean |i| that makes the windowed check meaningful */
     float open_phase_ratio;         /* a phase below this fraction of the mean is open */
+    float open_phase_fast_min_a;    /* fast check: mean |share of the alpha-beta current| a phase
+                                     * must be expected to carry over its window to be judged */
+    float open_phase_fast_ratio;    /* fast check: a phase carrying less than this fraction of
+                                     * its share of the alpha-beta current is open */
 } ctl_protect_settings_t;
 
 /* Thresholds and filters in per unit, built from the settings (ctl_protect_limits_build). */
@@ -102,6 +110,11 @@ typedef struct {
     ctl_q ts_turns;              /* Ts * w_b / (2 pi): angle advance in turns per unit speed */
     ctl_q open_phase_min_mean;   /* mean |i| over phases that makes the check meaningful */
     ctl_q open_phase_ratio;      /* a phase below this fraction of the mean is open */
+    ctl_q open_phase_fast_ratio; /* fast check: below this fraction of its share: open */
+    ctl_q open_phase_fast_min;   /* fast check: a window's deficit above this is open (ratio
+                                  * times the expected current that makes a phase judged) */
+    ctl_q open_phase_fast_keep;  /* fast check: a suspect not judged in a window stays one
+                                  * while its deficit is above this (-4 x the minimum) */
 } ctl_protect_limits_t;
 
 /* One control period's inputs. Raw counts are the ADC's (0..4095), per unit values the
@@ -120,6 +133,8 @@ typedef struct {
     bool running; /* PWM enabled this period (under-voltage, stuck, encoder, open phase need it) */
     bool currents_calibrated; /* offsets measured: before, a set's sum is the offset error, which
                                * the calibration itself judges (ADC_OFFSET) */
+    bool xy_held; /* the six-leg control step runs and holds the x-y currents near zero: each
+                   * phase carries about its share of the alpha-beta current (the fast check) */
 } ctl_protect_input_t;
 
 typedef struct {
@@ -154,9 +169,14 @@ typedef struct {
     ctl_q expected_angle; /* and the angle (turns) it should have turned through */
     ctl_q last_theta;
     bool have_last;
-    ctl_q open_sum[6];  /* sum of |i| / 64 per phase over the window */
-    int16_t open_count; /* periods in the window */
-    ctl_q open_turns;   /* electrical turns the window spans */
+    ctl_q open_sum[6];     /* sum of |i| / 64 per phase over the window */
+    int16_t open_count;    /* periods in the window */
+    ctl_q open_turns;      /* electrical turns the window spans */
+    ctl_q fast_deficit[6]; /* fast check: sum of ratio * |share of the alpha-beta current| - |i|
+                            * per phase over its window */
+    int16_t fast_count;    /* periods in the fast window */
+    int16_t fast_suspect;  /* the phase with the largest deficit in the last window, -1 none */
+    int16_t fast_strikes;  /* consecutive windows it was */
     uint16_t quiet;     /* bit k: phase k carries no current by design (an isolated leg, open-phase
                          * operation): the open-phase check judges the others (ctl_protect_quiet) */
     ctl_q inv_judged;   /* 1 / the number of phases judged */

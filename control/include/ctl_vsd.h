@@ -22,6 +22,8 @@ typedef struct {
 
 void ctl_vsd_forward(const ctl_q phase[6], ctl_vsd_t *out);
 void ctl_vsd_inverse(const ctl_vsd_t *v, ctl_q phase[6]);
+/* The phase currents of an alpha-beta current alone (x = y = 0): each phase's share of it. */
+void ctl_vsd_alpha_beta_phases(ctl_q alpha, ctl_q beta, ctl_q phase[6]);
 
 /* Rotation into the rotor frame by an angle given as its sine and cosine. */
 static inline void ctl_park(ctl_q alpha, ctl_q beta, ctl_q s, ctl_q c, ctl_q *d, ctl_q *q)

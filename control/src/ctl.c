@@ -35,6 +35,7 @@ SIXPHASE_RAMFUNC static void use_config(ctl_t *c, const ctl_config_t *cfg)
     c->speed_pi.integ = ctl_clamp(c->speed_pi.integ, -cfg->torque_limit, cfg->torque_limit);
     c->initialised = true;
     c->healthy_step = c->postfault[c->config_active].open_leg == CTL_POSTFAULT_NO_LEG;
+    c->xy_held = c->healthy_step && cfg->params.controller == CTL_CONTROLLER_DDC;
 }
 
 /* The open-phase part of a configuration (ctl_postfault_config.h), beside it. */
@@ -50,6 +51,7 @@ bool ctl_init(ctl_t *c, const ctl_params_t *p)
     ctl_diag_t zero_diag = {0};
     c->initialised = false;
     c->healthy_step = false;
+    c->xy_held = false;
     c->config_active = 0;
     c->config_ready = 0;
     c->params_rejected = 0u;

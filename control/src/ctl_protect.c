@@ -4,8 +4,10 @@
 #include "ctl_constants.h"
 #include "ctl_pu.h"
 #include "ctl_placement.h"
+#include "ctl_vsd.h"
 
 static void open_phase_restart(ctl_protect_t *p);
+static void open_phase_fast_reset(ctl_protect_t *p);
 
 void ctl_protect_settings_default(ctl_protect_settings_t *s)
 {
@@ -27,8 +29,10 @@ void ctl_protect_settings_default(ctl_protect_settings_t *s)
     s->encoder_torque_nm = 1.0f;
     s->encoder_expected_turns = 0.25f;
     s->encoder_jump_turns = 0.05f;
-    s->open_phase_min_current_a = 1.0f;
+    s->open_phase_min_current_a = 0.1f;
     s->open_phase_ratio = 0.2f;
+    s->open_phase_fast_min_a = 0.1f;
+    s->open_phase_fast_ratio = 0.2f;
 }
 
 static bool periods_valid(int16_t n) { return n >= 1 && n <= 10000; }
@@ -47,7 +51,9 @@ bool ctl_protect_settings_valid(const ctl_protect_settings_t *s)
                             ctl_float_in_range(s->encoder_expected_turns, 0.01f, big) &&
                             ctl_float_in_range(s->encoder_jump_turns, 0.001f, big) &&
                             ctl_float_in_range(s->open_phase_min_current_a, 0.0f, big) &&
-                            ctl_float_in_range(s->open_phase_ratio, 0.0f, 1.0f);
+                            ctl_float_in_range(s->open_phase_ratio, 0.0f, 1.0f) &&
+                            ctl_float_in_range(s->open_phase_fast_min_a, 0.0f, big) &&
+                            ctl_float_in_range(s->open_phase_fast_ratio, 0.0f, 1.0f);
     const bool filters =
         periods_valid(s->overcurrent_periods) && periods_valid(s->dc_overvoltage_periods) &&
         periods_valid(s->dc_undervoltage_periods) && periods_valid(s->overspeed_periods) &&
@@ -88,9 +94,17 @@ void ctl_protect_limits_build(ctl_protect_limits_t *l, const ctl_protect_setting
     l->ts_turns = ctl_from_float(sample_time_s * wb / CTL_TWO_PI_F);
     l->open_phase_min_mean = ctl_from_float(s->open_phase_min_current_a / ib);
     l->open_phase_ratio = ctl_from_float(s->open_phase_ratio);
+    l->open_phase_fast_ratio = ctl_from_float(s->open_phase_fast_ratio);
+    /* compared with a window's deficit: ratio times the expected current, summed */
+    l->open_phase_fast_min =
+        ctl_from_float(s->open_phase_fast_min_a / ib * s->open_phase_fast_ratio *
+                       (float)CTL_PROTECT_OPEN_PHASE_FAST_WINDOW);
+    l->open_phase_fast_keep =
+        ctl_from_float(-4.0f * s->open_phase_fast_min_a / ib * s->open_phase_fast_ratio *
+                       (float)CTL_PROTECT_OPEN_PHASE_FAST_WINDOW);
 }
 
-SIXPHASE_RAMFUNC static void reset_filters(ctl_protect_t *p)
+static void reset_filters(ctl_protect_t *p)
 {
     int16_t k;
     p->n_overcurrent = 0;
@@ -109,6 +123,7 @@ SIXPHASE_RAMFUNC static void reset_filters(ctl_protect_t *p)
     p->have_last = false;
     p->last_theta = CTL_Q(0.0);
     open_phase_restart(p);
+    open_phase_fast_reset(p);
 }
 
 void ctl_protect_init(ctl_protect_t *p)
@@ -258,6 +273,16 @@ SIXPHASE_RAMFUNC static uint16_t check_adc(ctl_protect_t *p, const ctl_protect_l
     return f;
 }
 
+/* x / 64 of a non-negative x: a shift in Q24 instead of a multiply (every period, six times) */
+static inline ctl_q sixty_fourth(ctl_q x)
+{
+#if CTL_MATH_FLOAT
+    return x * 0.015625f;
+#else
+    return x >> 6;
+#endif
+}
+
 /* The window's verdict: the mean |i| of the judged phases, and every judged phase below the
  * ratio of it is open; the one found is remembered (-1 for several). Starts the next window. */
 SIXPHASE_RAMFUNC static uint16_t open_phase_verdict(ctl_protect_t *p, const ctl_protect_limits_t *l)
@@ -308,7 +333,7 @@ SIXPHASE_RAMFUNC static uint16_t check_open_phase(ctl_protect_t *p, const ctl_pr
         return 0u;
     }
     for (k = 0; k < 6; k++) { /* sums of |i| / 64: 1,600 periods at 3 pu stay in range */
-        p->open_sum[k] = ctl_add(p->open_sum[k], ctl_mul(ctl_abs(in->i_phase[k]), CTL_Q(0.015625)));
+        p->open_sum[k] = ctl_add(p->open_sum[k], sixty_fourth(ctl_abs(in->i_phase[k])));
     }
     p->open_turns = ctl_add(p->open_turns, ctl_abs(ctl_mul(in->omega_e, l->ts_turns)));
     p->open_count++;
@@ -321,16 +346,102 @@ SIXPHASE_RAMFUNC static uint16_t check_open_phase(ctl_protect_t *p, const ctl_pr
     return open_phase_verdict(p, l);
 }
 
-SIXPHASE_RAMFUNC static void drop_one(ctl_protect_t *p)
+SIXPHASE_RAMFUNC static void open_phase_fast_restart(ctl_protect_t *p)
+{
+    int16_t k;
+    for (k = 0; k < 6; k++) {
+        p->fast_deficit[k] = CTL_Q(0.0);
+    }
+    p->fast_count = 0;
+}
+
+/* The fast check starts over: no window in progress, no suspect. */
+SIXPHASE_RAMFUNC static void open_phase_fast_reset(ctl_protect_t *p)
+{
+    open_phase_fast_restart(p);
+    p->fast_suspect = -1;
+    p->fast_strikes = 0;
+}
+
+/* The fast window's verdict: the phase with the largest deficit, if above the minimum, is the
+ * suspect; open when the same phase is so in consecutive windows (a start's x-y transient may
+ * hold one phase low for a window or two). A window that judges no phase keeps the suspect unless
+ * its deficit fell below minus four times the minimum, as a healthy phase's does (an open phase's
+ * share may be too small to judge for a window near its zero crossing, while the open connection's
+ * leakage still flows). Starts the next window. */
+SIXPHASE_RAMFUNC static uint16_t open_phase_fast_verdict(ctl_protect_t *p,
+                                                         const ctl_protect_limits_t *l)
+{
+    int16_t worst = -1;
+    int16_t k;
+    bool keep;
+    for (k = 0; k < 6; k++) {
+        if (p->fast_deficit[k] > l->open_phase_fast_min &&
+            (worst < 0 || p->fast_deficit[k] > p->fast_deficit[worst])) {
+            worst = k;
+        }
+    }
+    keep = worst < 0 && p->fast_suspect >= 0 &&
+           p->fast_deficit[p->fast_suspect] > l->open_phase_fast_keep;
+    open_phase_fast_restart(p);
+    if (keep) {
+        return 0u;
+    }
+    if (worst < 0 || worst != p->fast_suspect) {
+        p->fast_suspect = worst;
+        p->fast_strikes = 1; /* counts only while there is a suspect */
+        return 0u;
+    }
+    p->fast_strikes++;
+    if (p->fast_strikes < CTL_PROTECT_OPEN_PHASE_FAST_WINDOWS) {
+        return 0u;
+    }
+    p->open_phase = worst;
+    return CTL_FAULT_OPEN_PHASE;
+}
+
+/* The fast check, on the x-y residual (docs/faults.md, "Two open-phase checks"): while the DDC's
+ * six-leg step holds the x-y currents near zero, each phase carries its share of the alpha-beta
+ * current, be the machine motoring, braking or at a standstill. An open phase carries nothing
+ * whatever its share. Each phase's deficit sums ratio * |share| - |i| over a short window: a
+ * healthy phase's stays below zero (it carries its share), an open phase's grows with its share;
+ * above the minimum (ratio times the expected current that makes a phase judged) it is open.
+ * Needs no turn of the rotor. */
+SIXPHASE_RAMFUNC static uint16_t check_open_phase_fast(ctl_protect_t *p,
+                                                       const ctl_protect_limits_t *l,
+                                                       const ctl_protect_input_t *in)
+{
+    ctl_vsd_t v;
+    ctl_q share[6];
+    int16_t k;
+    if (!in->running || !in->xy_held || p->quiet != 0u) {
+        open_phase_fast_reset(p);
+        return 0u;
+    }
+    ctl_vsd_forward(in->i_phase, &v);
+    ctl_vsd_alpha_beta_phases(ctl_mul(v.alpha, l->open_phase_fast_ratio),
+                              ctl_mul(v.beta, l->open_phase_fast_ratio), share);
+    for (k = 0; k < 6; k++) {
+        /* both magnitudes are non-negative: their difference cannot overflow; the sum saturates */
+        p->fast_deficit[k] =
+            ctl_add(p->fast_deficit[k], ctl_abs(share[k]) - ctl_abs(in->i_phase[k]));
+    }
+    p->fast_count++;
+    if (p->fast_count < CTL_PROTECT_OPEN_PHASE_FAST_WINDOW) {
+        return 0u;
+    }
+    return open_phase_fast_verdict(p, l);
+}
+
+static void drop_one(ctl_protect_t *p)
 {
     if (p->log_dropped < UINT16_MAX) {
         p->log_dropped++;
     }
 }
 
-SIXPHASE_RAMFUNC static void fill_record(ctl_fault_record_t *r, const ctl_protect_t *p,
-                                         uint16_t faults, const ctl_protect_input_t *in,
-                                         ctl_q torque_ref, int16_t vector, ctl_q duty)
+static void fill_record(ctl_fault_record_t *r, const ctl_protect_t *p, uint16_t faults,
+                        const ctl_protect_input_t *in, ctl_q torque_ref, int16_t vector, ctl_q duty)
 {
     int16_t k;
     r->faults = faults;
@@ -347,9 +458,8 @@ SIXPHASE_RAMFUNC static void fill_record(ctl_fault_record_t *r, const ctl_protec
     r->duty = duty;
 }
 
-SIXPHASE_RAMFUNC static void record(ctl_protect_t *p, uint16_t faults,
-                                    const ctl_protect_input_t *in, ctl_q torque_ref, int16_t vector,
-                                    ctl_q duty)
+static void record(ctl_protect_t *p, uint16_t faults, const ctl_protect_input_t *in,
+                   ctl_q torque_ref, int16_t vector, ctl_q duty)
 {
     const uint16_t w = p->log_write;
     const bool full = (uint16_t)(w - p->log_read) >= (uint16_t)CTL_PROTECT_LOG_SIZE;
@@ -418,6 +528,7 @@ SIXPHASE_RAMFUNC uint16_t ctl_protect_check(ctl_protect_t *p, const ctl_protect_
     f |= check_encoder(p, l, in);
     f |= check_adc(p, l, in);
     f |= check_open_phase(p, l, in);
+    f |= check_open_phase_fast(p, l, in);
 
     p->active = f;
     if ((f & (uint16_t)~p->latched) != 0u) {
@@ -435,7 +546,7 @@ void ctl_protect_raise(ctl_protect_t *p, uint16_t faults, const ctl_protect_inpu
     latch(p, faults);
 }
 
-SIXPHASE_RAMFUNC void ctl_protect_quiet(ctl_protect_t *p, uint16_t quiet)
+void ctl_protect_quiet(ctl_protect_t *p, uint16_t quiet)
 {
     int16_t judged = 0;
     int16_t k;
@@ -447,6 +558,7 @@ SIXPHASE_RAMFUNC void ctl_protect_quiet(ctl_protect_t *p, uint16_t quiet)
         judged = (int16_t)(judged + (((((unsigned)quiet >> k) & 1u) == 0u) ? 1 : 0));
     }
     p->quiet = quiet;
+    open_phase_fast_reset(p);
     /* no phase judged: the mean stays 0 and nothing is ever below it */
     p->inv_judged = (judged == 6)  ? CTL_K_ONE_SIXTH
                     : (judged > 0) ? ctl_div(CTL_Q(1.0), ctl_mul_int(CTL_Q(1.0), judged))
@@ -462,7 +574,7 @@ void ctl_protect_accept(ctl_protect_t *p, uint16_t faults)
     p->episode_recorded = false;
 }
 
-SIXPHASE_RAMFUNC bool ctl_protect_clear(ctl_protect_t *p)
+bool ctl_protect_clear(ctl_protect_t *p)
 {
     if (p->active != 0u) {
         return false;

@@ -2,6 +2,7 @@
 #include "commission.h"
 
 #include "ctl_barrier.h"
+#include "ident_excite.h"
 
 #define COMM_BANDWIDTH_RAD_S 942.0f /* current regulator, 150 Hz */
 #define COMM_LIMIT_DQ 0.35f         /* |u_dq| limit, of the DC link */
@@ -9,6 +10,10 @@
 /* Every step's time bound: this times its nominal duration, plus COMM_TIMEOUT_MARGIN_S. */
 #define COMM_TIMEOUT_FACTOR 3.0f
 #define COMM_TIMEOUT_MARGIN_S 2.0f
+/* The open-phase watch: its window, and the mean share of the current (of the test current) that
+ * makes a phase judged. */
+#define COMM_WATCH_SECONDS 0.02f
+#define COMM_WATCH_MIN_SHARE 0.1f
 
 static const float step_seconds[SXL_COMM_STEP_COUNT] = {
     IDENT_PHASE_SECONDS,      IDENT_ENCODER_SECONDS,    IDENT_RESISTANCE_SECONDS,
@@ -70,11 +75,60 @@ void comm_request(comm_t *c, uint16_t mask, uint16_t permille)
     c->start_requested = 1;
 }
 
+static float comm_abs(float v) { return (v < 0.0f) ? -v : v; }
+
+static void comm_watch_restart(comm_watch_t *w)
+{
+    int16_t k;
+    for (k = 0; k < IDENT_PHASES; k++) {
+        w->meas[k] = 0.0f;
+        w->ref[k] = 0.0f;
+    }
+    w->n = 0u;
+}
+
+/* Every step watches for an open phase. A step commands its current in one plane, alpha-beta (a
+ * d-axis alignment, a spin, the resistance and d-q inductance steps) or x-y (the phase check, the
+ * x-y inductance): each phase then carries its share of the measured current in that plane, and
+ * an open phase none, the rest going into the other plane. Over a window, a phase whose share
+ * averaged above a tenth of the test current and that carried less than the protection's
+ * open-phase ratio of it is open. The measured current, not the reference: while aligning, the
+ * soft regulator lets the current lag its reference by far. True when a phase is open. */
+static bool comm_watch_open_phase(comm_t *c, const ident_input_t *in)
+{
+    comm_watch_t *w = &c->watch;
+    const ident_ctx_t *x = &c->x;
+    const bool ab = x->ref_dq[0] * x->ref_dq[0] + x->ref_dq[1] * x->ref_dq[1] >=
+                    x->ref_xy[0] * x->ref_xy[0] + x->ref_xy[1] * x->ref_xy[1];
+    float r[4];
+    bool open = false;
+    int16_t k;
+    r[0] = ab ? x->i_ab[0] : 0.0f;
+    r[1] = ab ? x->i_ab[1] : 0.0f;
+    r[2] = ab ? 0.0f : x->i_xy[0];
+    r[3] = ab ? 0.0f : x->i_xy[1];
+    for (k = 0; k < IDENT_PHASES; k++) {
+        w->meas[k] += comm_abs(in->i_phase[k]);
+        w->ref[k] += comm_abs(ident_vsd_phase(r, k));
+    }
+    w->n++;
+    if (w->n < ident_periods(x, COMM_WATCH_SECONDS)) {
+        return false;
+    }
+    for (k = 0; k < IDENT_PHASES; k++) {
+        open = open || (w->ref[k] > COMM_WATCH_MIN_SHARE * x->i_test * (float)w->n &&
+                        w->meas[k] < x->m.open_ratio * w->ref[k]);
+    }
+    comm_watch_restart(w);
+    return open;
+}
+
 /* The step's own start. */
 static void comm_begin_step(comm_t *c)
 {
     ident_ctx_t *x = &c->x;
     x->reason = COMM_REASON_NONE;
+    comm_watch_restart(&c->watch);
     c->step_start = c->periods;
     switch (c->step) {
     case COMM_STEP_PHASES:
@@ -221,7 +275,8 @@ bool comm_period(comm_t *c, const ident_input_t *in, float u[4])
     }
     c->periods++;
     ident_measure(&c->x, in);
-    status = comm_run_step(c, in);
+    status = comm_watch_open_phase(c, in) ? ident_fail(&c->x, COMM_REASON_OPEN_PHASE)
+                                          : comm_run_step(c, in);
     if (status == IDENT_RUNNING &&
         (float)(c->periods - c->step_start) * c->x.m.ts >
             COMM_TIMEOUT_FACTOR * step_seconds[c->step] + COMM_TIMEOUT_MARGIN_S) {

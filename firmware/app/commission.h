@@ -34,6 +34,14 @@ typedef union {
     ident_flux_t flux;
 } comm_step_state_t;
 
+/* Every step's open-phase watch: over each window, each phase's |measured| and |commanded|
+ * current (the regulator's references in the phase), summed. */
+typedef struct {
+    float meas[IDENT_PHASES];
+    float ref[IDENT_PHASES];
+    uint32_t n; /* periods in the window */
+} comm_watch_t;
+
 typedef struct {
     /* a start asked by the background, taken by the ISR in READY */
     volatile int16_t start_requested;
@@ -51,6 +59,7 @@ typedef struct {
     float total_seconds; /* nominal time of the selected steps */
     ident_ctx_t x;
     comm_step_state_t s;
+    comm_watch_t watch;
 } comm_t;
 
 void comm_init(comm_t *c);

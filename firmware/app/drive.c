@@ -101,6 +101,7 @@ static void drive_init_protection(drive_t *d)
     d->protect_in.hw_trip = false;
     d->protect_in.running = false;
     d->protect_in.currents_calibrated = false;
+    d->protect_in.xy_held = false;
 }
 
 /* No leg isolated, the build's open-phase option. */
@@ -115,6 +116,12 @@ static void drive_init_open_phase(drive_t *d, const ctl_params_t *p)
     d->restore_request = false;
     d->open_phase_paused = false;
     d->params_bg.open_phase = -1; /* the drive owns it: no leg is isolated at start */
+    d->torque_limited_action = (int16_t)DRIVE_TORQUE_LIMITED_DEFAULT;
+    d->torque_limited_stop_s = DRIVE_TORQUE_LIMITED_STOP_S;
+    d->at_limit = false;
+    d->at_limit_since = 0u;
+    d->torque_limited = false;
+    d->torque_limited_stopped = false;
 }
 
 void drive_init(drive_t *d, const ctl_params_t *p)
@@ -345,6 +352,10 @@ SIXPHASE_RAMFUNC static uint16_t drive_protect(drive_t *d, bool running)
     in->hw_trip = hal_pwm_hw_trip_seen();
     in->running = running;
     in->currents_calibrated = d->calibrated;
+    /* the DDC's six-leg step runs (not a phase check, whose test current is x-y; not the MPTC
+     * baselines, whose cost leaves the x-y currents free; an isolated leg's quiet phases turn the
+     * fast check off in the protection) */
+    in->xy_held = d->state == DRIVE_STATE_RUN && !d->phase_verifying && d->ctl.xy_held;
     return ctl_protect_check(&d->protect, drive_limits(d), in, d->ctl.diag.torque_ref,
                              d->ctl.applied_vector, d->ctl.applied_duty);
 }

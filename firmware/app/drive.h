@@ -82,6 +82,23 @@ typedef enum {
 #define DRIVE_OPEN_PHASE_DEFAULT DRIVE_OPEN_PHASE_STOP
 #endif
 
+/* What the drive does when the speed loop stays at its torque limit: the speed cannot be held (a
+ * load above the limit, or the derated limit after an open phase). Either way the status flag
+ * SXL_FLAG_TORQUE_LIMITED says so once at the limit for DRIVE_TORQUE_LIMITED_FLAG_S;
+ * DRIVE_TORQUE_LIMITED_DEFAULT is the build default, drive_set_torque_limited_action changes it. */
+typedef enum {
+    DRIVE_TORQUE_LIMITED_CONTINUE = 0, /* run on at the limit: the load sets the speed */
+    DRIVE_TORQUE_LIMITED_STOP = 1      /* at the limit for the set time: stop (RUN -> READY) */
+} drive_torque_limited_action_t;
+
+#ifndef DRIVE_TORQUE_LIMITED_DEFAULT
+#define DRIVE_TORQUE_LIMITED_DEFAULT DRIVE_TORQUE_LIMITED_CONTINUE
+#endif
+#define DRIVE_TORQUE_LIMITED_FLAG_S 0.1f /* at the limit this long: flagged */
+#define DRIVE_TORQUE_LIMITED_STOP_S 0.5f /* default time before the stop action stops */
+#define DRIVE_TORQUE_LIMITED_STOP_MAX_S 60.0f
+#define DRIVE_TORQUE_LIMITED_EVERY 16u /* the watch runs in every 16th period */
+
 /* Why a leg is isolated. */
 typedef enum {
     DRIVE_ISOLATION_NONE = 0,
@@ -152,6 +169,13 @@ typedef struct {
     comm_t comm;
     bool phase_check_pending; /* an OPEN_PHASE fault was cleared: check before RUN controls */
     bool phase_verifying;     /* RUN is running that check */
+    /* torque-limited operation (drive_torque_limited_action_t; background only) */
+    int16_t torque_limited_action;
+    float torque_limited_stop_s; /* at the limit this long: the stop action stops */
+    bool at_limit;               /* the speed loop was at its limit at the last pass */
+    uint32_t at_limit_since;     /* isr_count when it got there */
+    bool torque_limited;         /* at the limit for DRIVE_TORQUE_LIMITED_FLAG_S or more */
+    bool torque_limited_stopped; /* the stop action stopped the last run */
 } drive_t;
 
 /* Configure the controller; HAL peripherals must be initialised already. */
@@ -204,6 +228,11 @@ void drive_background(drive_t *d);
  * (ctl_postfault_strategy_t) for the next post-fault set; false, nothing changed, for an
  * unknown value. */
 bool drive_set_open_phase_action(drive_t *d, int16_t action, int16_t strategy);
+
+/* Background: what the drive does when the speed cannot be held (drive_torque_limited_action_t)
+ * and, for the stop, after how long at the limit (0 < s <= DRIVE_TORQUE_LIMITED_STOP_MAX_S);
+ * false, nothing changed, for a bad value. */
+bool drive_set_torque_limited_action(drive_t *d, int16_t action, float stop_s);
 
 /* Background: isolate leg 0..5 by command (tests of open-phase operation on a healthy machine),
  * in READY or RUN with no leg isolated; false if refused. The ISR acts in its next period. */

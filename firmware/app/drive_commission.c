@@ -240,6 +240,9 @@ drive_comm_result_t drive_commission_apply(drive_t *d, uint16_t *applied)
         c->state == COMM_STATE_RUNNING) {
         return DRIVE_COMM_REFUSED;
     }
+    if (c->state == COMM_STATE_FAILED && c->reason == COMM_REASON_OPEN_PHASE) {
+        return DRIVE_COMM_REFUSED; /* when the phase opened is unknown: no result is trusted */
+    }
     *p = d->params_bg;
     got = drive_comm_take(c, p);
     if (got == 0u && !offset) {

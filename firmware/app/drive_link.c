@@ -67,6 +67,9 @@ void drive_link_status(const drive_t *d, uint16_t rx_errors, uint16_t *out)
     if (d->isolated_leg >= 0) {
         flags |= SXL_FLAG_LEG_ISOLATED;
     }
+    if (d->torque_limited) {
+        flags |= SXL_FLAG_TORQUE_LIMITED;
+    }
     out[SXL_ST_STATE] = (uint16_t)((uint16_t)d->state & 0xFFu);
     out[SXL_ST_FAULT] = (uint16_t)((uint16_t)d->fault & 0xFFu);
     out[SXL_ST_FLAGS] = flags;

@@ -66,13 +66,12 @@ SECTIONS
                    *(.TI.ramfunc)
                    /* TI's run-time library: what the period's code calls (image_check.py maps
                     * the proxy's helper calls to these members): 16- and 32-bit integer
-                    * division; float division in the float image, 64-bit division and
-                    * multiply in the Q24 image */
+                    * division, and the 64-bit multiply in the Q24 image. (No float division
+                    * and no 64-bit division: the period's code does neither.) */
 #ifdef SIXPHASE_FW_Q24
-                   -l rts2800_fpu32.lib<i_div28.asm.obj l_div28.asm.obj ll_div28.asm.obj
-                                        ll_mpy28.asm.obj>(.text)
+                   -l rts2800_fpu32.lib<i_div28.asm.obj l_div28.asm.obj ll_mpy28.asm.obj>(.text)
 #else
-                   -l rts2800_fpu32.lib<fs_div28.asm.obj i_div28.asm.obj l_div28.asm.obj>(.text)
+                   -l rts2800_fpu32.lib<i_div28.asm.obj l_div28.asm.obj>(.text)
 #endif
                 }
                 LOAD = FLASHD,

@@ -202,6 +202,9 @@
 #define SXL_FLAG_PWM_OFF 0x02u
 #define SXL_FLAG_PARAMS_PENDING 0x04u
 #define SXL_FLAG_LEG_ISOLATED 0x08u /* a leg is off for good (SXL_CMD_GET_OPEN_PHASE) */
+#define SXL_FLAG_TORQUE_LIMITED                                                                    \
+    0x10u /* the speed loop at its torque limit for 0.1 s or more:                                 \
+           * the speed is not held (docs/faults.md) */
 
 typedef struct {
     uint16_t cmd;

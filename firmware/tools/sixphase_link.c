@@ -319,6 +319,7 @@ static int print_reply(const sxl_frame_t *r)
                    sxl_run_refusal_name(st[SXL_ST_RUN_REFUSAL]), blocked);
         }
         printf(" leg_isolated=%s", (st[SXL_ST_FLAGS] & SXL_FLAG_LEG_ISOLATED) ? "yes" : "no");
+        printf(" torque_limited=%s", (st[SXL_ST_FLAGS] & SXL_FLAG_TORQUE_LIMITED) ? "yes" : "no");
         printf("\n");
         if (r->len >= 1u + SXL_ST_SIZE) {
             print_stack(sxl_get_u16(&st[SXL_ST_STACK_USED]), sxl_get_u16(&st[SXL_ST_STACK_WORDS]));

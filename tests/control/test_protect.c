@@ -49,6 +49,7 @@ static ctl_protect_input_t healthy(int32_t n)
     in.hw_trip = false;
     in.running = true;
     in.currents_calibrated = true;
+    in.xy_held = false; /* the windowed check alone; the fast one has tests of its own */
     return in;
 }
 
@@ -384,13 +385,76 @@ static void test_open_phase_not_judged_without_a_turn(void **state)
                      -1);
 }
 
+/* The fast check (the x-y residual, with the DDC's six-leg step in force): a reversal's zero
+ * crossing, the current vector at rest, phase D opening. The windowed check cannot judge without
+ * a turn; the fast one finds D in its third window, whatever the speed. */
+static void stationary_xy_held(ctl_protect_input_t *in, int32_t n)
+{
+    slow_stationary_vector(in, n);
+    in->xy_held = true;
+}
+
+static void stationary_open_d(ctl_protect_input_t *in, int32_t n)
+{
+    stationary_xy_held(in, n);
+    open_phase(in, n);
+}
+
+static void stationary_open_d_free(ctl_protect_input_t *in, int32_t n)
+{
+    stationary_open_d(in, n);
+    in->xy_held = false;
+}
+
+/* Periods of `modify` (from the first) until OPEN_PHASE, or -1; nothing before them. */
+static int32_t periods_to_open_phase(modify_fn modify, int32_t max_periods)
+{
+    int32_t n;
+    for (n = 0; n < max_periods; n++) {
+        ctl_protect_input_t in = healthy(n);
+        modify(&in, n);
+        if ((ctl_protect_check(&prot, &limits, &in, CTL_Q(0.3), 044, CTL_Q(0.6)) &
+             CTL_FAULT_OPEN_PHASE) != 0u) {
+            return n + 1;
+        }
+    }
+    return -1;
+}
+
+static void test_fast_open_phase_without_a_turn(void **state)
+{
+    int32_t n;
+    (void)state;
+    assert_int_equal(
+        periods_to_open_phase(stationary_xy_held, 20 * CTL_PROTECT_OPEN_PHASE_FAST_WINDOW),
+        -1); /* healthy: nothing */
+    n = periods_to_open_phase(stationary_open_d, 1000);
+    print_message("fast check: D found after %ld periods\n", (long)n);
+    assert_true(n > 0 && n <= (CTL_PROTECT_OPEN_PHASE_FAST_WINDOWS + 1) *
+                                  CTL_PROTECT_OPEN_PHASE_FAST_WINDOW);
+    assert_int_equal(ctl_protect_open_phase(&prot), 3);
+}
+
+/* Without the DDC's step in force (a phase check's x-y test current, an MPTC baseline) or with a
+ * leg isolated, the fast check judges nothing. */
+static void test_fast_open_phase_needs_the_xy_held(void **state)
+{
+    (void)state;
+    assert_int_equal(
+        periods_to_open_phase(stationary_open_d_free, 20 * CTL_PROTECT_OPEN_PHASE_FAST_WINDOW), -1);
+    ctl_protect_quiet(&prot, 1u); /* A isolated */
+    assert_int_equal(
+        periods_to_open_phase(stationary_open_d, 20 * CTL_PROTECT_OPEN_PHASE_FAST_WINDOW), -1);
+}
+
 /* Healthy operation over a long run never reports anything (no false trips). */
 static void test_no_false_trip(void **state)
 {
     int32_t n;
     (void)state;
     for (n = 0; n < 20000; n++) {
-        const ctl_protect_input_t in = healthy(n);
+        ctl_protect_input_t in = healthy(n);
+        in.xy_held = (n >= 10000); /* the windowed check alone, then both */
         assert_int_equal(ctl_protect_check(&prot, &limits, &in, CTL_Q(0.3), 044, CTL_Q(0.6)), 0);
     }
     assert_int_equal(prot.latched, 0);
@@ -529,6 +593,8 @@ int main(void)
         cmocka_unit_test_setup(test_isolated_phase_word_may_rest, setup),
         cmocka_unit_test_setup(test_frozen_converter_stays_dead_across_clears, setup),
         cmocka_unit_test_setup(test_no_false_trip, setup),
+        cmocka_unit_test_setup(test_fast_open_phase_without_a_turn, setup),
+        cmocka_unit_test_setup(test_fast_open_phase_needs_the_xy_held, setup),
         cmocka_unit_test_setup(test_records_and_latch, setup),
         cmocka_unit_test_setup(test_full_log_keeps_a_new_root_cause, setup),
         cmocka_unit_test_setup(test_raise_from_outside, setup),

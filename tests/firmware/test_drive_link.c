@@ -504,6 +504,11 @@ static void test_open_phase_commands(void **state)
     assert_int_equal(sxl_get_u32(&op[SXL_OP_PERIOD]), d.isolation_period);
     assert_int_equal(send(SXL_CMD_GET_STATUS), SXL_OK);
     assert_true((rep.payload[1 + SXL_ST_FLAGS] & SXL_FLAG_LEG_ISOLATED) != 0u);
+    assert_true((rep.payload[1 + SXL_ST_FLAGS] & SXL_FLAG_TORQUE_LIMITED) == 0u);
+    d.torque_limited = true; /* the background's watch (test_drive_sm) */
+    assert_int_equal(send(SXL_CMD_GET_STATUS), SXL_OK);
+    assert_true((rep.payload[1 + SXL_ST_FLAGS] & SXL_FLAG_TORQUE_LIMITED) != 0u);
+    d.torque_limited = false;
     d.state = DRIVE_STATE_RUN;
     assert_int_equal(send(SXL_CMD_RESTORE_LEGS), SXL_ERR_REFUSED); /* READY only */
     d.state = DRIVE_STATE_READY;

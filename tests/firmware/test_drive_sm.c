@@ -780,9 +780,52 @@ static void test_fault_mask_mapping_round_trips(void **state)
     }
 }
 
+/* The speed loop at its torque limit in RUN (the background's watch, timed on the ISR count):
+ * flagged after 0.1 s; with the stop action the run is asked to stop after the set time; off the
+ * limit the flag clears. */
+static void at_limit_for(uint32_t periods)
+{
+    uint32_t k;
+    for (k = 0; k < periods; k++) {
+        d.isr_count++;
+        drive_background(&d);
+    }
+}
+
+static void test_torque_limited_flag_and_stop(void **state)
+{
+    (void)state;
+    d.ctl.initialised = true;
+    d.ctl.config_active = 0;
+    d.ctl.config[0].params.sample_time_s = 1.0e-4f;
+    d.ctl.loop_mode = CTL_LOOP_SPEED;
+    d.ctl.speed_pi.limit = CTL_Q(0.4);
+    d.ctl.diag.torque_ref = CTL_Q(-0.4);
+    d.state = DRIVE_STATE_RUN;
+    /* the watch runs every 16th period: flagged between 0.1 and 0.1032 s at the limit */
+    at_limit_for(990);
+    assert_false(d.torque_limited);
+    at_limit_for(42);
+    assert_true(d.torque_limited);
+    assert_false(d.stop_requested); /* the default: run on at the limit */
+    d.ctl.diag.torque_ref = CTL_Q(0.3);
+    at_limit_for(DRIVE_TORQUE_LIMITED_EVERY);
+    assert_false(d.torque_limited);
+    assert_false(drive_set_torque_limited_action(&d, 2, 0.5f));
+    assert_false(drive_set_torque_limited_action(&d, DRIVE_TORQUE_LIMITED_STOP, 0.0f));
+    assert_true(drive_set_torque_limited_action(&d, DRIVE_TORQUE_LIMITED_STOP, 0.2f));
+    d.ctl.diag.torque_ref = CTL_Q(0.4);
+    at_limit_for(1990);
+    assert_false(d.stop_requested);
+    at_limit_for(42);
+    assert_true(d.stop_requested);
+    assert_true(d.torque_limited_stopped);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test_setup(test_torque_limited_flag_and_stop, setup),
         cmocka_unit_test_setup(test_init_calibrates_with_pwm_off, setup),
         cmocka_unit_test_setup(test_calibration_averages_offsets, setup),
         cmocka_unit_test_setup(test_offset_out_of_range_faults, setup),

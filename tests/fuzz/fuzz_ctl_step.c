@@ -191,6 +191,7 @@ int LLVMFuzzerTestOneInput(const unsigned char *data, size_t size)
             in.hw_trip = false;
             in.running = true;
             in.currents_calibrated = (tag & 2u) != 0u;
+            in.xy_held = (tag & 4u) != 0u;
             (void)ctl_protect_check(&prot, &ctl_config(&c)->protect, &in, ctl_diag(&c)->torque_ref,
                                     cmd.vector, cmd.duty);
             if ((prot.latched & (uint16_t)~0x3FFFu) != 0u ||

@@ -78,6 +78,21 @@ static void test_good_arguments(void **state)
     assert_int_equal(o.quiet, 1);
 }
 
+/* --open-phase in a motion scenario opens that phase there (a reversal's braking half). */
+static void test_open_phase_in_a_motion_scenario(void **state)
+{
+    static const char *const a[] = {"--controller", "ddc", "--scenario",   "reversal",
+                                    "--open-phase", "B",   "--fault-time", "0.15"};
+    sim_cli_t o;
+    char err[256] = "";
+    (void)state;
+    assert_int_equal(parse(a, 8, &o, err, sizeof err), 0);
+    assert_int_equal(o.cfg.scenario, SIM_SCEN_REVERSAL);
+    assert_int_equal(o.cfg.fault, SIM_FAULT_OPEN_PHASE);
+    assert_int_equal(o.cfg.fault_phase, 1);
+    assert_true(o.cfg.fault_time_s == 0.15);
+}
+
 static void test_open_phase_arguments(void **state)
 {
     static const char *const a[] = {"--controller",
@@ -307,7 +322,9 @@ static const bad_case_t bad_cases[] = {
      "quarter of the 10 us PWM period"},
     {{"--controller", "ddc", "--scenario", "steady", "--out", "--quiet"}, 6, "'--quiet'"},
     /* open-phase operation: each option belongs to its scenario or to another option */
-    {{"--controller", "ddc", "--scenario", "steady", "--open-phase", "A"}, 6, "fault-open-phase"},
+    {{"--controller", "ddc", "--scenario", "fault-overspeed", "--open-phase", "A"},
+     6,
+     "fault-open-phase"},
     {{"--controller", "ddc", "--scenario", "fault-open-phase", "--open-phase", "G"}, 6, "'G'"},
     {{"--controller", "ddc", "--scenario", "fault-open-phase", "--second-fault", "C"},
      6,
@@ -642,6 +659,7 @@ int main(void)
         cmocka_unit_test(test_bad_arguments_rejected),
         cmocka_unit_test(test_open_phase_option_combinations),
         cmocka_unit_test(test_serve_and_fault_time_arguments),
+        cmocka_unit_test(test_open_phase_in_a_motion_scenario),
         cmocka_unit_test(test_open_phase_arguments),
         cmocka_unit_test(test_executable_writes_nothing_on_bad_argument),
         cmocka_unit_test(test_run_stops_at_the_out_limit),

@@ -509,6 +509,39 @@ static void test_open_phase_checked_again_after_clear(void **state)
     sim_teardown(&rs, true);
 }
 
+/* Phase C opens during each step of the sequence (the reference machine; the steps run 0 to
+ * 0.048 s, to 14.4 s, 17.2 s, 18.2 s, 19.2 s and 22.7 s): every step watches, the sequence ends
+ * FAILED with reason open_phase within 100 ms, and APPLY takes nothing (results measured before
+ * the opening are not trusted either: when it opened is unknown). Before, only the first 45 ms
+ * were watched: the sequence ended "done" with R, L_q and L_xy off, or failed on load_torque. */
+static void test_open_phase_in_each_step(void **state)
+{
+    static const double opens_s[SXL_COMM_STEP_COUNT] = {0.02, 1.0, 15.5, 17.7, 18.7, 20.5};
+    int step;
+    (void)state;
+    for (step = 0; step < (int)SXL_COMM_STEP_COUNT; step++) {
+        sim_config_t c;
+        sim_result_t r;
+        config(&c, NULL, step % 2);
+        c.fault = SIM_FAULT_OPEN_PHASE;
+        c.fault_phase = 2;
+        c.fault_time_s = opens_s[step];
+        run(&c, &r);
+        print_message("C opens at %.2f s (step %s, %s): %s / %s after %.1f ms, apply %d (applied "
+                      "0x%x), fault %d\n",
+                      opens_s[step], sxl_comm_step_name((uint16_t)step), r.arith,
+                      sxl_comm_state_name((uint16_t)r.comm.state),
+                      sxl_comm_reason_name((uint16_t)r.comm.reason),
+                      1e3 * (r.comm.duration_s - opens_s[step]), r.comm.apply_result,
+                      r.comm.applied, r.fault);
+        assert_int_equal(r.comm.state, SXL_COMM_STATE_FAILED);
+        assert_int_equal(r.comm.reason, SXL_COMM_REASON_OPEN_PHASE);
+        assert_true(r.comm.duration_s > opens_s[step] && r.comm.duration_s < opens_s[step] + 0.1);
+        assert_int_equal(r.comm.apply_result, 2); /* DRIVE_COMM_REFUSED */
+        assert_int_equal(r.comm.applied, 0u);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -524,6 +557,7 @@ int main(void)
         cmocka_unit_test(test_refused_with_the_rotor_turning),
         cmocka_unit_test(test_refused_while_running),
         cmocka_unit_test(test_open_phase_checked_again_after_clear),
+        cmocka_unit_test(test_open_phase_in_each_step),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -35,7 +35,8 @@ CONFIG = ([(n, "q") for n in ("a_d", "b_d", "c_d", "a_q", "b_q", "e_q", "c_q", "
           [("prot." + n, "q") for n in ("stuck_min_current", "encoder_torque",
                                         "encoder_expected_turn", "encoder_jump",
                                         "torque_to_dspeed", "ts_turns", "open_phase_min_mean",
-                                        "open_phase_ratio")])
+                                        "open_phase_ratio", "open_phase_fast_ratio",
+                                        "open_phase_fast_min", "open_phase_fast_keep")])
 
 STEP = ([("vector", "i16"), ("duty", "q")] + [("leg_duty[%d]" % i, "q") for i in range(6)] +
         [("enable", "u8"), ("faults", "u16"), ("latched", "u16"), ("active", "u16"),

@@ -277,6 +277,9 @@ static void emit_config(const ctl_config_t *c)
     wr_q(l->ts_turns);
     wr_q(l->open_phase_min_mean);
     wr_q(l->open_phase_ratio);
+    wr_q(l->open_phase_fast_ratio);
+    wr_q(l->open_phase_fast_min);
+    wr_q(l->open_phase_fast_keep);
 }
 
 static void do_init(void)
@@ -441,6 +444,7 @@ static void do_step(void)
         prot_in.hw_trip = (flags & 8u) != 0u;
         prot_in.running = (flags & 16u) != 0u;
         prot_in.currents_calibrated = (flags & 32u) != 0u;
+        prot_in.xy_held = prot_in.running && ctl_state.xy_held;
         prot_in.torque_est = prot_in.running ? ctl_state.diag.torque_est : CTL_Q(0.0);
         port_mark(MARK_PROT_BEGIN);
         faults = ctl_protect_check(&prot_state, &ctl_config(&ctl_state)->protect, &prot_in,

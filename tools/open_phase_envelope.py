@@ -1,0 +1,165 @@
+#!/usr/bin/env python3
+"""The open-phase envelope of docs/faults.md (issue 23): every phase opening in each drive state,
+in both arithmetics, run through the simulator; the table between the envelope markers of
+docs/faults.md, and a check against the limits.
+
+  tools/open_phase_envelope.py --write   run, check the limits, rewrite the table
+  tools/open_phase_envelope.py --check   run, check the limits, compare with the committed table
+
+Limits (issue 23): found within 10 ms at 20 % of rated torque and more (motoring, braking,
+acceleration, reversal), within 100 ms at light and no load, before any phase reaches the trip
+level (no other fault; the largest phase current below 15 A), the drive riding through (RUN,
+the open phase's leg isolated); a commissioning sequence ends failed with reason open_phase,
+nothing applied. Exit status 1 when a row breaks its limit or (--check) the table differs.
+"""
+import argparse
+import concurrent.futures
+import json
+import os
+import subprocess
+import sys
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(HERE)
+DOC = os.path.join(ROOT, "docs", "faults.md")
+BEGIN = "<!-- open-phase-envelope: tools/open_phase_envelope.py --write -->"
+END = "<!-- /open-phase-envelope -->"
+TRIP_A = 15.0
+PHASES = "ABCDEF"
+ARITHS = ("fixed", "float")
+
+# name, the point in words, sixphase-sim arguments (the phase and arithmetic added), limit ms
+CASES = (
+    ("motoring", "1500 r/min, 3.5 N m", ["--scenario", "fault-open-phase", "--ride-through",
+                                          "--speed", "1500", "--load", "3.5"], 10.0),
+    ("braking", "460 r/min, -6.8 N m (overhauling)",
+     ["--scenario", "fault-open-phase", "--ride-through", "--speed", "460", "--load", "-6.8",
+      "--duration", "0.6"], 10.0),
+    ("light load", "460 r/min, 0.5 N m", ["--scenario", "fault-open-phase", "--ride-through",
+                                           "--speed", "460", "--load", "0.5"], 100.0),
+    ("no load", "1500 r/min, 0 N m", ["--scenario", "fault-open-phase", "--ride-through",
+                                       "--speed", "1500", "--load", "0"], 100.0),
+    ("acceleration", "0 -> 800 r/min at 7 N m, opens at 0.1 s (329 r/min)",
+     ["--scenario", "accel", "--ride-through", "--fault-time", "0.1", "--duration", "0.5"], 10.0),
+    ("reversal", "800 -> -800 r/min, opens at 0.15 s (462 r/min, braking at -6.8 N m)",
+     ["--scenario", "reversal", "--ride-through", "--fault-time", "0.15", "--duration", "0.6"],
+     10.0),
+    ("commissioning", "the encoder step, opens at 1.0 s",
+     ["--scenario", "commission", "--fault-time", "1.0"], 100.0),
+)
+
+
+def run_one(sim, case, phase, arith):
+    name, _, args, _ = case
+    cmd = [sim, "run", "--controller", "ddc", "--arith", arith, "--open-phase", phase,
+           "--no-trace"] + args
+    out = subprocess.run(cmd, capture_output=True, text=True, check=False)
+    if out.returncode != 0:
+        raise RuntimeError("%s: %s" % (" ".join(cmd), out.stderr.strip()))
+    return name, phase, arith, json.loads(out.stdout)
+
+
+def judge(case, phase, m):
+    """The row's figures and whether it keeps its limit."""
+    name, _, _, limit_ms = case
+    if name == "commissioning":
+        c = m["commission"]
+        ms = 1e3 * (c["duration_s"] - 1.0)
+        outcome = "%s %s, applied 0x%x" % (c["state"], c["reason"], c["applied_mask"])
+        ok = (c["state"] == "failed" and c["reason"] == "open_phase" and ms <= limit_ms and
+              c["applied_mask"] == 0 and m["drive_fault"] == 0 and
+              c["phase_current_peak_a"] < TRIP_A)
+        return ms, c["phase_current_peak_a"], None, outcome, ok
+    op = m["open_phase"]
+    ms = op["isolation_ms"]
+    leg = op["isolated_leg"]
+    peak = op["peak_after_event_a"]
+    dip = op["speed_dip_rpm"] if name not in ("acceleration", "reversal") else None
+    if m["drive_fault"] != 0:
+        outcome = "FAULT %s" % m["fault_name"]
+    elif leg == PHASES.index(phase) and m["final_drive_state"] == 3:
+        outcome = "rides through"
+    else:
+        outcome = "not found (state %d)" % m["final_drive_state"]
+    ok = (outcome == "rides through" and ms is not None and ms <= limit_ms and
+          peak is not None and peak < TRIP_A)
+    return ms, peak, dip, outcome, ok
+
+
+def fmt(v, spec):
+    return "n/a" if v is None else spec % v
+
+
+def table(sim, jobs):
+    jobs_list = [(c, p, a) for c in CASES for a in ARITHS for p in PHASES]
+    results = {}
+    with concurrent.futures.ThreadPoolExecutor(max_workers=jobs) as pool:
+        futures = [pool.submit(run_one, sim, c, p, a) for c, p, a in jobs_list]
+        for f in futures:
+            name, phase, arith, m = f.result()
+            results[(name, phase, arith)] = m
+    lines = ["| state | point | arithmetic | open phase | found after ms (limit) | largest phase "
+             "current A | speed dip r/min | outcome | within limits |",
+             "|---|---|---|---|---|---|---|---|---|"]
+    failures = []
+    for case in CASES:
+        for arith in ARITHS:
+            for phase in PHASES:
+                ms, peak, dip, outcome, ok = judge(case, phase, results[(case[0], phase, arith)])
+                lines.append("| %s | %s | %s | %s | %s (%g) | %s | %s | %s | %s |" % (
+                    case[0], case[1], arith, phase, fmt(ms, "%.1f"), case[3], fmt(peak, "%.2f"),
+                    fmt(dip, "%.1f"), outcome, "yes" if ok else "**no**"))
+                if not ok:
+                    failures.append("%s %s %s: %s after %s ms" % (case[0], arith, phase, outcome,
+                                                                  fmt(ms, "%.1f")))
+    return "\n".join(lines) + "\n", failures
+
+
+def replace_block(doc, block):
+    start = doc.index(BEGIN) + len(BEGIN)
+    end = doc.index(END)
+    return doc[:start] + "\n" + block + doc[end:]
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    mode = ap.add_mutually_exclusive_group(required=True)
+    mode.add_argument("--write", action="store_true", help="rewrite the table in docs/faults.md")
+    mode.add_argument("--check", action="store_true", help="compare with the committed table")
+    ap.add_argument("--sim", default=os.environ.get(
+        "SIXPHASE_SIM", os.path.join(ROOT, "build", "host", "host_sim", "sixphase-sim")))
+    ap.add_argument("--jobs", type=int, default=2)
+    a = ap.parse_args()
+    if not os.access(a.sim, os.X_OK):
+        print("open_phase_envelope: no simulator at %s (build it, or --sim)" % a.sim,
+              file=sys.stderr)
+        return 1
+    if a.jobs < 1:
+        print("open_phase_envelope: --jobs must be at least 1", file=sys.stderr)
+        return 1
+    block, failures = table(a.sim, a.jobs)
+    with open(DOC, encoding="utf-8") as f:
+        doc = f.read()
+    if BEGIN not in doc or END not in doc:
+        print("open_phase_envelope: %s has no envelope markers" % DOC, file=sys.stderr)
+        return 1
+    new = replace_block(doc, block)
+    status = 0
+    if a.write and new != doc:
+        with open(DOC, "w", encoding="utf-8") as f:
+            f.write(new)
+    if a.check and new != doc:
+        print("open_phase_envelope: the table in docs/faults.md is out of date; run "
+              "tools/open_phase_envelope.py --write and commit the result", file=sys.stderr)
+        status = 1
+    for line in failures:
+        print("open_phase_envelope: outside the limits: " + line, file=sys.stderr)
+    if failures:
+        status = 1
+    print("open_phase_envelope: %d rows, %d outside the limits" %
+          (len(block.splitlines()) - 2, len(failures)))
+    return status
+
+
+if __name__ == "__main__":
+    sys.exit(main())
