@@ -534,7 +534,7 @@ static uint16_t halt_run_period(aq_model_t legs[HAL_PWM_LEGS], uint16_t tripped,
     for (pos = 0; pos < 2 * legs[0].prd; pos++) {
         uint16_t mask = 0u;
         for (leg = 0; leg < HAL_PWM_LEGS; leg++) {
-            if (aq_step(&legs[leg], pos) && ((tripped >> leg) & 1u) == 0u) {
+            if (aq_step(&legs[leg], pos) && (((unsigned)tripped >> (unsigned)leg) & 1u) == 0u) {
                 mask |= (uint16_t)(1u << leg);
             }
         }
