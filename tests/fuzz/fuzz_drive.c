@@ -317,7 +317,7 @@ static struct {
 /* Plant periods per input: short inputs (what mutation mostly makes) a few hundred ms of the
  * drive's time, so that the fuzzer keeps its pace; long ones (first byte bit 1: the seeds
  * that commission) 40 s, the whole sequence with its margins. */
-#define PLANT_PERIODS_SHORT 1024L
+#define PLANT_PERIODS_SHORT 256L
 #define PLANT_PERIODS_LONG 400000L
 
 /* Started at an input's first plant period, at standstill; the encoder homed (as the rotor

@@ -2,9 +2,10 @@
 """Writes the structured seeds of fuzz_drive (seed-plant-*, seed-capture-*): inputs in
 fuzz_drive's format that reach the commissioning steps, capture, the converter-alive check and
 the phase verification, which random bytes rarely do. The seeds that run whole commissioning
-sequences (seconds of plant periods each) go to corpus_drive_long: replayed by every build and
-by tools/fuzz_coverage.sh, but not mutated by CI's short fuzz run (their mutants would be as
-slow); the others to corpus_drive.
+sequences or more than fuzz_drive's short budget of plant periods (LONG_START) go to
+corpus_drive_long: replayed by every build and by tools/fuzz_coverage.sh, but not mutated by
+CI's fuzz run (their mutants would be as slow: a plant period costs about a hundred plain
+ones under the sanitizers); the others to corpus_drive.
 
 usage: make_drive_seeds.py [DIR]   (default: the folder of this script; writes DIR/corpus_drive
                                     and DIR/corpus_drive_long)
@@ -137,15 +138,10 @@ SEEDS = {
 }
 
 
-# the seeds that run whole sequences (about 25 s of plant periods); those with more than four
-# blocks (fuzz_drive's short budget, 1024 periods) start with LONG_START
-LONG = {"seed-plant-commission-all", "seed-plant-commission-r", "seed-plant-commission-ldq"}
-
-
 def main():
     root = sys.argv[1] if len(sys.argv) > 1 else os.path.dirname(os.path.abspath(__file__))
     for name, data in SEEDS.items():
-        sub = "corpus_drive_long" if name in LONG else "corpus_drive"
+        sub = "corpus_drive_long" if data.startswith(LONG_START) else "corpus_drive"
         os.makedirs(os.path.join(root, sub), exist_ok=True)
         with open(os.path.join(root, sub, name), "wb") as f:
             f.write(data)
