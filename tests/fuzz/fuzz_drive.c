@@ -314,9 +314,10 @@ static struct {
 } plant;
 
 #define PLANT_TS_S 1.0e-4 /* the harness's PWM: 10 kHz (power_up) */
-/* Plant periods per input: short inputs (what mutation mostly makes) a few hundred ms of the
- * drive's time, so that the fuzzer keeps its pace; long ones (first byte bit 1: the seeds
- * that commission) 40 s, the whole sequence with its margins. */
+/* Plant periods per input: short inputs (what mutation mostly makes) 25.6 ms of the drive's
+ * time, so that the fuzzer keeps its pace (a plant period costs about what a hundred plain
+ * ones do under the sanitizers); long ones (first byte bit 1: the seeds that commission)
+ * 40 s, the whole sequence with its margins. */
 #define PLANT_PERIODS_SHORT 256L
 #define PLANT_PERIODS_LONG 400000L
 
@@ -394,8 +395,8 @@ static void plant_period(bool frozen, bool loaded)
 
 /* Periods on the plant: flags (bits 0..2: phase 0..5 open, 6 or 7 all connected; bit 3: the
  * converter frozen; bit 4: the encoder homed, at the input's first plant period; bit 5: a
- * load on the shaft), then the count in blocks of 32 periods, at most 256 (a few ms: short,
- * so that mutated inputs stay fast; the seeds that run whole sequences chain tags). */
+ * load on the shaft), then the count in blocks of 32 periods, at most 256 (short, so that
+ * mutated inputs stay fast; the seeds that run whole sequences chain tags). */
 static void plant_periods(stream_t *s)
 {
     const uint16_t flags = take8(s);
