@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Installs the Debian packages the build, the tests and the report need (idempotent).
-# Runs apt-get directly as root, through sudo otherwise.
+# Runs apt-get directly as root, through sudo otherwise. llvm: llvm-profdata and llvm-cov
+# (tools/fuzz_coverage.sh).
 set -euo pipefail
-packages=(cmake gcc make libcmocka-dev clang-format cppcheck gcc-arm-none-eabi clang libclang-rt-14-dev
+packages=(cmake gcc make libcmocka-dev clang-format cppcheck gcc-arm-none-eabi clang libclang-rt-14-dev llvm
           libnewlib-arm-none-eabi python3 python3-matplotlib python3-numpy valgrind
           gcc-avr avr-libc binutils-avr simavr libsimavr-dev)
 missing=()

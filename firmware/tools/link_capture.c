@@ -220,17 +220,25 @@ static int cap_status_valid(const capture_request_t *q, const sxl_frame_t *st)
     return 0;
 }
 
+int cap_arm_reply(const sxl_frame_t *r)
+{
+    if (r->payload[0] == SXL_ERR_REFUSED) {
+        return fail(EXIT_IO, "a capture is already running on the drive (`sixphase-link capture "
+                             "stop` ends it)");
+    }
+    if (r->payload[0] != SXL_OK) {
+        return fail(EXIT_IO, "drive refused the capture: %s", result_name(r->payload[0]));
+    }
+    return 0;
+}
+
 /* Arm, then poll the status until the record is done (or the wait runs out). */
 static int cap_arm_and_wait(int fd, const options_t *o, const capture_request_t *q, sxl_frame_t *st)
 {
     double waited = 0.0;
     int rc = exchange(fd, o, SXL_CMD_CAPTURE_ARM, q->setup, SXL_CA_SIZE, st);
-    if (rc == 0 && st->payload[0] == SXL_ERR_REFUSED) {
-        return fail(EXIT_IO, "a capture is already running on the drive (`sixphase-link capture "
-                             "stop` ends it)");
-    }
-    if (rc == 0 && st->payload[0] != SXL_OK) {
-        return fail(EXIT_IO, "drive refused the capture: %s", result_name(st->payload[0]));
+    if (rc == 0) {
+        rc = cap_arm_reply(st);
     }
     while (rc == 0) {
         rc = exchange(fd, o, SXL_CMD_CAPTURE_STATUS, NULL, 0, st);
@@ -252,30 +260,39 @@ static int cap_arm_and_wait(int fd, const options_t *o, const capture_request_t 
     return rc;
 }
 
+int cap_read_reply(const sxl_frame_t *r, int *j, int count, int16_t *out)
+{
+    int n, k;
+    if (r->payload[0] != SXL_OK) {
+        return fail(EXIT_IO, "capture read at sample %d: %s", *j, result_name(r->payload[0]));
+    }
+    n = (r->len >= 1u + SXL_CR_SAMPLES) ? (int)r->payload[1 + SXL_CR_COUNT] : -1;
+    /* every sample the reply counts must be in it: no byte past its length is used */
+    if (n <= 0 || n > (int)SXL_CR_MAX || (int)r->len < 1 + (int)SXL_CR_SAMPLES + 2 * n) {
+        return fail(EXIT_IO, "capture read at sample %d: short or malformed reply (%u bytes)", *j,
+                    (unsigned)r->len);
+    }
+    for (k = 0; k < n && *j < count; k++) {
+        out[(*j)++] = sxl_get_i16(&r->payload[1u + SXL_CR_SAMPLES + 2u * (unsigned)k]);
+    }
+    return 0;
+}
+
 static int cap_read(int fd, const options_t *o, int ch, int count, int16_t *out)
 {
     int j = 0;
     while (j < count) {
         uint16_t req[3];
         sxl_frame_t r;
-        int n, k, rc;
+        int rc;
         req[0] = (uint16_t)ch;
         sxl_put_u16(&req[1], (uint16_t)j);
         rc = exchange(fd, o, SXL_CMD_CAPTURE_READ, req, 3, &r);
+        if (rc == 0) {
+            rc = cap_read_reply(&r, &j, count, out);
+        }
         if (rc != 0) {
             return rc;
-        }
-        if (r.payload[0] != SXL_OK) {
-            return fail(EXIT_IO, "capture read at sample %d: %s", j, result_name(r.payload[0]));
-        }
-        n = (r.len >= 1u + SXL_CR_SAMPLES) ? (int)r.payload[1 + SXL_CR_COUNT] : -1;
-        /* every sample the reply counts must be in it: no byte past its length is used */
-        if (n <= 0 || n > (int)SXL_CR_MAX || (int)r.len < 1 + (int)SXL_CR_SAMPLES + 2 * n) {
-            return fail(EXIT_IO, "capture read at sample %d: short or malformed reply (%u bytes)",
-                        j, (unsigned)r.len);
-        }
-        for (k = 0; k < n && j < count; k++) {
-            out[j++] = sxl_get_i16(&r.payload[1u + SXL_CR_SAMPLES + 2u * (unsigned)k]);
         }
     }
     return 0;

@@ -118,19 +118,21 @@ static int identify_parse(int argc, char **argv, identify_request_t *r)
     return 0;
 }
 
-/* One status reply; 0 and the fields, or the exit status. */
+int identify_status_reply(const sxl_frame_t *r, uint16_t *st)
+{
+    if (r->payload[0] != SXL_OK || r->len < 1u + SXL_CT_SIZE) {
+        return fail(EXIT_IO, "commissioning status: %s", result_name(r->payload[0]));
+    }
+    memcpy(st, &r->payload[1], SXL_CT_SIZE * sizeof st[0]);
+    return 0;
+}
+
+/* One status request; 0 and the fields, or the exit status. */
 static int identify_status(int fd, const options_t *o, uint16_t *st)
 {
     sxl_frame_t reply;
-    int rc = exchange(fd, o, SXL_CMD_COMMISSION_STATUS, NULL, 0u, &reply);
-    if (rc != 0) {
-        return rc;
-    }
-    if (reply.payload[0] != SXL_OK || reply.len < 1u + SXL_CT_SIZE) {
-        return fail(EXIT_IO, "commissioning status: %s", result_name(reply.payload[0]));
-    }
-    memcpy(st, &reply.payload[1], SXL_CT_SIZE * sizeof st[0]);
-    return 0;
+    const int rc = exchange(fd, o, SXL_CMD_COMMISSION_STATUS, NULL, 0u, &reply);
+    return (rc != 0) ? rc : identify_status_reply(&reply, st);
 }
 
 /* Polls until the sequence is no longer running; 0 and the last status, or the exit status. */
@@ -164,30 +166,22 @@ static int identify_wait(int fd, const options_t *o, double wait_s, uint16_t *st
     return 0;
 }
 
-/* Reads one result; prints it; files an OK one into m. */
-static int identify_result(int fd, const options_t *o, uint16_t q, motor_params_t *m)
+int identify_result_reply(const sxl_frame_t *reply, uint16_t q, motor_params_t *m)
 {
     static const motor_param_t file_id[SXL_COMM_QUANTITY_COUNT] = {
         MOTOR_PARAM_COUNT, MOTOR_PARAM_POLE_PAIRS, MOTOR_PARAM_ENCODER_OFFSET,
         MOTOR_PARAM_R,     MOTOR_PARAM_LD,         MOTOR_PARAM_LQ,
         MOTOR_PARAM_LXY,   MOTOR_PARAM_PSI_F};
-    uint16_t payload[1];
-    sxl_frame_t reply;
-    const uint16_t *r = &reply.payload[1];
+    const uint16_t *r = &reply->payload[1];
     double scale, value, sigma, extra;
-    int rc;
-    payload[0] = q;
-    rc = exchange(fd, o, SXL_CMD_COMMISSION_RESULT, payload, 1u, &reply);
-    if (rc == 0 && reply.payload[0] != SXL_OK) {
-        rc = fail(EXIT_IO, "commissioning result %u: %s", (unsigned)q,
-                  result_name(reply.payload[0]));
-    } else if (rc == 0 && (reply.len < 1u + SXL_CR2_SIZE || r[SXL_CR2_QUANTITY] != q)) {
-        rc =
-            fail(EXIT_IO, "commissioning result %u: a short or another quantity's reply (%u bytes)",
-                 (unsigned)q, (unsigned)reply.len);
+    if (reply->payload[0] != SXL_OK) {
+        return fail(EXIT_IO, "commissioning result %u: %s", (unsigned)q,
+                    result_name(reply->payload[0]));
     }
-    if (rc != 0) {
-        return rc;
+    if (reply->len < 1u + SXL_CR2_SIZE || r[SXL_CR2_QUANTITY] != q) {
+        return fail(EXIT_IO,
+                    "commissioning result %u: a short or another quantity's reply (%u bytes)",
+                    (unsigned)q, (unsigned)reply->len);
     }
     scale = sxl_comm_quantity_scale(q);
     value = (double)sxl_get_i32(&r[SXL_CR2_VALUE]) / scale;
@@ -210,19 +204,32 @@ static int identify_result(int fd, const options_t *o, uint16_t q, motor_params_
     return 0;
 }
 
+/* Reads one result; prints it; files an OK one into m. */
+static int identify_result(int fd, const options_t *o, uint16_t q, motor_params_t *m)
+{
+    uint16_t payload[1];
+    sxl_frame_t reply;
+    int rc;
+    payload[0] = q;
+    rc = exchange(fd, o, SXL_CMD_COMMISSION_RESULT, payload, 1u, &reply);
+    return (rc != 0) ? rc : identify_result_reply(&reply, q, m);
+}
+
+int identify_apply_reply(const sxl_frame_t *r)
+{
+    if (r->payload[0] != SXL_OK || r->len < 1u + SXL_CA2_SIZE) {
+        return fail(EXIT_IO, "apply: %s", result_name(r->payload[0]));
+    }
+    printf("applied: quantities 0x%04X (the drive's parameter set and encoder offset)\n",
+           (unsigned)sxl_get_u16(&r->payload[1 + SXL_CA2_APPLIED]));
+    return 0;
+}
+
 static int identify_apply(int fd, const options_t *o)
 {
     sxl_frame_t reply;
-    int rc = exchange(fd, o, SXL_CMD_COMMISSION_APPLY, NULL, 0u, &reply);
-    if (rc != 0) {
-        return rc;
-    }
-    if (reply.payload[0] != SXL_OK || reply.len < 1u + SXL_CA2_SIZE) {
-        return fail(EXIT_IO, "apply: %s", result_name(reply.payload[0]));
-    }
-    printf("applied: quantities 0x%04X (the drive's parameter set and encoder offset)\n",
-           (unsigned)sxl_get_u16(&reply.payload[1 + SXL_CA2_APPLIED]));
-    return 0;
+    const int rc = exchange(fd, o, SXL_CMD_COMMISSION_APPLY, NULL, 0u, &reply);
+    return (rc != 0) ? rc : identify_apply_reply(&reply);
 }
 
 static int identify_write(const char *path, const motor_params_t *m)

@@ -5,6 +5,7 @@
 #ifndef LINK_TOOL_H
 #define LINK_TOOL_H
 
+#include "motor_params_file.h"
 #include "sxlink.h"
 
 #define EXIT_USAGE 2
@@ -44,5 +45,25 @@ int link_open_phase_print(const sxl_frame_t *r);
 
 /* identify [options]: firmware/tools/link_identify.c. */
 int cmd_identify(const options_t *o, int argc, char **argv);
+
+/* What the commands make of one reply frame, without a port (tests/fuzz/fuzz_link_replies.c
+ * feeds them arbitrary frames); each returns 0 or an exit status after a one-line error. */
+/* A single command's reply (status, ping, open phase, profile, or "ok"), printed. */
+int print_reply(const sxl_frame_t *r);
+/* One stage's profile reply as a table row; the first call also prints the header. */
+int print_profile_row(const sxl_frame_t *r, int first);
+/* One fault record reply as a line; *present is 0 when the log was empty. */
+int print_fault_record(const sxl_frame_t *r, int *present);
+/* The reply to a capture arm: accepted, or why not. */
+int cap_arm_reply(const sxl_frame_t *r);
+/* A capture read reply: its samples into out[*j..count-1], *j advanced. */
+int cap_read_reply(const sxl_frame_t *r, int *j, int count, int16_t *out);
+/* A commissioning status reply: its SXL_CT_SIZE fields into st. */
+int identify_status_reply(const sxl_frame_t *r, uint16_t *st);
+/* A commissioning result reply for quantity q (below SXL_COMM_QUANTITY_COUNT): printed, and
+ * filed into *m when OK. */
+int identify_result_reply(const sxl_frame_t *r, uint16_t q, motor_params_t *m);
+/* An apply reply: the quantities applied, printed. */
+int identify_apply_reply(const sxl_frame_t *r);
 
 #endif /* LINK_TOOL_H */

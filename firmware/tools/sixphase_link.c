@@ -249,8 +249,6 @@ static const char *name_of(const char *const *names, size_t n, uint16_t v)
     return (v < n) ? names[v] : "?";
 }
 
-static int print_profile_row(const sxl_frame_t *r, int first);
-
 /* The status's second line (protocol 6): the stack's high-water mark against its size. */
 static void print_stack(uint16_t used, uint16_t words)
 {
@@ -262,7 +260,7 @@ static void print_stack(uint16_t used, uint16_t words)
            100.0 * (double)used / (double)words);
 }
 
-static int print_reply(const sxl_frame_t *r)
+int print_reply(const sxl_frame_t *r)
 {
     const uint16_t result = r->payload[0];
     const uint16_t *st = &r->payload[1];
@@ -340,8 +338,7 @@ static const char *const stage_names[SXL_PF_STAGES] = {"latency (period start to
                                                        "PWM write",
                                                        "ISR total"};
 
-/* One stage's profile reply as a table row; the first call also prints the header. */
-static int print_profile_row(const sxl_frame_t *r, int first)
+int print_profile_row(const sxl_frame_t *r, int first)
 {
     const uint16_t *pf = &r->payload[1];
     double cpu;
@@ -376,8 +373,7 @@ static int print_profile_row(const sxl_frame_t *r, int first)
     return 0;
 }
 
-/* One fault record reply as a line; *present is 0 when the log was empty. */
-static int print_fault_record(const sxl_frame_t *r, int *present)
+int print_fault_record(const sxl_frame_t *r, int *present)
 {
     static const char *const phase_names[SXL_FR_PHASES] = {"ia", "ib", "ic", "id", "ie", "if"};
     const uint16_t *fr = &r->payload[1];
@@ -754,6 +750,7 @@ static int cmd_single(const options_t *o, uint16_t cmd, const uint16_t *payload,
     return (rc != 0) ? rc : print_reply(&reply);
 }
 
+#ifndef SIXPHASE_LINK_NO_MAIN /* the reply-parsing fuzz harness links the rest */
 int main(int argc, char **argv)
 {
     options_t o = {"/dev/ttyUSB0", 115200L, 500L, 0};
@@ -795,3 +792,4 @@ int main(int argc, char **argv)
     }
     return o.print_only ? print_request(cmd, payload, plen) : cmd_single(&o, cmd, payload, plen);
 }
+#endif

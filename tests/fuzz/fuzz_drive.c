@@ -18,6 +18,13 @@
  *
  * The first input byte chooses the start: power-up (INIT -> CALIBRATE) or a snapshot taken
  * once after a clean calibration, so short inputs reach READY, RUN and FAULT.
+ *
+ * Tags 248 and up (the others keep the meaning the committed corpus chose them with) add:
+ *   - periods on a plant: the simulator's machine, inverter, ADC and encoder (host_sim)
+ *     answering the duties the drive writes, so the commissioning sequence's checks pass
+ *     and it advances step by step, RUN turns the motor, and an opened phase or a frozen
+ *     converter trips the drive as on the bench;
+ *   - capture commands with valid-looking setups (a signal and trigger from small ranges).
  */
 #include <stddef.h>
 #include <stdint.h>
@@ -26,8 +33,13 @@
 
 #include "drive.h"
 #include "drive_link.h"
+#include "fault_inject.h"
 #include "hal_sim.h"
+#include "inverter.h"
+#include "plant.h"
 #include "profile.h"
+#include "sim_adc.h"
+#include "sim_encoder.h"
 #include "sxlink.h"
 
 int LLVMFuzzerTestOneInput(const unsigned char *data, size_t size);
@@ -237,6 +249,38 @@ static void period_inputs(stream_t *s, uint16_t flags)
     hal_sim_bus.hw_trip = (flags & 2u) != 0u;
 }
 
+typedef struct {
+    drive_state_t state;
+    bool run_asked, clear_asked, comm_asked;
+} before_t;
+
+static void before_isr(before_t *b)
+{
+    b->state = drive.state;
+    b->run_asked = drive.run_requested;
+    b->clear_asked = drive.clear_requested;
+    b->comm_asked = drive.comm.start_requested != 0;
+}
+
+/* The invariants after one control period. */
+static void check_period(const before_t *b)
+{
+    check(drive.state == DRIVE_STATE_RUN || drive.state == DRIVE_STATE_COMMISSION ||
+          hal_sim_bus.forced_off);
+    check(!(drive.state == DRIVE_STATE_COMMISSION && b->state != DRIVE_STATE_COMMISSION) ||
+          (b->state == DRIVE_STATE_READY && b->comm_asked));
+    check(drive.state != DRIVE_STATE_COMMISSION || drive.comm.state == COMM_STATE_RUNNING);
+    check(!(b->state == DRIVE_STATE_FAULT && drive.state != DRIVE_STATE_FAULT) || b->clear_asked);
+    check(!(drive.state == DRIVE_STATE_RUN && b->state != DRIVE_STATE_RUN) ||
+          (b->state == DRIVE_STATE_READY && b->run_asked));
+    check(ctl_protect_log_pending(&drive.protect) <= CTL_PROTECT_LOG_SIZE);
+    check(drive.isolated_leg < 0 ||
+          ((((unsigned)hal_sim_bus.isolated >> drive.isolated_leg) & 1u) != 0u &&
+           (hal_sim_bus.forced_off || hal_sim_bus.duty[drive.isolated_leg] == 0u)));
+    check((drive.state == DRIVE_STATE_FAULT) == (drive.fault != DRIVE_FAULT_NONE));
+    check((int32_t)drive.run_refusal < DRIVE_RUN_REFUSAL_COUNT);
+}
+
 static void control_periods(stream_t *s)
 {
     const uint16_t flags = take8(s);
@@ -244,28 +288,169 @@ static void control_periods(stream_t *s)
     uint16_t r;
     period_inputs(s, flags);
     for (r = 0u; r < repeat; r++) {
-        const drive_state_t before = drive.state;
-        const bool run_asked = drive.run_requested;
-        const bool clear_asked = drive.clear_requested;
-        const bool comm_asked = drive.comm.start_requested != 0;
+        before_t b;
+        before_isr(&b);
         if (r > 0u && (flags & 1u) != 0u) {
             hal_sim_bus.adc_fresh = true; /* the same words again, freshly converted */
         }
         drive_control_isr(&drive);
-        check(drive.state == DRIVE_STATE_RUN || drive.state == DRIVE_STATE_COMMISSION ||
-              hal_sim_bus.forced_off);
-        check(!(drive.state == DRIVE_STATE_COMMISSION && before != DRIVE_STATE_COMMISSION) ||
-              (before == DRIVE_STATE_READY && comm_asked));
-        check(drive.state != DRIVE_STATE_COMMISSION || drive.comm.state == COMM_STATE_RUNNING);
-        check(!(before == DRIVE_STATE_FAULT && drive.state != DRIVE_STATE_FAULT) || clear_asked);
-        check(!(drive.state == DRIVE_STATE_RUN && before != DRIVE_STATE_RUN) ||
-              (before == DRIVE_STATE_READY && run_asked));
-        check(ctl_protect_log_pending(&drive.protect) <= CTL_PROTECT_LOG_SIZE);
-        check(drive.isolated_leg < 0 ||
-              ((((unsigned)hal_sim_bus.isolated >> drive.isolated_leg) & 1u) != 0u &&
-               (hal_sim_bus.forced_off || hal_sim_bus.duty[drive.isolated_leg] == 0u)));
-        check((drive.state == DRIVE_STATE_FAULT) == (drive.fault != DRIVE_FAULT_NONE));
-        check((int32_t)drive.run_refusal < DRIVE_RUN_REFUSAL_COUNT);
+        check_period(&b);
+    }
+}
+
+/* The plant the drive runs on in plant periods: the simulator's default machine (the one the
+ * drive's default parameters describe), its inverter, ADC and encoder. */
+static struct {
+    plant_params_t p;
+    plant_state_t x;
+    inverter_t inv;
+    sim_adc_t adc;
+    sim_encoder_t enc;
+    sim_fault_state_t fault; /* none: the harness opens phases and freezes words itself */
+    hal_adc_sample_t frozen; /* the words a frozen converter keeps returning */
+    double t;
+    int32_t budget; /* plant periods left in this input (bounds an execution's time) */
+    bool on, inv_made;
+} plant;
+
+#define PLANT_TS_S 1.0e-4 /* the harness's PWM: 10 kHz (power_up) */
+/* Plant periods per input: short inputs (what mutation mostly makes) 25.6 ms of the drive's
+ * time, so that the fuzzer keeps its pace (a plant period costs about what a hundred plain
+ * ones do under the sanitizers); long ones (first byte bit 1: the seeds that commission)
+ * 40 s, the whole sequence with its margins. */
+#define PLANT_PERIODS_SHORT 256L
+#define PLANT_PERIODS_LONG 400000L
+
+/* Started at an input's first plant period, at standstill; the encoder homed (as the rotor
+ * turned past its index before) or not (as commissioning finds it). */
+static void plant_start(bool homed)
+{
+    int16_t k;
+    if (plant.inv_made) {
+        inverter_free(&plant.inv);
+    }
+    plant_params_default(&plant.p);
+    plant.p.adc_offset_on = false; /* the drive calibrated its offsets on exact mid-scale */
+    memset(&plant.x, 0, sizeof plant.x);
+    plant_sync_angle(&plant.p, &plant.x);
+    inverter_init(&plant.inv, &plant.p, PLANT_TS_S);
+    plant.inv_made = true;
+    sim_adc_init(&plant.adc, &plant.p, 1u);
+    sim_encoder_init(&plant.enc, PLANT_TS_S);
+    sim_encoder_power_up(&plant.enc, &plant.p, &plant.x, homed);
+    sim_fault_begin(&plant.fault, SIM_FAULT_NONE, 0.0);
+    for (k = 0; k < HAL_ADC_PHASES; k++) {
+        plant.frozen.phase[k] = 2048u;
+    }
+    plant.frozen.vdc = 2765u;
+    plant.t = 0.0;
+    plant.on = true;
+}
+
+/* Phase k (0..5) open or connected again; the open currents commutate off at once. */
+static void plant_open(int16_t phase)
+{
+    int16_t k;
+    for (k = 0; k < PLANT_PHASES; k++) {
+        plant.p.phase_open[k] = (k == phase);
+    }
+    if (phase >= 0) {
+        plant_open_commutate(&plant.p, &plant.x);
+    }
+}
+
+#define PLANT_LOAD_NM 3.0 /* a passive load: current flows while the motor turns */
+
+/* One period: sample the plant (or repeat the frozen words), the ISR, the inverter applies
+ * the duties it wrote against the load (opposing the motion, proportional below 1 rad/s so
+ * that it never drives the rotor). */
+static void plant_period(bool frozen, bool loaded)
+{
+    const double w = plant.x.omega_m;
+    const double load = loaded ? PLANT_LOAD_NM * ((w > 1.0) ? 1.0 : ((w < -1.0) ? -1.0 : w)) : 0.0;
+    double i[PLANT_PHASES];
+    double duty[PLANT_PHASES];
+    before_t b;
+    int16_t k;
+    hal_sim_clock_advance(100000u);
+    plant_phase_currents(&plant.p, &plant.x, i);
+    if (frozen) {
+        hal_sim_post_adc(&plant.frozen);
+    } else {
+        sim_adc_sample(&plant.adc, &plant.p, i, &plant.fault);
+        plant.frozen = hal_sim_bus.adc;
+    }
+    sim_encoder_sample(&plant.enc, &plant.p, &plant.x, plant.t, PLANT_TS_S, &plant.fault);
+    hal_sim_bus.hw_trip = false;
+    before_isr(&b);
+    drive_control_isr(&drive);
+    check_period(&b);
+    for (k = 0; k < PLANT_PHASES; k++) {
+        duty[k] = hal_sim_duty_fraction(k);
+    }
+    (void)inverter_run_period(&plant.inv, &plant.p, &plant.x, duty, hal_sim_bus.forced_off, load,
+                              false, NULL, 0, NULL, NULL);
+    plant.t += PLANT_TS_S;
+}
+
+/* Periods on the plant: flags (bits 0..2: phase 0..5 open, 6 or 7 all connected; bit 3: the
+ * converter frozen; bit 4: the encoder homed, at the input's first plant period; bit 5: a
+ * load on the shaft), then the count in blocks of 32 periods, at most 256 (short, so that
+ * mutated inputs stay fast; the seeds that run whole sequences chain tags). */
+static void plant_periods(stream_t *s)
+{
+    const uint16_t flags = take8(s);
+    int32_t n = ((int32_t)(take8(s) % 8u) + 1) * 32;
+    const int16_t open = (int16_t)(flags & 7u);
+    if (!plant.on) {
+        plant_start((flags & 16u) != 0u);
+    }
+    plant_open((open < PLANT_PHASES) ? open : -1);
+    n = (n < plant.budget) ? n : plant.budget;
+    plant.budget -= n;
+    while (n-- > 0) {
+        plant_period((flags & 8u) != 0u, (flags & 32u) != 0u);
+    }
+}
+
+/* A capture command with a setup drawn from small ranges (most of them valid), or its status,
+ * read or stop. */
+static void capture_command(stream_t *s)
+{
+    const uint16_t what = take8(s);
+    uint16_t payload[SXL_CA_SIZE];
+    uint16_t bytes[SXL_MAX_FRAME];
+    uint16_t cmd = SXL_CMD_CAPTURE_ARM;
+    uint16_t len = SXL_CA_SIZE;
+    uint16_t i, n;
+    if ((what & 3u) == 0u) {
+        const uint16_t chans = (uint16_t)(what >> 2 & 3u) + 1u;
+        payload[SXL_CA_CHANNELS] = chans;
+        for (i = 0u; i < 4u; i++) {
+            payload[SXL_CA_SIGNAL + i] =
+                (i < chans) ? (uint16_t)(take8(s) % (CAPTURE_SIGNAL_COUNT + 1u)) : 0xFFu;
+        }
+        sxl_put_u16(&payload[SXL_CA_LENGTH], (uint16_t)(take8(s) * 4u + (what >> 4 & 1u)));
+        sxl_put_u16(&payload[SXL_CA_DECIMATION], (uint16_t)(take8(s) % 5u));
+        payload[SXL_CA_TRIGGER] = (uint16_t)(what >> 5 & 3u);
+        payload[SXL_CA_TRIG_SIGNAL] = (uint16_t)(take8(s) % CAPTURE_SIGNAL_COUNT);
+        sxl_put_u16(&payload[SXL_CA_TRIG_LEVEL], (uint16_t)((int16_t)(int8_t)take8(s) * 64));
+        payload[SXL_CA_PRE] = (uint16_t)(take8(s) % 110u);
+    } else if ((what & 3u) == 1u) {
+        cmd = SXL_CMD_CAPTURE_STATUS;
+        len = 0u;
+    } else if ((what & 3u) == 2u) {
+        cmd = SXL_CMD_CAPTURE_READ;
+        payload[0] = (uint16_t)(what >> 2 & 7u);
+        sxl_put_u16(&payload[1], (uint16_t)(take8(s) * 8u));
+        len = 3u;
+    } else {
+        cmd = SXL_CMD_CAPTURE_STOP;
+        len = 0u;
+    }
+    n = sxl_encode(cmd, payload, len, bytes, (uint16_t)SXL_MAX_FRAME);
+    for (i = 0u; i < n; i++) {
+        serve_byte(bytes[i]);
     }
 }
 
@@ -320,16 +505,26 @@ int LLVMFuzzerTestOneInput(const unsigned char *data, size_t size)
     int32_t steps = 0;
     s.p = data;
     s.left = size;
-    if ((take8(&s) & 1u) != 0u) {
+    const uint16_t start = take8(&s);
+    if ((start & 1u) != 0u) {
         calibrated_start();
     } else {
         power_up();
     }
     sxl_decoder_init(&rx);
     last_record_period = 0u;
+    plant.on = false;
+    plant.budget = ((start & 2u) != 0u) ? PLANT_PERIODS_LONG : PLANT_PERIODS_SHORT;
     while (s.left > 0u && steps < 4000) {
-        const uint16_t tag = (uint16_t)(take8(&s) % 6u);
-        if (tag == 5u) {
+        const uint16_t byte = take8(&s);
+        const uint16_t tag = (uint16_t)(byte % 6u);
+        if (byte >= 248u) {
+            if (byte < 250u) {
+                plant_periods(&s);
+            } else {
+                capture_command(&s);
+            }
+        } else if (tag == 5u) {
             /* the background loop's pass; now and then the open-phase option */
             if ((take8(&s) & 1u) != 0u) {
                 (void)drive_set_open_phase_action(&drive, (int16_t)(take8(&s) % 3u),
