@@ -118,10 +118,10 @@ static void loop_row_start(const sim_run_t *rs, const plant_out_t *o, double t,
     row->psi_s = o->psi_s;
     row->tref = st->torque_ref_nm;
     row->psi_ref = st->flux_ref_wb;
-    /* the command in force, unless the outputs went off at this period's start (a trip: the
-     * plant runs the period with every switch open, whatever the last command was) */
-    row->vector = hal_sim_bus.forced_off ? 0 : rs->applied_vector;
-    row->duty = hal_sim_bus.forced_off ? 0.0 : rs->applied_duty;
+    /* the command in force (sim_loop_period zeroes it when the outputs went off at this
+     * period's start: a trip, the plant runs the period with every switch open) */
+    row->vector = rs->applied_vector;
+    row->duty = rs->applied_duty;
 }
 
 /* A plant sample of the analysis window: metrics, fine.csv, observer. */
@@ -200,6 +200,10 @@ int sim_loop_period(sim_run_t *rs, sim_result_t *r, long k)
     loop_outputs(rs, in_win, &o);
     loop_hw_trip(rs, r, &o, t);
     loop_control(rs, r, &o, k, t, &st);
+    if (hal_sim_bus.forced_off) { /* a trip at this period's start: every switch open */
+        rs->applied_vector = 0;
+        rs->applied_duty = 0.0;
+    }
     if (rs->open_phase.t_event < 0.0 && rs->open_phase.isolated_seen == 0u &&
         hal_sim_bus.isolated == 0u) {
         rs->ops->background(); /* the usual period: no open-phase event, six legs */
@@ -256,8 +260,8 @@ int sim_loop_run(sim_run_t *rs, sim_result_t *r, char *err, size_t err_len)
             (void)snprintf(err, err_len, "plant state diverged");
             return -1;
         }
-        if (sim_loop_out_limit(rs, k, err, err_len) != 0) {
-            return -1;
+        if (rs->rec.limit_reached && sim_loop_out_limit(rs, k, err, err_len) != 0) {
+            return -1; /* the flag tested here: no call in the usual period */
         }
     }
     rs->wall1_s = sim_wall_now();

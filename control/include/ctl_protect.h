@@ -47,7 +47,6 @@
 /* A current channel counts as converting if its word changed within this many periods
  * (sensor noise moves a live 12-bit word every few periods even at zero current). */
 #define CTL_PROTECT_ALIVE_PERIODS 1000
-#define CTL_PROTECT_CHANNELS_ALL ((uint16_t)0x3Fu) /* the six current channels */
 /* Shortest open-phase window (periods: 40 ms at 10 kHz); it also spans an electrical turn. */
 #define CTL_PROTECT_OPEN_PHASE_WINDOW 400
 /* The fast open-phase check's window (periods: 2 ms at 10 kHz), judged on the x-y residual. */
@@ -163,10 +162,10 @@ typedef struct {
     int16_t n_rail;
     int16_t n_stuck[7];
     int16_t last_raw[7];
-    int16_t word_age[6];          /* periods since each current channel's word last changed */
-    uint16_t changed_since_stuck; /* bit k: channel k's word changed since ADC_STUCK latched */
-    ctl_q expected_speed; /* electrical speed the torque should have built up without counts */
-    ctl_q expected_angle; /* and the angle (turns) it should have turned through */
+    int16_t word_age[6];       /* periods since each current channel's word last changed */
+    uint32_t stuck_latched_at; /* period count when ADC_STUCK last latched */
+    ctl_q expected_speed;      /* electrical speed the torque should have built up without counts */
+    ctl_q expected_angle;      /* and the angle (turns) it should have turned through */
     ctl_q last_theta;
     bool have_last;
     ctl_q open_sum[6];     /* sum of |i| / 64 per phase over the window */

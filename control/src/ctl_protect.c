@@ -113,7 +113,7 @@ static void reset_filters(ctl_protect_t *p)
     p->n_overspeed = 0;
     p->n_sum = 0;
     p->n_rail = 0;
-    /* The converter's history (last_raw, word_age, changed_since_stuck) survives: a clear
+    /* The converter's history (last_raw, word_age, stuck_latched_at) survives: a clear
      * that forgot it would count the frozen word as a fresh change and pass a dead ADC. */
     for (k = 0; k < 7; k++) {
         p->n_stuck[k] = 0;
@@ -145,17 +145,19 @@ void ctl_protect_init(ctl_protect_t *p)
     for (k = 0; k < 6; k++) {
         p->word_age[k] = 0;
     }
-    p->changed_since_stuck = CTL_PROTECT_CHANNELS_ALL;
+    p->stuck_latched_at = 0u;
     reset_filters(p);
 }
 
 /* Latches faults; a stuck converter must show every word change again before a clear. */
-SIXPHASE_RAMFUNC static void latch(ctl_protect_t *p, uint16_t faults)
+/* New faults (not latched yet) are about to latch: a stuck converter must show every word
+ * change after this period before a clear (ctl_protect_converter_alive). Off the normal path:
+ * only in the period that latches something new. */
+static void note_new_faults(ctl_protect_t *p, uint16_t faults)
 {
     if ((faults & CTL_FAULT_ADC_STUCK) != 0u && (p->latched & CTL_FAULT_ADC_STUCK) == 0u) {
-        p->changed_since_stuck = 0u;
+        p->stuck_latched_at = p->period;
     }
-    p->latched |= faults;
 }
 
 /* Count consecutive periods a condition holds; true once it held for `periods`. */
@@ -264,7 +266,6 @@ SIXPHASE_RAMFUNC static uint16_t check_adc(ctl_protect_t *p, const ctl_protect_l
         }
         if (!unchanged) {
             p->word_age[k] = 0;
-            p->changed_since_stuck |= (uint16_t)(1u << k);
         } else if (p->word_age[k] < INT16_MAX) {
             p->word_age[k]++;
         }
@@ -532,18 +533,20 @@ SIXPHASE_RAMFUNC uint16_t ctl_protect_check(ctl_protect_t *p, const ctl_protect_
 
     p->active = f;
     if ((f & (uint16_t)~p->latched) != 0u) {
+        note_new_faults(p, f);
         record(p, f, in, torque_ref, vector, duty);
     }
-    latch(p, f);
+    p->latched |= f;
     return f;
 }
 
 void ctl_protect_raise(ctl_protect_t *p, uint16_t faults, const ctl_protect_input_t *in)
 {
     if ((faults & (uint16_t)~p->latched) != 0u) {
+        note_new_faults(p, faults);
         record(p, faults, in, CTL_Q(0.0), 0, CTL_Q(0.0));
     }
-    latch(p, faults);
+    p->latched |= faults;
 }
 
 void ctl_protect_quiet(ctl_protect_t *p, uint16_t quiet)
@@ -605,13 +608,14 @@ uint16_t ctl_protect_log_pending(const ctl_protect_t *p)
 
 SIXPHASE_RAMFUNC bool ctl_protect_converter_alive(const ctl_protect_t *p)
 {
-    const uint16_t judged = (uint16_t)(~p->quiet & CTL_PROTECT_CHANNELS_ALL);
+    /* a word changed after the latch: its age is below the periods since (an age that
+     * saturated is above CTL_PROTECT_ALIVE_PERIODS anyway) */
+    const uint32_t since_stuck = p->period - p->stuck_latched_at;
     int16_t k;
-    if ((p->changed_since_stuck & judged) != judged) {
-        return false; /* a word has not moved since the converter was found stuck */
-    }
     for (k = 0; k < 6; k++) {
-        if ((((unsigned)judged >> k) & 1u) != 0u && p->word_age[k] >= CTL_PROTECT_ALIVE_PERIODS) {
+        if ((((unsigned)p->quiet >> k) & 1u) == 0u &&
+            (p->word_age[k] >= CTL_PROTECT_ALIVE_PERIODS ||
+             (uint32_t)p->word_age[k] >= since_stuck)) {
             return false;
         }
     }

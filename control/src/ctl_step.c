@@ -10,7 +10,9 @@
 
 SIXPHASE_RAMFUNC void ctl_step(ctl_t *c, const ctl_meas_t *m, ctl_cmd_t *cmd)
 {
-    (void)ctl_config_take(c);
+    if (c->config_ready != 0) { /* the common case decided here: ctl_config_take is in ctl.c */
+        (void)ctl_config_take(c);
+    }
     if (c->healthy_step) { /* one test on the healthy path, as before open phases */
         ctl_healthy_step(c, m, cmd);
     } else {

