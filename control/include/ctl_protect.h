@@ -47,6 +47,8 @@
 /* A current channel counts as converting if its word changed within this many periods
  * (sensor noise moves a live 12-bit word every few periods even at zero current). */
 #define CTL_PROTECT_ALIVE_PERIODS 1000
+/* An active state's least duty that makes the stuck-ADC check judge the phases it drives. */
+#define CTL_PROTECT_DRIVEN_DUTY CTL_Q(0.1)
 /* Shortest open-phase window (periods: 40 ms at 10 kHz); it also spans an electrical turn. */
 #define CTL_PROTECT_OPEN_PHASE_WINDOW 400
 /* The fast open-phase check's window (periods: 2 ms at 10 kHz), judged on the x-y residual. */

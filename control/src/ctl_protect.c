@@ -235,8 +235,29 @@ SIXPHASE_RAMFUNC static uint16_t check_encoder(ctl_protect_t *p, const ctl_prote
     return f;
 }
 
+/* Phases whose three-phase set had an active state for a real part of the period before this
+ * one (its legs not all equal, for at least CTL_PROTECT_DRIVEN_DUTY): every one of its windings
+ * then saw at least a third of the DC link, so its current moves by many counts whatever the
+ * converter reads (bit k: phase k, A..F). */
+SIXPHASE_RAMFUNC static uint16_t driven_phases(int16_t vector, ctl_q duty)
+{
+    const uint16_t set_abc = ((uint16_t)vector >> 3) & 7u;
+    const uint16_t set_def = (uint16_t)vector & 7u;
+    uint16_t m = 0u;
+    if (vector < 0 || vector > 077 || duty < CTL_PROTECT_DRIVEN_DUTY) {
+        return 0u;
+    }
+    if (set_abc != 0u && set_abc != 7u) {
+        m |= 0x07u;
+    }
+    if (set_def != 0u && set_def != 7u) {
+        m |= 0x38u;
+    }
+    return m;
+}
+
 SIXPHASE_RAMFUNC static uint16_t check_adc(ctl_protect_t *p, const ctl_protect_limits_t *l,
-                                           const ctl_protect_input_t *in)
+                                           const ctl_protect_input_t *in, uint16_t driven)
 {
     uint16_t judged;
     uint16_t f = 0u;
@@ -256,8 +277,10 @@ SIXPHASE_RAMFUNC static uint16_t check_adc(ctl_protect_t *p, const ctl_protect_l
     }
     /* Phase currents ripple every period while the inverter switches: a frozen word is a
      * dead converter or multiplexer. Not so a phase that carries no current by design (an
-     * isolated leg): a quiet sensor may read one word for good. */
-    judged = (in->running && flowing) ? (uint16_t)~p->quiet : 0u;
+     * isolated leg): a quiet sensor may read one word for good. Judged while current is
+     * measured to flow, and - since a converter frozen at idle reads no current at all - on
+     * the phases an active state drove in the last period. */
+    judged = in->running ? (uint16_t)(~p->quiet & (flowing ? 0x3Fu : driven)) : 0u;
     for (k = 0; k < 6; k++) {
         const bool unchanged = in->raw_phase[k] == p->last_raw[k];
         const bool same = unchanged && (((unsigned)judged >> k) & 1u) != 0u;
@@ -527,7 +550,7 @@ SIXPHASE_RAMFUNC uint16_t ctl_protect_check(ctl_protect_t *p, const ctl_protect_
         f |= CTL_FAULT_HW_TRIP;
     }
     f |= check_encoder(p, l, in);
-    f |= check_adc(p, l, in);
+    f |= check_adc(p, l, in, driven_phases(vector, duty));
     f |= check_open_phase(p, l, in);
     f |= check_open_phase_fast(p, l, in);
 

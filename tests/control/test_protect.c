@@ -342,6 +342,45 @@ static void test_frozen_converter_stays_dead_across_clears(void **state)
     assert_true(ctl_protect_converter_alive(&prot));
 }
 
+/* RUN at standstill with no torque, phase B's word frozen, the others noisy. */
+static ctl_protect_input_t running_with_frozen_word(int32_t n)
+{
+    ctl_protect_input_t in = stopped_with_frozen_word(n);
+    in.running = true;
+    in.omega_e = CTL_Q(0.0);
+    in.torque_est = CTL_Q(0.0);
+    return in;
+}
+
+/* A converter that froze while no current flowed (the drive idle or at no load) reads no
+ * current afterwards either: the stuck check judges the phases an active state drove in the
+ * last period (their windings saw at least a third of the link), not only those measured to
+ * carry current. Before, nothing was judged: in the simulator, at no load with the ADC frozen
+ * at 0.1 s the drive ran blind (phase currents up to 16 A, torque swinging +-10 N m, no fault;
+ * now ADC_STUCK 8.7 ms after the freeze). A zero state, a set at rest or a short active part
+ * is no evidence. */
+static void test_frozen_at_idle_found_by_the_driven_phases(void **state)
+{
+    int32_t n;
+    uint16_t f = 0u;
+    (void)state;
+    for (n = 0; n < 200; n++) { /* zero states, and set ABC at rest with DEF driven, long */
+        const ctl_protect_input_t in = running_with_frozen_word(n);
+        assert_int_equal(
+            ctl_protect_check(&prot, &limits, &in, CTL_Q(0.0), (n & 1) ? 0 : 077, CTL_Q(1.0)), 0u);
+        assert_int_equal(ctl_protect_check(&prot, &limits, &in, CTL_Q(0.0), 004, CTL_Q(1.0)),
+                         0u); /* phase B (set ABC) frozen, ABC at rest: not judged */
+        assert_int_equal(ctl_protect_check(&prot, &limits, &in, CTL_Q(0.0), 040, CTL_Q(0.05)),
+                         0u); /* active for 5 % of the period only */
+    }
+    for (n = 0; n < 60 && f == 0u; n++) {
+        const ctl_protect_input_t in = running_with_frozen_word(n);
+        f = ctl_protect_check(&prot, &limits, &in, CTL_Q(0.3), 044, CTL_Q(0.6));
+    }
+    assert_int_equal(f, CTL_FAULT_ADC_STUCK);
+    assert_int_equal(n, 50); /* the word was frozen already: 50 judged repeats */
+}
+
 /* A fault the drive rode through is unlatched; the next one is a new root cause with a record of
  * its own (the first one's record stays). */
 static void test_accepted_fault_records_again(void **state)
@@ -592,6 +631,7 @@ int main(void)
         cmocka_unit_test_setup(test_accepted_fault_records_again, setup),
         cmocka_unit_test_setup(test_isolated_phase_word_may_rest, setup),
         cmocka_unit_test_setup(test_frozen_converter_stays_dead_across_clears, setup),
+        cmocka_unit_test_setup(test_frozen_at_idle_found_by_the_driven_phases, setup),
         cmocka_unit_test_setup(test_no_false_trip, setup),
         cmocka_unit_test_setup(test_fast_open_phase_without_a_turn, setup),
         cmocka_unit_test_setup(test_fast_open_phase_needs_the_xy_held, setup),
