@@ -46,17 +46,14 @@ compile() { # dir, extra flags...
 for arith in float fixed; do
   dir="$out/$arith"
   flags=(-std=c99 -ffreestanding -mthumb -O2 -DF28335_LINK_PROXY=1 --param=min-pagesize=0)
-  # What runs from flash on purpose: tools/flash_on_purpose.txt, the one list ("fixed:" names
-  # are the Q24 image's only); the Q24 link's define (F28335_flash.cmd, SIXPHASE_FW_Q24).
+  # The Q24 link's define (F28335_flash.cmd, SIXPHASE_FW_Q24); image_check.py reads what runs
+  # from flash on purpose from tools/flash_on_purpose.txt, the one list.
   link=()
   if [ $arith = float ]; then
     flags+=(-DCTL_MATH_FLOAT=1)
-    from_flash=$(grep -v '^#' "$here/tools/flash_on_purpose.txt" | grep -v '^fixed:' | paste -sd, -)
   else
     flags+=(-DCTL_MATH_FLOAT=0)
     link=(--define SIXPHASE_FW_Q24=1)
-    from_flash=$(grep -v '^#' "$here/tools/flash_on_purpose.txt" | sed 's/^fixed: *//' \
-      | paste -sd, -)
   fi
   for inc in "${includes[@]}"; do flags+=(-I "$here/$inc"); done
   compile "$dir/o2" -mcpu=cortex-m4 -ffunction-sections -fdata-sections -fcallgraph-info=su \
@@ -68,7 +65,8 @@ for arith in float fixed; do
   echo "== $arith build"
   python3 "$here/tools/image_check.py" --linker "$linker" "${link[@]}" --objects "$dir/o2" \
     --callgraph "$dir/m0" --asm "$here/firmware/f28335/codestart.asm" \
-    --stack-words "$((stack_words))" --from-flash "$from_flash" --summary "$dir/ram.json"
+    --stack-words "$((stack_words))" --from-flash-file "$here/tools/flash_on_purpose.txt" \
+    --summary "$dir/ram.json"
 done
 "$here/tools/check_stack_bound.sh" "$out" # -> $out/{float,fixed}/stack_bound.json; 20 % left
 if [ -n "$doc_mode" ]; then

@@ -4,7 +4,7 @@
 usage: image_check.py --linker FILE.cmd [--define NAME=VALUE]... --objects DIR
                       --callgraph DIR --asm FILE.asm... [--stack-words N]
                       [--isr fw_adc_isr] [--entry main] [--copy fw_ramfuncs_copy]
-                      [--from-flash FN,...] [--summary FILE.json]
+                      [--from-flash-file FILE] [--from-flash FN,...] [--summary FILE.json]
 
 A model of the TI linker's rules (SPRU513, "Linker Description") for exactly the constructs
 the firmware's linker command files use, applied to the section list of a 32-bit Arm proxy
@@ -412,9 +412,10 @@ def switch_functions(source_text):
 
 
 def asm_inputs(path):
-    """Input sections of an assembly source: (sections, {function: section}, calls)."""
+    """Input sections of an assembly source (their labels as functions) and its branches:
+    (object name, [Input], [(label, target)])."""
     name = os.path.basename(path) + ".obj"
-    inputs, current, labels, calls, last = {}, None, {}, [], None
+    inputs, current, calls, last = {}, None, [], None
     for line in open(path):
         code = line.split(";", 1)[0]
         sect = re.match(r"\s+\.sect\s+\"([^\"]+)\"", code)
@@ -424,7 +425,6 @@ def asm_inputs(path):
             continue
         label = re.match(r"^(\w+):", code)
         if label and current:
-            labels[label.group(1)] = inputs[current]
             inputs[current].functions.add(label.group(1))
             last = label.group(1)
             continue
@@ -736,8 +736,26 @@ def is_helper(fn, defined):
         (fn.startswith("__") or fn in HELPER_MEMBERS or fn in ("memcpy", "memset"))
 
 
+def from_flash(a, defines):
+    """The functions this build runs from flash on purpose: --from-flash-file's (a "fixed:"
+    name only in the Q24 link, SIXPHASE_FW_Q24) and --from-flash's."""
+    names = set(f for f in a.from_flash.split(",") if f)
+    if a.from_flash_file:
+        for line in open(a.from_flash_file):
+            line = line.strip()
+            if not line or line.startswith("#"):
+                continue
+            if line.startswith("fixed:"):
+                if defines.get("SIXPHASE_FW_Q24") in (None, "0"):
+                    continue
+                line = line[len("fixed:"):].strip()
+            names.add(line)
+    return names
+
+
 def model(a, errors):
-    """Builds the model: (ranges, outputs, inputs, objects, period, period helpers, boot)."""
+    """Builds the model: (ranges, outputs, inputs, objects, period, period helpers, boot,
+    the functions in flash on purpose)."""
     defines = dict(d.split("=", 1) if "=" in d else (d, "1") for d in a.define)
     ranges, outputs = parse_linker(a.linker, defines, errors)
     edges, defined, sources = load_graph(a)
@@ -756,7 +774,7 @@ def model(a, errors):
     inputs += rts_inputs(helpers)
     stack = Input("(linker)", STACK_SECTION, a.stack_words)
     inputs.append(stack)
-    flash = set(f for f in a.from_flash.split(",") if f)
+    flash = from_flash(a, defines)
     for fn in sorted(flash | {a.isr, a.entry, a.copy}):
         if fn not in defined:
             raise Fail("%s is not a function of the call graph" % fn)
@@ -767,10 +785,10 @@ def model(a, errors):
     for obj in objects:
         bodies.update(obj["bodies"])
     boot |= before_copy(a.entry, a.copy, edges, bodies)
-    return ranges, outputs, inputs, objects, period, period_helpers, boot
+    return ranges, outputs, inputs, objects, period, period_helpers, boot, flash
 
 
-def report(outputs, inputs, use, size, ranges):
+def report(outputs, use, size, ranges):
     print("| output section | load | run | C28x words |")
     print("|---|---|---|---|")
     for out in outputs:
@@ -785,7 +803,7 @@ def report(outputs, inputs, use, size, ranges):
                                                     100.0 * words / ranges[r]["length"]))
 
 
-def summary(a, ranges, outputs, use, size, period, members, boot):
+def summary(flash, ranges, outputs, use, size, period, members, boot):
     return {"ranges": dict((r, {"length": v["length"], "use": use[r], "ram": v["ram"]})
                            for r, v in ranges.items()),
             "outputs": dict((o["name"], {"words": size[o["name"]], "load": o["load"],
@@ -793,7 +811,7 @@ def summary(a, ranges, outputs, use, size, period, members, boot):
                             for o in outputs if size[o["name"]] and not o["dsect"]),
             "period_functions": len(period), "rts_in_ram": members,
             "boot_path": sorted(boot),
-            "from_flash": sorted(f for f in a.from_flash.split(",") if f),
+            "from_flash": sorted(flash),
             "code_factor": list(CODE_FACTOR), "data_factor": DATA_FACTOR,
             "ram_limit": RAM_LIMIT}
 
@@ -811,6 +829,9 @@ def main():
     ap.add_argument("--isr", default="fw_adc_isr")
     ap.add_argument("--entry", default="main")
     ap.add_argument("--copy", default="fw_ramfuncs_copy")
+    ap.add_argument("--from-flash-file",
+                    help="the functions run from flash on purpose, one a line ('#' comments; "
+                         "'fixed: NAME' only when the link defines SIXPHASE_FW_Q24)")
     ap.add_argument("--from-flash", default="",
                     help="functions the build leaves in flash on purpose (comma-separated)")
     ap.add_argument("--readelf", default="arm-none-eabi-readelf")
@@ -818,7 +839,7 @@ def main():
     a = ap.parse_args()
     try:
         errors = []
-        ranges, outputs, inputs, objects, period, helpers, boot = model(a, errors)
+        ranges, outputs, inputs, objects, period, helpers, boot, flash = model(a, errors)
         allocate(outputs, inputs, errors)
         check_boot(boot, inputs, errors)
         check_period_code(period, inputs, ranges, errors)
@@ -828,13 +849,13 @@ def main():
     except (Fail, OSError, subprocess.CalledProcessError) as e:
         sys.stderr.write("image_check: %s\n" % e)
         sys.exit(2)
-    report(outputs, inputs, use, size, ranges)
+    report(outputs, use, size, ranges)
     print("boot path before the copy: %s" % ", ".join(sorted(boot)))
     print("period: %d functions; run-time library members it calls: %s"
           % (len(period), ", ".join(members) or "none"))
     if a.summary:
         with open(a.summary, "w") as f:
-            json.dump(summary(a, ranges, outputs, use, size, period, members, boot), f,
+            json.dump(summary(flash, ranges, outputs, use, size, period, members, boot), f,
                       indent=1, sort_keys=True)
     for e in errors:
         sys.stderr.write("image_check: %s: %s\n" % (os.path.basename(a.linker), e))

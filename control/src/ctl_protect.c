@@ -149,7 +149,6 @@ void ctl_protect_init(ctl_protect_t *p)
     reset_filters(p);
 }
 
-/* Latches faults; a stuck converter must show every word change again before a clear. */
 /* New faults (not latched yet) are about to latch: a stuck converter must show every word
  * change after this period before a clear (ctl_protect_converter_alive). Off the normal path:
  * only in the period that latches something new. */

@@ -21,19 +21,7 @@ FIXTURES = os.path.join(HERE, "fixtures")
 FLASH_LIST = os.path.join(ROOT, "tools", "flash_on_purpose.txt")
 
 
-def flash_on_purpose(arith):
-    """tools/flash_on_purpose.txt's names for one image, comma-separated, as the script reads it."""
-    names = []
-    for line in open(FLASH_LIST):
-        line = line.strip()
-        if not line or line.startswith("#"):
-            continue
-        if line.startswith("fixed:"):
-            if arith != "fixed":
-                continue
-            line = line[len("fixed:"):].strip()
-        names.append(line)
-    return ",".join(names)
+
 
 
 @unittest.skipUnless(shutil.which("arm-none-eabi-gcc"), "needs arm-none-eabi-gcc")
@@ -53,17 +41,16 @@ class ImageCheck(unittest.TestCase):
         shutil.rmtree(cls.work)
 
     def run_tool(self, linker_text=None, linker=CMD, arith="float", objects="o2",
-                 from_flash=None, defines=()):
+                 from_flash="", defines=()):
         if linker_text is not None:
             linker = os.path.join(self.work, "variant.cmd")
             with open(linker, "w") as f:
                 f.write(linker_text)
-        if from_flash is None:
-            from_flash = flash_on_purpose(arith)
         args = [sys.executable, TOOL, "--linker", linker,
                 "--objects", os.path.join(self.build, arith, objects),
                 "--callgraph", os.path.join(self.build, arith, "m0"), "--asm", ASM,
-                "--stack-words", "1792", "--from-flash", from_flash]
+                "--stack-words", "1792", "--from-flash-file", FLASH_LIST,
+                "--from-flash", from_flash]
         for d in defines:
             args += ["--define", d]
         done = subprocess.run(args, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
@@ -135,7 +122,7 @@ class ImageCheck(unittest.TestCase):
                       "(drive.c.obj(.text", err)
 
     def test_marked_function_outside_the_period_is_caught(self):
-        status, err = self.run_tool(from_flash="ctl_step," + flash_on_purpose("float"))
+        status, err = self.run_tool(from_flash="ctl_step")
         self.assertEqual(status, 1)
         self.assertIn("period: ctl_step runs from RAM (ctl_step.c.obj(.TI.ramfunc)) but the "
                       "control period never calls it", err)
