@@ -30,7 +30,9 @@ void sim_cli_usage(FILE *f)
         "                   [--delay-angle {period-start,mid-period}] "
         "[--pulse-pattern {by-ones,fewest-transitions,fewest-per-set}]\n"
         "                   [--flux-tie-band LEVELS]\n"
-        "                   [--flux-ref {constant,mtpa}] [--torque-limit NM] [--trip-current A] "
+        "                   [--flux-ref {constant,mtpa}] [--light-load-current A] [--torque-limit "
+        "NM]\n"
+        "                   [--trip-current A] "
         "[--lxy H] [--vdc V] [--dead-time S]\n"
         "                   [--sensor-span A]\n"
         "                   plant (the controller keeps the reference machine): [--motor-r OHM]\n"
@@ -159,6 +161,7 @@ enum {
     G_SEED,
     G_LEVELS,
     G_TORQUE_LIMIT,
+    G_LIGHT_LOAD_CURRENT,
     G_FAULT_TIME,
     G_TRIP,
     G_FINE_RATE,
@@ -238,6 +241,7 @@ static const opt_t options[] = {
     {"--seed", OPT_SEED, OPT_RUN, F(cfg.seed), G_SEED, 0.0, 0.0, 0, NULL},
     {"--duty-levels", OPT_INTEGER, OPT_RUN, F(cfg.duty_levels), G_LEVELS, 2.0, 11.0, 0, NULL},
     NUM("--torque-limit", cfg.torque_limit_nm, G_TORQUE_LIMIT, 0.1, 50.0),
+    NUM("--light-load-current", cfg.light_load_current_a, G_LIGHT_LOAD_CURRENT, 0.0, 20.0),
     NUM("--fault-time", cfg.fault_time_s, G_FAULT_TIME, 0.001, SIM_MAX_DURATION_S),
     NUM("--trip-current", cfg.trip_current_a, G_TRIP, 0.1, 1000.0),
     NUM("--fine-rate", cfg.fine_rate_hz, G_FINE_RATE, 10000.0, 10e6),
@@ -385,6 +389,7 @@ static int apply_option(const opt_t *opt, const char *v, sim_cli_t *o, char *err
         o->cfg.mid_period_angle = 0;
         o->cfg.pulse_pattern = 0;
         o->cfg.flux_tie_band = 0.0;
+        o->cfg.light_load_current_a = 0.0;
         return 1;
     case OPT_NUMBER:
         if (parse_number(v, opt->lo, opt->hi, (double *)(void *)(base + opt->field)) != 0) {
@@ -703,13 +708,16 @@ static int cli_parse(int argc, char **argv, sim_cli_t *o, char *err, size_t len,
                             a, "");
         }
         seen[opt->group] = 1;
-        if (opt->kind == OPT_PAPER) { /* it also sets what these three set */
-            if (seen[G_DELAY_ANGLE] || seen[G_PULSE_PATTERN] || seen[G_TIE_BAND]) {
+        if (opt->kind == OPT_PAPER) { /* it also sets what these four set */
+            if (seen[G_DELAY_ANGLE] || seen[G_PULSE_PATTERN] || seen[G_TIE_BAND] ||
+                seen[G_LIGHT_LOAD_CURRENT]) {
                 return cli_fail(err, len,
-                                "%s repeats --delay-angle, --pulse-pattern or --flux-tie-band%s", a,
-                                "");
+                                "%s repeats --delay-angle, --pulse-pattern, --flux-tie-band or "
+                                "--light-load-current%s",
+                                a, "");
             }
             seen[G_DELAY_ANGLE] = seen[G_PULSE_PATTERN] = seen[G_TIE_BAND] = 1;
+            seen[G_LIGHT_LOAD_CURRENT] = 1;
         }
         if (opt->kind == OPT_IDEAL) {
             int g;

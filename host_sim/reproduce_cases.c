@@ -73,6 +73,7 @@ static void rep_apply_variant(sim_config_t *c, rep_variant_t v)
     case REP_GUARD: /* the product's DDC: the core's defaults */
         c->ddc_torque_guard = c->mid_period_angle = c->pulse_pattern = -1;
         c->flux_tie_band = -1.0;
+        c->light_load_current_a = -1.0;
         break;
     case REP_FS_7K5:
         c->fs_hz = 7500.0;
@@ -133,6 +134,7 @@ rep_case_t *rep_add(rep_case_t *cases, int *n, const char *dir, const char *grou
     c->cfg.mid_period_angle = 0;
     c->cfg.pulse_pattern = 0;
     c->cfg.flux_tie_band = 0.0;
+    c->cfg.light_load_current_a = 0.0;
     /* MPTC-49 peaks near 30 A (beyond the 15 A limit): the firmware trips it within
      * milliseconds (row protect_mptc49_l100), so its comparison rows run with the software
      * protection out of reach */
@@ -183,6 +185,7 @@ void rep_cases_first_batch(rep_case_t *cases, int *n, const char *dir)
         /* the product's DDC, as `sixphase-sim run` */
         c->cfg.ddc_torque_guard = c->cfg.mid_period_angle = c->cfg.pulse_pattern = -1;
         c->cfg.flux_tie_band = -1.0;
+        c->cfg.light_load_current_a = -1.0;
     }
 }
 

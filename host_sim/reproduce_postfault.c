@@ -15,6 +15,7 @@ static rep_case_t *pf_add(rep_case_t *cases, int *n, const char *dir, const char
     rep_case_t *c = rep_add(cases, n, dir, "postfault", name, 0, SIM_SCEN_STEADY, 100.0);
     c->cfg.ddc_torque_guard = c->cfg.mid_period_angle = c->cfg.pulse_pattern = -1;
     c->cfg.flux_tie_band = -1.0;
+    c->cfg.light_load_current_a = -1.0;
     c->cfg.fault = SIM_FAULT_OPEN_PHASE;
     c->cfg.fault_phase = phase;
     c->cfg.open_phase_action = ride ? 1 : -1;

@@ -61,6 +61,7 @@ void sim_config_default(sim_config_t *c)
     c->mid_period_angle = -1;
     c->pulse_pattern = -1;
     c->flux_tie_band = -1.0;
+    c->light_load_current_a = -1.0;
     c->protect = true;
     c->fault = SIM_FAULT_NONE;
     c->fault_time_s = 0.0;

@@ -43,14 +43,15 @@ typedef struct {
     double load_nm;    /* < -1e9: scenario default */
     double duration_s; /* <= 0: scenario default */
     uint64_t seed;
-    int duty_levels;        /* <= 0: core default */
-    int ddc_direction;      /* < 0: core default */
-    int flux_ref_mode;      /* < 0: core default */
-    int ddc_torque_guard;   /* < 0: core default (on); 0: the paper's method */
-    int mid_period_angle;   /* < 0: core default (off: the paper's Eq. 17, period start); 1 on */
-    double flux_tie_band;   /* < 0: core default (0.5 of a duty level); 0: off (the paper) */
-    int pulse_pattern;      /* < 0: core default (fewest transitions per set); else a
-                               ctl_pulse_pattern_t (0: by ones, the paper's DDC here) */
+    int duty_levels;      /* <= 0: core default */
+    int ddc_direction;    /* < 0: core default */
+    int flux_ref_mode;    /* < 0: core default */
+    int ddc_torque_guard; /* < 0: core default (on); 0: the paper's method */
+    int mid_period_angle; /* < 0: core default (off: the paper's Eq. 17, period start); 1 on */
+    double flux_tie_band; /* < 0: core default (0.5 of a duty level); 0: off (the paper) */
+    double light_load_current_a; /* < 0: core default; 0: plain MTPA (docs/faults.md) */
+    int pulse_pattern;           /* < 0: core default (fewest transitions per set); else a
+                                    ctl_pulse_pattern_t (0: by ones, the paper's DDC here) */
     double torque_limit_nm; /* <= 0: scenario default (rated 7 N*m; 1.2x rated with rated load) */
     double trip_current_a;  /* > 0: simulated hardware over-current comparator (trip zone) */
     sim_fault_t fault;      /* injected fault (scenario fault-<name>): steady scenario */

@@ -86,6 +86,9 @@ static int bridge_init(const sim_ctl_config_t *cfg)
     if (cfg->flux_ref_mode >= 0) {
         p.flux_ref_mode = (ctl_flux_ref_mode_t)cfg->flux_ref_mode;
     }
+    if (cfg->light_load_current_a >= 0.0) {
+        p.light_load_current_a = (float)cfg->light_load_current_a;
+    }
     if (cfg->flux_ref_wb > 0.0) {
         p.flux_ref_wb = (float)cfg->flux_ref_wb;
     }

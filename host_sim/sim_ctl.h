@@ -21,7 +21,8 @@ typedef struct {
     int mid_period_angle; /* < 0: core default (off); 1 on */
     int pulse_pattern;    /* < 0: core default; else a ctl_pulse_pattern_t */
     double flux_tie_band; /* < 0: core default; 0 off (paper), else a fraction of a level */
-    double flux_ref_wb;   /* <= 0: core default */
+    double light_load_current_a; /* < 0: core default; 0: plain MTPA */
+    double flux_ref_wb;          /* <= 0: core default */
     /* machine as the controller knows it */
     double r_ohm, ld_h, lq_h, lxy_h, psi_f_wb;
     int pole_pairs;

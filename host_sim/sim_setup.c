@@ -68,6 +68,7 @@ static void setup_controller_config(const sim_run_t *rs, sim_ctl_config_t *cc)
     cc->mid_period_angle = c->mid_period_angle;
     cc->pulse_pattern = c->pulse_pattern;
     cc->flux_tie_band = c->flux_tie_band;
+    cc->light_load_current_a = c->light_load_current_a;
     cc->j_kgm2 = p->j_kgm2;
     cc->flux_ref_wb = 0.0;
     sim_ctl_machine_t m;

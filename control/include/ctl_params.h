@@ -76,7 +76,10 @@ typedef struct {
                               * level's torque step of the best one, 0..1; 0: off (the flux term
                               * weighs every level the guard leaves, the paper's search) */
     ctl_flux_ref_mode_t flux_ref_mode;
-    float flux_ref_wb; /* used when flux_ref_mode is constant */
+    float flux_ref_wb;          /* used when flux_ref_mode is constant */
+    float light_load_current_a; /* MTPA: the current magnitude kept at light load, a d-axis
+                                 * current at no load (no torque), so an open phase can be found
+                                 * there (docs/faults.md); 0: plain MTPA */
     /* speed loop */
     float speed_kp_nm_per_rad_s; /* per mechanical rad/s */
     float speed_ki_nm_per_rad;   /* per mechanical rad */
@@ -106,7 +109,8 @@ typedef struct {
     X(CTL_PARAM_PROTECTION, "a protection threshold is out of range")                              \
     X(CTL_PARAM_FLUX_TIE_BAND, "DDC flux tie band outside 0..1 duty level")                        \
     X(CTL_PARAM_PULSE_PATTERN, "unknown pulse pattern")                                            \
-    X(CTL_PARAM_OPEN_PHASE, "open phase outside -1..5 or unknown post-fault strategy")
+    X(CTL_PARAM_OPEN_PHASE, "open phase outside -1..5 or unknown post-fault strategy")             \
+    X(CTL_PARAM_LIGHT_LOAD_CURRENT, "light-load current outside 0..1000 A")
 
 #define CTL_PARAM_ERROR_ENUM(code, text) code,
 typedef enum { CTL_PARAM_ERRORS(CTL_PARAM_ERROR_ENUM) CTL_PARAM_ERROR_COUNT } ctl_param_error_t;

@@ -13,8 +13,11 @@ ctl_param_error_t ctl_config_build(ctl_config_t *cfg, const ctl_params_t *p)
     /* checked above: neither can fail */
     (void)ctl_model_init(&cfg->model, p->resistance_ohm, p->ld_h, p->lq_h, p->l_xy_h, p->pm_flux_wb,
                          p->pole_pairs, p->sample_time_s);
-    ctl_flux_ref_init(&cfg->flux_ref, p->flux_ref_mode, p->flux_ref_wb, p->ld_h, p->lq_h,
-                      p->pm_flux_wb, p->pole_pairs, p->torque_limit_nm);
+    {
+        const ctl_flux_ref_machine_t m = {p->ld_h, p->lq_h, p->pm_flux_wb, p->pole_pairs};
+        ctl_flux_ref_init(&cfg->flux_ref, p->flux_ref_mode, p->flux_ref_wb, &m, p->torque_limit_nm,
+                          p->light_load_current_a);
+    }
     cfg->lambda = ctl_from_float(p->lambda_nm_per_wb * (CTL_BASE_FLUX_WB_F / CTL_BASE_TORQUE_NM_F));
     /* With an open phase the same alpha-beta current drives the healthy phases to peak_ratio
      * times the healthy peak (1.80 with minimum loss): the limit shrinks by that ratio, so they

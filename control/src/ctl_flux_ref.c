@@ -5,18 +5,23 @@
 
 /* MTPA operating point for a current magnitude i (SI): the d-axis current that maximises
  * torque per ampere for a salient machine (L_d < L_q gives i_d < 0). */
+static float mtpa_id(float i, float ld, float lq, float psi_f)
+{
+    const float dl = lq - ld;
+    if (dl > 1.0e-9f) {
+        const float a = psi_f / (4.0f * dl);
+        return a - ctl_sqrtf(a * a + 0.5f * i * i);
+    }
+    return 0.0f;
+}
+
 static void mtpa_point(float i, float ld, float lq, float psi_f, int16_t pp, float *torque,
                        float *flux)
 {
-    const float dl = lq - ld;
-    float id = 0.0f;
+    const float id = mtpa_id(i, ld, lq, psi_f);
     float iq;
     float pd;
     float pq;
-    if (dl > 1.0e-9f) {
-        const float a = psi_f / (4.0f * dl);
-        id = a - ctl_sqrtf(a * a + 0.5f * i * i);
-    }
     iq = ctl_sqrtf(i * i - id * id);
     pd = psi_f + ld * id;
     pq = lq * iq;
@@ -24,8 +29,66 @@ static void mtpa_point(float i, float ld, float lq, float psi_f, int16_t pp, flo
     *flux = ctl_sqrtf(pd * pd + pq * pq);
 }
 
-void ctl_flux_ref_init(ctl_flux_ref_t *f, ctl_flux_ref_mode_t mode, float constant_wb, float ld_h,
-                       float lq_h, float psi_f_wb, int16_t pole_pairs, float torque_max_nm)
+/* The operating point on the circle |i| = i (SI) that gives the torque target, between the MTPA
+ * point (d-axis current id_mtpa, the circle's largest torque) and the pure -d current (no
+ * torque): torque falls monotonically over that arc, so bisect the d-axis current. */
+static float floor_point_flux(float i, float target, float ld, float lq, float psi_f, int16_t pp,
+                              float id_mtpa)
+{
+    float lo = -i;      /* torque 0 */
+    float hi = id_mtpa; /* torque >= target */
+    float id;
+    float iq;
+    int16_t it;
+    for (it = 0; it < 40; it++) {
+        const float mid = 0.5f * (lo + hi);
+        const float iq_mid = ctl_sqrtf(i * i - mid * mid);
+        if (3.0f * (float)pp * iq_mid * (psi_f + (ld - lq) * mid) < target) {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    id = 0.5f * (lo + hi);
+    iq = ctl_sqrtf(i * i - id * id);
+    return ctl_sqrtf((psi_f + ld * id) * (psi_f + ld * id) + (lq * iq) * (lq * iq));
+}
+
+/* The flux of the smallest current on the MTPA curve that gives the torque target (SI);
+ * torque rises monotonically with current on that curve, so bisect the current magnitude.
+ * Below the floor current the point moves along the floor's circle toward -d instead. */
+static float mtpa_flux_for_torque(float target, float ld, float lq, float psi_f, int16_t pp,
+                                  float floor_a)
+{
+    float lo = 0.0f;
+    float hi = 1.0f;
+    float t;
+    float flux;
+    int16_t it;
+    mtpa_point(hi, ld, lq, psi_f, pp, &t, &flux);
+    while (t < target && hi < 1.0e4f) {
+        hi *= 2.0f;
+        mtpa_point(hi, ld, lq, psi_f, pp, &t, &flux);
+    }
+    for (it = 0; it < 40; it++) {
+        const float mid = 0.5f * (lo + hi);
+        mtpa_point(mid, ld, lq, psi_f, pp, &t, &flux);
+        if (t < target) {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    if (0.5f * (lo + hi) < floor_a) {
+        return floor_point_flux(floor_a, target, ld, lq, psi_f, pp,
+                                mtpa_id(floor_a, ld, lq, psi_f));
+    }
+    mtpa_point(0.5f * (lo + hi), ld, lq, psi_f, pp, &t, &flux);
+    return flux;
+}
+
+void ctl_flux_ref_init(ctl_flux_ref_t *f, ctl_flux_ref_mode_t mode, float constant_wb,
+                       const ctl_flux_ref_machine_t *m, float torque_max_nm, float floor_a)
 {
     const float psi_b = CTL_BASE_FLUX_WB_F;
     const float torque_max_pu = torque_max_nm / CTL_BASE_TORQUE_NM_F;
@@ -34,31 +97,11 @@ void ctl_flux_ref_init(ctl_flux_ref_t *f, ctl_flux_ref_mode_t mode, float consta
     f->constant = ctl_from_float(constant_wb / psi_b);
     f->torque_max = ctl_from_float(torque_max_pu);
     f->points_per_torque = ctl_from_float((float)(CTL_FLUX_REF_TABLE_POINTS - 1) / torque_max_pu);
-    /* Tabulate flux against torque at equal torque steps: bisect the current magnitude
-     * that gives each torque (torque rises monotonically with current on the MTPA curve). */
     for (k = 0; k < CTL_FLUX_REF_TABLE_POINTS; k++) {
         const float target = torque_max_nm * (float)k / (float)(CTL_FLUX_REF_TABLE_POINTS - 1);
-        float lo = 0.0f;
-        float hi = 1.0f;
-        float t;
-        float flux;
-        int16_t it;
-        mtpa_point(hi, ld_h, lq_h, psi_f_wb, pole_pairs, &t, &flux);
-        while (t < target && hi < 1.0e4f) {
-            hi *= 2.0f;
-            mtpa_point(hi, ld_h, lq_h, psi_f_wb, pole_pairs, &t, &flux);
-        }
-        for (it = 0; it < 40; it++) {
-            const float mid = 0.5f * (lo + hi);
-            mtpa_point(mid, ld_h, lq_h, psi_f_wb, pole_pairs, &t, &flux);
-            if (t < target) {
-                lo = mid;
-            } else {
-                hi = mid;
-            }
-        }
-        mtpa_point(0.5f * (lo + hi), ld_h, lq_h, psi_f_wb, pole_pairs, &t, &flux);
-        f->table[k] = ctl_from_float(flux / psi_b);
+        f->table[k] = ctl_from_float(
+            mtpa_flux_for_torque(target, m->ld_h, m->lq_h, m->psi_f_wb, m->pole_pairs, floor_a) /
+            psi_b);
     }
 }
 

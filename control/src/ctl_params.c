@@ -24,6 +24,7 @@ void ctl_params_default(ctl_params_t *p)
     p->ddc_flux_tie_band = 0.5f; /* measured over lambda 20..200 (docs/improvements.md) */
     p->flux_ref_mode = CTL_FLUX_REF_MTPA;
     p->flux_ref_wb = 0.26f;
+    p->light_load_current_a = 0.5f; /* measured: docs/faults.md, "A current to judge at no load" */
     p->speed_kp_nm_per_rad_s = 1.5f;
     p->speed_ki_nm_per_rad = 60.0f;
     p->torque_limit_nm = 7.0f;
@@ -97,6 +98,9 @@ static ctl_param_error_t check_control(const ctl_params_t *p)
           (p->flux_ref_mode == CTL_FLUX_REF_CONSTANT &&
            ctl_float_in_range(p->flux_ref_wb, 1.0e-3f, 10.0f)))) {
         return CTL_PARAM_FLUX_REF;
+    }
+    if (!ctl_float_in_range(p->light_load_current_a, 0.0f, 1000.0f)) {
+        return CTL_PARAM_LIGHT_LOAD_CURRENT;
     }
     if (!ctl_float_in_range(p->torque_limit_nm, 1.0e-3f, 500.0f)) {
         return CTL_PARAM_TORQUE_LIMIT;

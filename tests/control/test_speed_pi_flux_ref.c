@@ -71,11 +71,13 @@ static void test_pi_extreme_inputs(void **state)
     assert_near((double)ctl_to_float(out), -0.5, 1e-9);
 }
 
+static const ctl_flux_ref_machine_t reference_machine = {0.035f, 0.055f, 0.225f, 3};
+
 static void test_flux_ref_constant(void **state)
 {
     ctl_flux_ref_t f;
     (void)state;
-    ctl_flux_ref_init(&f, CTL_FLUX_REF_CONSTANT, 0.26f, 0.035f, 0.055f, 0.225f, 3, 7.0f);
+    ctl_flux_ref_init(&f, CTL_FLUX_REF_CONSTANT, 0.26f, &reference_machine, 7.0f, 0.5f);
     assert_near((double)ctl_to_float(ctl_flux_ref_run(&f, CTL_Q(0.3))) * CTL_BASE_FLUX_WB, 0.26,
                 1e-6);
 }
@@ -120,7 +122,7 @@ static void test_flux_ref_mtpa(void **state)
     const double torques[] = {0.0, 1.0, 3.5, 5.0, 7.0, -4.0};
     int16_t k;
     (void)state;
-    ctl_flux_ref_init(&f, CTL_FLUX_REF_MTPA, 0.26f, 0.035f, 0.055f, 0.225f, 3, 7.0f);
+    ctl_flux_ref_init(&f, CTL_FLUX_REF_MTPA, 0.26f, &reference_machine, 7.0f, 0.0f);
     for (k = 0; k < 6; k++) {
         const double t = torques[k];
         const double ref = brute_force_mtpa_flux(fabs(t));
@@ -137,6 +139,52 @@ static void test_flux_ref_mtpa(void **state)
     }
 }
 
+/* The flux at the point of the circle |i| = floor_a that gives the torque, the d-axis current
+ * brute-forced from -floor_a (no torque) toward the MTPA point. */
+static double brute_force_floor_flux(double torque, double floor_a)
+{
+    const double ld = 0.035;
+    const double lq = 0.055;
+    const double psi_f = 0.225;
+    int32_t k;
+    for (k = 0; k <= 200000; k++) {
+        const double id = -floor_a + floor_a * (double)k / 200000.0;
+        const double iq = sqrt(floor_a * floor_a - id * id);
+        if (9.0 * iq * (psi_f + (ld - lq) * id) >= torque) {
+            return hypot(ld * id + psi_f, lq * iq);
+        }
+    }
+    return -1.0;
+}
+
+/* Below the torque the floor current gives on the MTPA curve (2.03 N m at 1 A), the reference is
+ * the flux of the floor's circle at that torque: a pure -d current of the floor at no load. */
+static void test_flux_ref_light_load_floor(void **state)
+{
+    ctl_flux_ref_t f;
+    const double floor_a = 1.0;
+    const double torques[] = {0.0, 0.5, 1.0, -1.5, 1.9};
+    int16_t k;
+    (void)state;
+    ctl_flux_ref_init(&f, CTL_FLUX_REF_MTPA, 0.26f, &reference_machine, 7.0f, (float)floor_a);
+    assert_near((double)ctl_to_float(f.table[0]) * CTL_BASE_FLUX_WB, 0.225 - 0.035 * floor_a, 1e-4);
+    for (k = 0; k < 5; k++) {
+        const double t = torques[k];
+        const double got = (double)ctl_to_float(ctl_flux_ref_run(
+                               &f, ctl_from_float((float)(t / CTL_BASE_TORQUE_NM)))) *
+                           CTL_BASE_FLUX_WB;
+        assert_near(got, brute_force_floor_flux(fabs(t), floor_a), 0.002);
+    }
+    /* above it, plain MTPA */
+    assert_near((double)ctl_to_float(
+                    ctl_flux_ref_run(&f, ctl_from_float((float)(3.5 / CTL_BASE_TORQUE_NM)))) *
+                    CTL_BASE_FLUX_WB,
+                brute_force_mtpa_flux(3.5), 0.002);
+    for (k = 1; k < CTL_FLUX_REF_TABLE_POINTS; k++) {
+        assert_true(f.table[k] >= f.table[k - 1]);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -145,6 +193,7 @@ int main(void)
         cmocka_unit_test(test_pi_extreme_inputs),
         cmocka_unit_test(test_flux_ref_constant),
         cmocka_unit_test(test_flux_ref_mtpa),
+        cmocka_unit_test(test_flux_ref_light_load_floor),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -50,6 +50,7 @@ static void case_config(int controller, int arith, sim_scenario_t scen, double l
         c->mid_period_angle = 0;
         c->pulse_pattern = 0;
         c->flux_tie_band = 0.0;
+        c->light_load_current_a = 0.0;
     }
     c->controller = controller;
     c->arith = arith;
@@ -404,6 +405,10 @@ static void test_product_ddc_goals_over_lambda(void **state)
                 guard_on = variant ? -1 : 0;
                 case_config(0, 0, SIM_SCEN_STEADY, 20.0 * li, &c);
                 guard_on = saved;
+                /* the THD improvements on trial, not the light-load current (it acts below 1 N m
+                 * only; over seeds 1..12 at lambda 40 THD 24.80 % with it, 24.82 % without, the
+                 * paper's 24.89 %: its start-up moves a 3-seed mean by noise of 0.4 pp) */
+                c.light_load_current_a = 0.0;
                 c.seed = (uint64_t)seed;
                 run_config(&c, &r);
                 thd[variant] += r.thd_percent / 3.0;

@@ -307,6 +307,33 @@ static void test_open_at_light_and_no_load(void **state)
     }
 }
 
+/* No load at low speed: the MTPA reference keeps a 0.5 A d-axis current (no torque) that turns
+ * with the rotor, so the fast check has a current to judge: every phase opening at 50 and
+ * 100 r/min with no load is isolated within 100 ms. Before (plain MTPA, as with
+ * --light-load-current 0), nothing flowed to judge and no phase was ever found. */
+static void test_open_at_no_load_low_speed(void **state)
+{
+    static const double speeds[2] = {50.0, 100.0};
+    int i;
+    (void)state;
+    for (i = 0; i < 12; i++) {
+        sim_config_t c;
+        sim_result_t r;
+        const int phase = i % 6;
+        ride_config(&c, phase);
+        c.load_nm = 0.0;
+        c.speed_rpm = speeds[i / 6];
+        c.duration_s = 0.6;
+        run(&c, &r);
+        print_message("no load, %.0f r/min, %c open: isolated %d after %.1f ms, state %d\n",
+                      c.speed_rpm, 'A' + phase, r.isolated_leg, r.isolation_ms, r.final_state);
+        assert_int_equal(r.final_state, 3);
+        assert_int_equal(r.isolated_leg, phase);
+        assert_true(r.isolation_ms >= 0.0 && r.isolation_ms <= 100.0);
+        assert_int_equal(r.fault_records, 1);
+    }
+}
+
 /* Two phases at light load: C opens at 0.5 N m, the drive rides through on five legs, then F
  * opens: FAULT OPEN_PHASE within 100 ms of it, both records. Before, C was never found and the
  * drive ran on with both open. */
@@ -375,6 +402,7 @@ int main(void)
         cmocka_unit_test(test_open_while_braking),
         cmocka_unit_test(test_open_during_reversal_braking),
         cmocka_unit_test(test_open_at_light_and_no_load),
+        cmocka_unit_test(test_open_at_no_load_low_speed),
         cmocka_unit_test(test_two_phases_at_light_load),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
