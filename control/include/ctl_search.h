@@ -98,4 +98,31 @@ static inline ctl_q ctl_horizon_cost(const ctl_horizon_t *h, ctl_q id2, ctl_q iq
     return ctl_horizon_cost_of(h, *torque, *flux);
 }
 
+/* One full-period candidate of an exhaustive search (MPTC): its k+2 currents are the free
+ * response plus (did, diq); it replaces the best so far in out when its cost is lower. The cost
+ * is at least the torque error (both terms >= 0, the add saturates), so a candidate whose torque
+ * error alone reaches the best cost cannot win: its flux root is skipped, as the DDC's level
+ * search does, and the choice is the same as without the test. */
+static inline void ctl_choice_consider(const ctl_horizon_t *h, ctl_q did, ctl_q diq, int16_t vector,
+                                       ctl_choice_t *out)
+{
+    ctl_q psi_d;
+    ctl_q psi_q;
+    ctl_q flux;
+    ctl_q cost;
+    const ctl_q torque = ctl_torque_psi(h->model, ctl_add(h->id2_free, did),
+                                        ctl_add(h->iq2_free, diq), &psi_d, &psi_q);
+    if (!(ctl_abs(ctl_sub(torque, h->torque_ref)) < out->cost)) {
+        return;
+    }
+    flux = ctl_flux_magnitude(psi_d, psi_q);
+    cost = ctl_horizon_cost_of(h, torque, flux);
+    if (cost < out->cost) {
+        out->cost = cost;
+        out->vector = vector;
+        out->torque = torque;
+        out->flux = flux;
+    }
+}
+
 #endif /* CTL_SEARCH_H */

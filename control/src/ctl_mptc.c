@@ -12,21 +12,10 @@ CTL_RAMFUNC_FLOAT void ctl_mptc_select(const ctl_horizon_t *h, const int16_t *ca
     out->torque = CTL_Q(0.0);
     out->flux = CTL_Q(0.0);
     for (i = 0; i < count; i++) {
-        const int16_t v = candidates[i];
         ctl_q did;
         ctl_q diq;
-        ctl_q torque;
-        ctl_q flux;
-        ctl_q cost;
-        ctl_horizon_forced(h, &ctl_vector_vsd[v], &did, &diq);
-        cost = ctl_horizon_cost(h, ctl_add(h->id2_free, did), ctl_add(h->iq2_free, diq), &torque,
-                                &flux);
-        if (cost < out->cost) {
-            out->cost = cost;
-            out->vector = v;
-            out->torque = torque;
-            out->flux = flux;
-        }
+        ctl_horizon_forced(h, &ctl_vector_vsd[candidates[i]], &did, &diq);
+        ctl_choice_consider(h, did, diq, candidates[i], out);
     }
     if (out->vector == 0 && ctl_vector_ones(vector_in_force) > 3) {
         out->vector = 077;

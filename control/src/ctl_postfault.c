@@ -237,18 +237,8 @@ static void pf_select_mptc(const ctl_config_t *cfg, const pf_horizon_t *p, ctl_c
     for (i = 0; i < count; i++) {
         ctl_q did;
         ctl_q diq;
-        ctl_q torque;
-        ctl_q flux;
-        ctl_q cost;
         pf_forced(p, &ctl_vector_vsd[candidates[i]], &did, &diq);
-        cost = ctl_horizon_cost(&p->h, ctl_add(p->h.id2_free, did), ctl_add(p->h.iq2_free, diq),
-                                &torque, &flux);
-        if (cost < out->cost) {
-            out->cost = cost;
-            out->vector = candidates[i];
-            out->torque = torque;
-            out->flux = flux;
-        }
+        ctl_choice_consider(&p->h, did, diq, candidates[i], out);
     }
     out->duty = CTL_Q(1.0);
     out->candidates = count;

@@ -77,6 +77,52 @@ static void test_mptc_flux_weight_selects_flux_match(void **state)
     assert_int_equal(c.vector, 026);
 }
 
+/* The exhaustive search skips a candidate's flux root once its torque error alone reaches the
+ * best cost: over random horizons (angle, free response, references, lambda up to 200 N m/Wb in
+ * per unit and beyond) it picks the candidate, cost, torque and flux that the full cost of every
+ * candidate picks. */
+static void test_mptc_pruning_keeps_the_choice(void **state)
+{
+    test_rng_t rng = {12345u};
+    int32_t n;
+    (void)state;
+    for (n = 0; n < 20000; n++) {
+        ctl_horizon_t h = horizon();
+        ctl_choice_t c;
+        ctl_q best = CTL_Q_MAX;
+        int16_t best_v = 0;
+        int16_t i;
+        const double angle = test_rng_range(&rng, 0.0, 1.0);
+        const bool all = (n % 2) == 0;
+        const int16_t *cand = all ? ctl_mptc49_vectors : ctl_mptc13_vectors;
+        const int16_t count = all ? CTL_MPTC49_CANDIDATES : CTL_MPTC13_CANDIDATES;
+        ctl_sincos_pu(ctl_from_float((float)angle), &h.sin1, &h.cos1);
+        h.id2_free = ctl_from_float((float)test_rng_range(&rng, -0.6, 0.6));
+        h.iq2_free = ctl_from_float((float)test_rng_range(&rng, -0.6, 0.6));
+        h.torque_ref = ctl_from_float((float)test_rng_range(&rng, -1.5, 1.5));
+        h.flux_ref = ctl_from_float((float)test_rng_range(&rng, 0.3, 0.6));
+        h.lambda = ctl_from_float((float)test_rng_range(&rng, 0.0, 20.0));
+        ctl_horizon_prepare(&h);
+        for (i = 0; i < count; i++) {
+            ctl_q torque;
+            ctl_q flux;
+            ctl_q did;
+            ctl_q diq;
+            ctl_q cost;
+            ctl_horizon_forced(&h, &ctl_vector_vsd[cand[i]], &did, &diq);
+            cost = ctl_horizon_cost(&h, ctl_add(h.id2_free, did), ctl_add(h.iq2_free, diq), &torque,
+                                    &flux);
+            if (cost < best) {
+                best = cost;
+                best_v = cand[i];
+            }
+        }
+        ctl_mptc_select(&h, cand, count, 0, &c);
+        assert_int_equal(c.vector, best_v);
+        assert_true(c.cost == best);
+    }
+}
+
 /* The zero candidate is realised as u77 when the state in force has more upper switches on. */
 static void test_mptc_zero_vector_follows_state_in_force(void **state)
 {
@@ -268,6 +314,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_mptc_picks_the_vector_that_meets_the_torque_reference),
         cmocka_unit_test(test_mptc_flux_weight_selects_flux_match),
+        cmocka_unit_test(test_mptc_pruning_keeps_the_choice),
         cmocka_unit_test(test_mptc_zero_vector_follows_state_in_force),
         cmocka_unit_test(test_ddc_picks_duty_that_meets_torque),
         cmocka_unit_test(test_ddc_flux_error_reading_lowers_flux_and_xy),
