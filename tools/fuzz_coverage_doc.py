@@ -46,6 +46,8 @@ UNITS = [
     ("host tool replies", "firmware/tools/link_identify.c", "identify_result_reply", None),
     ("host tool replies", "firmware/tools/link_identify.c", "identify_apply_reply", None),
     ("host tool replies", "firmware/tools/link_open_phase.c", "link_open_phase_print", None),
+    ("host tool replies", "firmware/tools/link_torque_limited.c", "link_torque_limited_print",
+     None),
 ]
 
 

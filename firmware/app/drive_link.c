@@ -18,6 +18,9 @@ DRIVE_LINK_ASSERT(state_names,
 DRIVE_LINK_ASSERT(stack_not_measured, SXL_STACK_NOT_MEASURED == 0u); /* stack_watch.h's size 0 */
 DRIVE_LINK_ASSERT(run_refusal_names,
                   (int32_t)SXL_RUN_REFUSAL_NAME_COUNT == (int32_t)DRIVE_RUN_REFUSAL_COUNT);
+/* the torque-limited action goes over the link as the drive's own number */
+DRIVE_LINK_ASSERT(tl_continue, (int32_t)SXL_TL_CONTINUE == (int32_t)DRIVE_TORQUE_LIMITED_CONTINUE);
+DRIVE_LINK_ASSERT(tl_stop, (int32_t)SXL_TL_STOP == (int32_t)DRIVE_TORQUE_LIMITED_STOP);
 
 /* x rounded to the nearest integer and saturated to int32. */
 static int32_t float_to_i32(float x)
@@ -491,6 +494,35 @@ static uint16_t on_set_open_phase_action(drive_t *d, const sxl_frame_t *req, sxl
                : SXL_ERR_VALUE;
 }
 
+/* The time goes to the drive in seconds, and the drive's range check is the only one: the
+ * wire's 1..60000 ms is what it accepts (0 ms is 0 s, refused; above 60000, above 60 s). A
+ * division, not a multiplication by 0.001f, so that 60000 ms is exactly the drive's 60 s. */
+static uint16_t on_set_torque_limited_action(drive_t *d, const sxl_frame_t *req, sxl_frame_t *reply,
+                                             uint16_t rx_errors)
+{
+    const uint16_t stop_ms = sxl_get_u16(&req->payload[SXL_TL_STOP_MS]);
+    (void)reply;
+    (void)rx_errors;
+    return drive_set_torque_limited_action(d, (int16_t)req->payload[SXL_TL_ACTION],
+                                           (float)stop_ms / 1000.0f)
+               ? SXL_OK
+               : SXL_ERR_VALUE;
+}
+
+static uint16_t on_get_torque_limited(drive_t *d, const sxl_frame_t *req, sxl_frame_t *reply,
+                                      uint16_t rx_errors)
+{
+    uint16_t *out = &reply->payload[1];
+    (void)req;
+    (void)rx_errors;
+    out[SXL_TL_ACTION] = (uint16_t)((uint16_t)d->torque_limited_action & 0xFFu);
+    /* at most 60 s (the setter's range): 60000 ms fits */
+    sxl_put_u16(&out[SXL_TL_STOP_MS], (uint16_t)float_to_i32(d->torque_limited_stop_s * 1000.0f));
+    out[SXL_TL_STOPPED] = d->torque_limited_stopped ? 1u : 0u;
+    reply->len = (uint16_t)(1u + SXL_TL_SIZE);
+    return SXL_OK;
+}
+
 static uint16_t on_isolate_leg(drive_t *d, const sxl_frame_t *req, sxl_frame_t *reply,
                                uint16_t rx_errors)
 {
@@ -581,6 +613,8 @@ static const struct {
     {SXL_CMD_SET_CONTROLLER, LINK_ANY_LENGTH, on_set_controller},
     {SXL_CMD_ARM, 0u, on_arm},
     {SXL_CMD_DISARM, 0u, on_disarm},
+    {SXL_CMD_SET_TORQUE_LIMITED_ACTION, SXL_TL_SET_SIZE, on_set_torque_limited_action},
+    {SXL_CMD_GET_TORQUE_LIMITED, 0u, on_get_torque_limited},
     {SXL_CMD_CAPTURE_ARM, SXL_CA_SIZE, on_capture_arm},
     {SXL_CMD_CAPTURE_STATUS, 0u, on_capture_status},
     {SXL_CMD_CAPTURE_READ, 3u, on_capture_read},

@@ -34,8 +34,9 @@
  * COMMISSION) and open-phase operation (SXL_CMD_GET_OPEN_PHASE .. SXL_CMD_RESTORE_LEGS, status
  * flag bit 3); 6: the stack's high-water mark and size in the status (SXL_ST_STACK_USED);
  * 7: CRC-32C instead of CRC-16, and the armed session (SXL_CMD_ARM, SXL_ERR_NOT_ARMED) that
- * commands moving the motor need. */
-#define SXL_VERSION 7u
+ * commands moving the motor need; 8: what the drive does when the speed cannot be held, set and
+ * read over the link (SXL_CMD_SET_TORQUE_LIMITED_ACTION, SXL_CMD_GET_TORQUE_LIMITED). */
+#define SXL_VERSION 8u
 
 /* Commands (host -> drive). A reply carries CMD | SXL_REPLY and starts with
  * a result byte. */
@@ -51,11 +52,15 @@
 #define SXL_CMD_SET_CONTROLLER 0x15u /* uint8 controller, uint32 lambda in 0.001 N*m/Wb */
 /* none -> uint32 session token (never 0): arms the session, a new ARM replaces the token */
 #define SXL_CMD_ARM 0x16u
-#define SXL_CMD_DISARM 0x17u         /* none -> result only: the token no longer moves the motor */
-#define SXL_CMD_CAPTURE_ARM 0x20u    /* SXL_CA_* setup -> result only */
-#define SXL_CMD_CAPTURE_STATUS 0x21u /* none -> SXL_CS_* */
-#define SXL_CMD_CAPTURE_READ 0x22u   /* uint8 channel, uint16 first sample -> SXL_CR_* */
-#define SXL_CMD_CAPTURE_STOP 0x23u   /* none -> result only; the record is discarded */
+#define SXL_CMD_DISARM 0x17u /* none -> result only: the token no longer moves the motor */
+/* The speed loop at its torque limit (docs/faults.md, "When the speed cannot be held"):
+ * SXL_TL_SET_SIZE bytes (SXL_TL_ACTION, SXL_TL_STOP_MS) -> result only */
+#define SXL_CMD_SET_TORQUE_LIMITED_ACTION 0x18u
+#define SXL_CMD_GET_TORQUE_LIMITED 0x19u /* none -> SXL_TL_* */
+#define SXL_CMD_CAPTURE_ARM 0x20u        /* SXL_CA_* setup -> result only */
+#define SXL_CMD_CAPTURE_STATUS 0x21u     /* none -> SXL_CS_* */
+#define SXL_CMD_CAPTURE_READ 0x22u       /* uint8 channel, uint16 first sample -> SXL_CR_* */
+#define SXL_CMD_CAPTURE_STOP 0x23u       /* none -> result only; the record is discarded */
 /* Commissioning (sxlink_commission.h, docs/serial-protocol.md). */
 #define SXL_CMD_COMMISSION_START 0x40u  /* SXL_CC_* -> result only */
 #define SXL_CMD_COMMISSION_STATUS 0x41u /* none -> SXL_CT_* */
@@ -197,6 +202,22 @@
 #define SXL_OP_TORQUE_LIMIT 5u /* int32 the speed loop's torque limit in force, mN*m */
 #define SXL_OP_PERIOD 9u       /* uint32 control-period count at the isolation */
 #define SXL_OP_SIZE 13u
+
+/* What the drive does when the speed loop is at its torque limit: the request of
+ * SXL_CMD_SET_TORQUE_LIMITED_ACTION (ACTION and STOP_MS) and the reply to
+ * SXL_CMD_GET_TORQUE_LIMITED (all, after the result byte). An unknown action or a time outside
+ * STOP_MS_MIN..STOP_MS_MAX is refused with SXL_ERR_VALUE and changes nothing. */
+#define SXL_TL_ACTION 0u  /* uint8 SXL_TL_CONTINUE or SXL_TL_STOP */
+#define SXL_TL_STOP_MS 1u /* uint16 ms at the limit before the stop action stops */
+#define SXL_TL_SET_SIZE 3u
+#define SXL_TL_STOPPED 3u /* uint8 1: the stop action stopped the last run */
+#define SXL_TL_SIZE 4u
+#define SXL_TL_CONTINUE 0u /* run on at the limit: the load sets the speed */
+#define SXL_TL_STOP 1u     /* at the limit for STOP_MS: RUN -> READY, no fault */
+/* The time is kept with continue too, for a later stop. */
+#define SXL_TL_STOP_MS_MIN 1u
+#define SXL_TL_STOP_MS_MAX 60000u   /* the drive's DRIVE_TORQUE_LIMITED_STOP_MAX_S */
+#define SXL_TL_STOP_MS_DEFAULT 500u /* the drive's DRIVE_TORQUE_LIMITED_STOP_S */
 
 #define SXL_FLAG_ENCODER_OK 0x01u
 #define SXL_FLAG_PWM_OFF 0x02u

@@ -43,12 +43,21 @@ int link_open_phase_request(int argc, char **argv, uint16_t *cmd, uint16_t *payl
 /* The reply to SXL_CMD_GET_OPEN_PHASE on one line; 0 or an exit status. */
 int link_open_phase_print(const sxl_frame_t *r);
 
+/* The torque-limited commands' requests (firmware/tools/link_torque_limited.c): 0 when built,
+ * an exit status for a usage error, LINK_NOT_TORQUE_LIMITED when argv[0] is not one. */
+#define LINK_NOT_TORQUE_LIMITED (-1)
+int link_torque_limited_request(int argc, char **argv, uint16_t *cmd, uint16_t *payload,
+                                uint16_t *len);
+/* The reply to SXL_CMD_GET_TORQUE_LIMITED on one line; 0 or an exit status. */
+int link_torque_limited_print(const sxl_frame_t *r);
+
 /* identify [options]: firmware/tools/link_identify.c. */
 int cmd_identify(const options_t *o, int argc, char **argv);
 
 /* What the commands make of one reply frame, without a port (tests/fuzz/fuzz_link_replies.c
  * feeds them arbitrary frames); each returns 0 or an exit status after a one-line error. */
-/* A single command's reply (status, ping, open phase, profile, or "ok"), printed. */
+/* A single command's reply (status, ping, open phase, torque-limited, profile, or "ok"),
+ * printed. */
 int print_reply(const sxl_frame_t *r);
 /* One stage's profile reply as a table row; the first call also prints the header. */
 int print_profile_row(const sxl_frame_t *r, int first);

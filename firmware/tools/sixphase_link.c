@@ -9,6 +9,7 @@
  *           capture ... | identify ... (link_capture.c, link_identify.c) |
  *           open-phase | open-phase-action stop|ride-through [min-loss|max-torque] |
  *           isolate A..F | restore (link_open_phase.c) |
+ *           torque-limited [continue|stop [--stop-after S]] (link_torque_limited.c) |
  *           shutdown (the virtual board only: it answers, then stops)
  * "faults" reads the drive's fault log until it is empty, one line per record.
  * -n prints the request frame in hex instead of sending it. "decode" checks
@@ -73,7 +74,8 @@ static int usage(const char *why)
                 "ping|status|profile|faults|run|stop|clear|shutdown|speed RPM|torque NM|controller "
                 "ddc|mptc49|mptc13 "
                 "LAMBDA|capture SIGNALS [...]|identify [...]|decode HEX...|open-phase|"
-                "open-phase-action ACTION [STRATEGY]|isolate LEG|restore)",
+                "open-phase-action ACTION [STRATEGY]|isolate LEG|restore|"
+                "torque-limited [continue|stop [--stop-after S]])",
                 why);
 }
 
@@ -277,6 +279,8 @@ int print_reply(const sxl_frame_t *r)
         return print_profile_row(r, 1);
     case SXL_CMD_GET_OPEN_PHASE:
         return link_open_phase_print(r);
+    case SXL_CMD_GET_TORQUE_LIMITED:
+        return link_torque_limited_print(r);
     case SXL_CMD_PING:
         if (r->len < 2u) {
             return fail(EXIT_IO, "short ping reply");
@@ -624,7 +628,10 @@ static int build_request(int argc, char **argv, uint16_t *cmd, uint16_t *payload
         return 0;
     } else {
         const int op = link_open_phase_request(argc, argv, cmd, payload, len);
-        return (op == LINK_NOT_OPEN_PHASE) ? usage("unknown command") : op;
+        const int tl = (op == LINK_NOT_OPEN_PHASE)
+                           ? link_torque_limited_request(argc, argv, cmd, payload, len)
+                           : op;
+        return (tl == LINK_NOT_TORQUE_LIMITED) ? usage("unknown command") : tl;
     }
     if (argc != 1) {
         return usage("this command takes no arguments");
@@ -657,7 +664,8 @@ static int parse_options(int argc, char **argv, options_t *o, int *next)
                 "          identify [--steps all|phases,encoder,r,ldq,lxy,psi_f] [--current F]\n"
                 "                   [--apply] [--out FILE.h] [--wait S]\n"
                 "          open-phase  open-phase-action stop|ride-through [min-loss|max-torque]\n"
-                "          isolate A..F  restore\n");
+                "          isolate A..F  restore\n"
+                "          torque-limited  torque-limited continue|stop [--stop-after S]\n");
             return 0;
         }
         if (i + 1 >= argc) {

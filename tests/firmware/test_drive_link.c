@@ -76,6 +76,16 @@ static void calibrate(void)
     assert_int_equal(d.state, DRIVE_STATE_READY);
 }
 
+/* periods of the background loop, the ISR's period count advanced as the ISR would */
+static void background_periods(uint32_t periods)
+{
+    uint32_t k;
+    for (k = 0u; k < periods; k++) {
+        d.isr_count++;
+        drive_background(&d);
+    }
+}
+
 /* Commands that move the motor need the armed session's token (protocol 7): none, a wrong
  * one, one replaced by a new ARM or taken back by DISARM: refused as NOT_ARMED, nothing moves.
  * Before, a noise frame that passed its CRC could carry RUN. */
@@ -519,6 +529,75 @@ static void test_open_phase_commands(void **state)
     assert_int_equal(d.isolated_leg, -1);
 }
 
+/* What the drive does when the speed cannot be held, over the link (protocol 8): read back,
+ * the refusals (nothing changed), and the stop action set by the link stopping a run at the
+ * torque limit after the time it carried. */
+static const uint16_t *get_torque_limited(void)
+{
+    req.len = 0u;
+    assert_int_equal(send(SXL_CMD_GET_TORQUE_LIMITED), SXL_OK);
+    assert_int_equal(rep.len, 1u + SXL_TL_SIZE);
+    return &rep.payload[1];
+}
+
+static uint16_t set_torque_limited(uint16_t action, uint16_t stop_ms)
+{
+    req.len = SXL_TL_SET_SIZE;
+    req.payload[SXL_TL_ACTION] = action;
+    sxl_put_u16(&req.payload[SXL_TL_STOP_MS], stop_ms);
+    return send(SXL_CMD_SET_TORQUE_LIMITED_ACTION);
+}
+
+static void assert_torque_limited_choice(uint16_t action, uint16_t stop_ms)
+{
+    const uint16_t *tl = get_torque_limited();
+    assert_int_equal(tl[SXL_TL_ACTION], action);
+    assert_int_equal(sxl_get_u16(&tl[SXL_TL_STOP_MS]), stop_ms);
+}
+
+static void test_torque_limited_action_commands(void **state)
+{
+    (void)state;
+    /* the build default, which the host tool sends with continue */
+    assert_true(DRIVE_TORQUE_LIMITED_STOP_S * 1000.0f == (float)SXL_TL_STOP_MS_DEFAULT);
+    assert_torque_limited_choice(SXL_TL_CONTINUE, SXL_TL_STOP_MS_DEFAULT);
+    assert_int_equal(get_torque_limited()[SXL_TL_STOPPED], 0u);
+    req.len = 2u; /* the time cut short */
+    assert_int_equal(send(SXL_CMD_SET_TORQUE_LIMITED_ACTION), SXL_ERR_LENGTH);
+    assert_int_equal(set_torque_limited(2u, 200u), SXL_ERR_VALUE); /* no such action */
+    assert_int_equal(set_torque_limited(0xFFu, 200u), SXL_ERR_VALUE);
+    assert_int_equal(set_torque_limited(SXL_TL_STOP, 0u), SXL_ERR_VALUE);
+    assert_int_equal(set_torque_limited(SXL_TL_STOP, SXL_TL_STOP_MS_MAX + 1u), SXL_ERR_VALUE);
+    assert_int_equal(set_torque_limited(SXL_TL_STOP, 0xFFFFu), SXL_ERR_VALUE);
+    assert_torque_limited_choice(SXL_TL_CONTINUE, SXL_TL_STOP_MS_DEFAULT); /* nothing changed */
+    assert_int_equal(set_torque_limited(SXL_TL_STOP, SXL_TL_STOP_MS_MAX), SXL_OK);
+    assert_torque_limited_choice(SXL_TL_STOP, SXL_TL_STOP_MS_MAX);
+    assert_int_equal(set_torque_limited(SXL_TL_CONTINUE, SXL_TL_STOP_MS_MIN), SXL_OK);
+    assert_torque_limited_choice(SXL_TL_CONTINUE, SXL_TL_STOP_MS_MIN);
+    assert_int_equal(d.torque_limited_action, DRIVE_TORQUE_LIMITED_CONTINUE);
+    /* not a command that moves the motor: no armed session */
+    assert_int_equal(set_torque_limited(SXL_TL_STOP, 200u), SXL_OK);
+    assert_torque_limited_choice(SXL_TL_STOP, 200u);
+
+    /* RUN in the speed loop, its reference at the limit (the background's watch, every 16th
+     * period, test_drive_sm): stopped after 0.2 s at it, not before */
+    d.ctl.initialised = true;
+    d.ctl.config_active = 0;
+    d.ctl.config[0].params.sample_time_s = 1.0e-4f;
+    d.ctl.loop_mode = CTL_LOOP_SPEED;
+    d.ctl.speed_pi.limit = CTL_Q(0.4);
+    d.ctl.diag.torque_ref = CTL_Q(0.4);
+    d.state = DRIVE_STATE_RUN;
+    background_periods(1990u);
+    assert_false(d.stop_requested);
+    assert_int_equal(send(SXL_CMD_GET_STATUS), SXL_OK);
+    assert_true((rep.payload[1 + SXL_ST_FLAGS] & SXL_FLAG_TORQUE_LIMITED) != 0u);
+    assert_int_equal(get_torque_limited()[SXL_TL_STOPPED], 0u);
+    background_periods(42u);
+    assert_true(d.stop_requested);
+    assert_int_equal(get_torque_limited()[SXL_TL_STOPPED], 1u);
+}
+
 static void test_fault_names_match_masks(void **state)
 {
     uint16_t code;
@@ -664,6 +743,7 @@ int main(void)
         cmocka_unit_test_setup(test_fault_record_saturates, setup),
         cmocka_unit_test_setup(test_fault_names_match_masks, setup),
         cmocka_unit_test_setup(test_open_phase_commands, setup),
+        cmocka_unit_test_setup(test_torque_limited_action_commands, setup),
         cmocka_unit_test_setup(test_commission_start_validates, setup),
         cmocka_unit_test_setup(test_commission_results_and_apply, setup),
     };

@@ -185,13 +185,16 @@ static void serial_frame(stream_t *s)
                                         SXL_CMD_SET_OPEN_PHASE_ACTION,
                                         SXL_CMD_ISOLATE_LEG,
                                         SXL_CMD_RESTORE_LEGS};
-    /* the commissioning's commands on picks 240..247, so that the picks below keep the
-     * commands the committed corpus chose with them */
+    /* the commissioning's commands on picks 240..243 and the torque-limited pair on 244..247,
+     * so that the picks below keep the commands the committed corpus chose with them */
     static const uint16_t commission[] = {SXL_CMD_COMMISSION_START, SXL_CMD_COMMISSION_STATUS,
                                           SXL_CMD_COMMISSION_RESULT, SXL_CMD_COMMISSION_APPLY};
+    static const uint16_t torque_limited[] = {SXL_CMD_SET_TORQUE_LIMITED_ACTION,
+                                              SXL_CMD_GET_TORQUE_LIMITED};
     const uint16_t pick = take8(s);
     const uint16_t cmd = (pick < 240u)   ? commands[pick % 14u]
-                         : (pick < 248u) ? commission[pick % 4u]
+                         : (pick < 244u) ? commission[pick % 4u]
+                         : (pick < 248u) ? torque_limited[pick % 2u]
                                          : take8(s);
     uint16_t len = (uint16_t)(take8(s) % (SXL_MAX_PAYLOAD + 1u));
     uint16_t payload[SXL_MAX_PAYLOAD];

@@ -1,8 +1,8 @@
 /*
  * Fuzz target for the host tool's reading of a drive's replies (libFuzzer entry point): the
  * functions of firmware/tools that take one reply frame - the single commands' printout
- * (status, ping, open phase), a profile row, a fault record, the capture arm and read
- * replies, the commissioning status, result and apply replies - on arbitrary frames, as a
+ * (status, ping, open phase, torque-limited), a profile row, a fault record, the capture arm
+ * and read replies, the commissioning status, result and apply replies - on arbitrary frames, as a
  * drive with other firmware, a damaged one or an impostor on the port could send them (the
  * CRC only says the frame arrived as sent). The sanitizers (ASan + UBSan, float-cast overflow
  * included) catch any read outside the frame or the tables, any overflow; what is printed

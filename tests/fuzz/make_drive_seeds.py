@@ -16,7 +16,8 @@ import sys
 
 CALIBRATED = b"\x01"  # first byte odd: start from the calibrated snapshot (READY)
 LONG_START = b"\x03"  # and bit 1: the long plant budget (the whole commissioning sequence)
-# serial_frame picks (fuzz_drive.c): commands[pick % 14] below 240, commissioning 240..243
+# serial_frame picks (fuzz_drive.c): commands[pick % 14] below 240, commissioning 240..243,
+# the torque-limited set and read 244..247
 PING, STATUS, PROFILE, FAULT_RECORD, SET_SPEED, SET_TORQUE, RUN, STOP, CLEAR = range(9)
 COMM_START, COMM_STATUS, COMM_RESULT, COMM_APPLY = 240, 241, 242, 243
 FRAME_TAG, BACKGROUND_TAG, PLANT_TAG, CAPTURE_TAG = 1, 5, 248, 250

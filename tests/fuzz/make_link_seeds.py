@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Writes the seeds of fuzz_link_replies (tests/fuzz/corpus_link_replies): one well-formed
-reply per parser, as a drive of protocol 7 sends them, plus short and refused ones.
+reply per parser, as a drive of protocol 8 sends them, plus short and refused ones.
 Input format (fuzz_link_replies.c): parser, command, argument, payload.
 
 usage: make_link_seeds.py [DIR]   (default: corpus_link_replies next to this script)
@@ -13,6 +13,7 @@ OK, REFUSED = 0, 4
 STATUS, PING, PROFILE, FAULT_RECORD = 0x02, 0x01, 0x03, 0x04
 CAPTURE_ARM, CAPTURE_READ = 0x20, 0x22
 COMM_STATUS, COMM_RESULT, COMM_APPLY, OPEN_PHASE = 0x41, 0x42, 0x43, 0x50
+TORQUE_LIMITED = 0x19
 
 
 def seed(parser, cmd, arg, payload):
@@ -26,7 +27,7 @@ STATUS_BLOCK = (bytes([3, 0, 0]) + struct.pack("<iiii", 15000, 15000, 1200, 1500
 SEEDS = {
     "status": seed(0, STATUS, 0, bytes([OK]) + STATUS_BLOCK[:45]),
     "status-v1": seed(0, STATUS, 0, bytes([OK]) + STATUS_BLOCK[:30]),
-    "ping": seed(0, PING, 0, bytes([OK, 7])),
+    "ping": seed(0, PING, 0, bytes([OK, 8])),
     "refused": seed(0, 0x12, 0, bytes([REFUSED])),
     "profile": seed(1, PROFILE, 1, bytes([OK, 7]) + bytes(range(1, 35))),
     "profile-bad-stage": seed(1, PROFILE, 0, bytes([OK, 9]) + bytes(34)),
@@ -47,6 +48,11 @@ SEEDS = {
                                + bytes([1, 0, 0])),
     "comm-apply": seed(7, COMM_APPLY, 0, bytes([OK, 0x3E, 0])),
     "open-phase": seed(8, OPEN_PHASE, 0, bytes([OK]) + bytes([2, 1, 0, 3]) + bytes(9)),
+    "torque-limited": seed(0, TORQUE_LIMITED, 0, bytes([OK, 1]) + struct.pack("<H", 200)
+                           + bytes([1])),
+    "torque-limited-short": seed(0, TORQUE_LIMITED, 0, bytes([OK, 0]) + struct.pack("<H", 500)),
+    "torque-limited-unknown-action": seed(0, TORQUE_LIMITED, 0, bytes([OK, 7])
+                                          + struct.pack("<H", 500) + bytes([0])),
 }
 
 

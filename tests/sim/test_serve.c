@@ -10,7 +10,8 @@
  * cause first); clear and restart; the host tool times out when the board stops answering
  * (the server stopped with SIGSTOP). Then: a post-mortem capture of an over-current and its
  * records read in order; `sixphase-link shutdown` stops the server cleanly; --fast pacing,
- * the passive load, --out made, the whole trace written; a slow line.
+ * the passive load, --out made, the whole trace written; a slow line; a frozen converter; the
+ * torque-limited action set and read back with the tool, a run at the limit stopped by it.
  */
 #define _DEFAULT_SOURCE /* cfmakeraw */
 
@@ -674,6 +675,61 @@ static void test_slow_line(void **state)
     assert_true(wait_for(is_ready, 2.0, &r));
 }
 
+/* What the drive does when the speed cannot be held, set and read with the host tool (protocol
+ * 8): a passive load of 10 N*m above the speed loop's 8.4 N*m limit holds the rotor, the loop
+ * sits at its limit. With the default (continue) the drive runs on, flagged; set to stop after
+ * 0.2 s over the link, the next run stops by itself, READY without a fault, and the tool says
+ * the stop action did it. */
+static bool torque_limited(const sxl_frame_t *r)
+{
+    return (st_u8(r, SXL_ST_FLAGS) & SXL_FLAG_TORQUE_LIMITED) != 0u;
+}
+
+static void test_tool_sets_the_torque_limited_action(void **state)
+{
+    char out[400];
+    sxl_frame_t r;
+    uint32_t run_at, stopped_at;
+    (void)state;
+    assert_true(wait_for(is_ready, 2.0, &r));
+    assert_int_equal(tool("torque-limited", out, sizeof out), 0);
+    assert_string_equal(out, "action=continue stop_after=0.500s stopped=no\n");
+    assert_int_equal(request(SXL_CMD_RUN, NULL, 0, &r), 0);
+    assert_true(wait_for(torque_limited, 1.0, &r));
+    assert_false(wait_for(is_ready, 0.8, &r)); /* runs on at the limit */
+    assert_int_equal(st_u8(&r, SXL_ST_STATE), DRIVE_STATE_RUN);
+    assert_int_equal(request(SXL_CMD_STOP, NULL, 0, &r), 0);
+    assert_true(wait_for(is_ready, 1.0, &r));
+
+    assert_int_equal(tool("torque-limited stop --stop-after 0.2", out, sizeof out), 0);
+    assert_string_equal(out, "ok\n");
+    assert_int_equal(tool("torque-limited", out, sizeof out), 0);
+    assert_string_equal(out, "action=stop stop_after=0.200s stopped=no\n");
+    status(&r);
+    run_at = sxl_get_u32(&r.payload[1 + SXL_ST_ISR_COUNT]);
+    assert_int_equal(request(SXL_CMD_RUN, NULL, 0, &r), 0);
+    assert_true(wait_for(is_ready, 2.0, &r));
+    stopped_at = sxl_get_u32(&r.payload[1 + SXL_ST_ISR_COUNT]);
+    print_message("stopped by the torque-limited action %.3f s after RUN\n",
+                  (double)(uint32_t)(stopped_at - run_at) / SERVE_PERIODS_PER_S);
+    /* 0.2 s at the limit, after the phase check at the start of the run */
+    assert_true((double)(uint32_t)(stopped_at - run_at) > 0.2 * SERVE_PERIODS_PER_S);
+    assert_true((double)(uint32_t)(stopped_at - run_at) < 0.6 * SERVE_PERIODS_PER_S);
+    assert_int_equal(st_u8(&r, SXL_ST_FAULT), DRIVE_FAULT_NONE);
+    assert_int_equal(tool("torque-limited", out, sizeof out), 0);
+    assert_string_equal(out, "action=stop stop_after=0.200s stopped=yes\n");
+}
+
+static int start_torque_limited_server(void **state)
+{
+    server_scenario = "fault-encoder-jump"; /* at 50 s: not within this test */
+    server_fault_time = "50";
+    server_baud = "115200";
+    server_load = "10";
+    (void)snprintf(trace_dir, sizeof trace_dir, "/tmp/sixphase-serve-XXXXXX");
+    return start_server(state);
+}
+
 static int start_slow_line_server(void **state)
 {
     server_scenario = "fault-encoder-jump"; /* at 50 s: not within this test */
@@ -826,6 +882,8 @@ int main(void)
     const struct CMUnitTest slow[] = {cmocka_unit_test(test_slow_line)};
     const struct CMUnitTest frozen[] = {
         cmocka_unit_test(test_frozen_adc_cannot_be_cleared_into_run)};
+    const struct CMUnitTest torque_limit[] = {
+        cmocka_unit_test(test_tool_sets_the_torque_limited_action)};
     int failed = cmocka_run_group_tests(tests, start_server, stop_server);
     failed += cmocka_run_group_tests(after, NULL, NULL);
     failed += cmocka_run_group_tests(post_mortem, start_over_current_server, stop_and_clean);
@@ -833,5 +891,6 @@ int main(void)
     failed += cmocka_run_group_tests(pacing, NULL, NULL);
     failed += cmocka_run_group_tests(slow, start_slow_line_server, stop_and_clean);
     failed += cmocka_run_group_tests(frozen, start_adc_stuck_server, stop_and_clean);
+    failed += cmocka_run_group_tests(torque_limit, start_torque_limited_server, stop_and_clean);
     return failed;
 }
