@@ -735,25 +735,17 @@ static int cmd_profile(const options_t *o)
     return rc;
 }
 
-/* Any other command: one request, one reply printed. */
+/* Any other command: one request, one reply printed (in an armed session where the command
+ * moves the motor, as exchange does for every command). */
 static int cmd_single(const options_t *o, uint16_t cmd, const uint16_t *payload, uint16_t len)
 {
-    uint16_t frame[SXL_MAX_FRAME];
-    const uint16_t flen = sxl_encode(cmd, payload, len, frame, (uint16_t)SXL_MAX_FRAME);
     sxl_frame_t reply;
     int fd = -1;
-    int rc;
-    if (flen == 0u) {
-        return fail(EXIT_USAGE, "cannot encode the request");
-    }
-    rc = open_port(o, &fd);
+    int rc = open_port(o, &fd);
     if (rc != 0) {
         return rc;
     }
-    rc = write_all(fd, frame, flen);
-    if (rc == 0) {
-        rc = read_reply(fd, cmd, o->timeout_ms, &reply);
-    }
+    rc = exchange(fd, o, cmd, payload, len, &reply);
     close(fd);
     return (rc != 0) ? rc : print_reply(&reply);
 }
