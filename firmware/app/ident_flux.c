@@ -3,11 +3,15 @@
 
 #include "ctl_q.h"
 
-#define FLUX_RAMP_S 1.0f /* speed reference 0 -> target, and back */
-#define FLUX_SETTLE_S 0.3f
-#define FLUX_SWITCH_S 0.05f    /* i_d from +I to -I */
-#define FLUX_TURNS 10          /* whole electrical turns per run */
-#define FLUX_EMF_FRACTION 0.1f /* of the DC link, with the parameter set's flux */
+#define FLUX_RAMP_S 1.0f         /* speed reference 0 -> target, and back */
+#define FLUX_SETTLE_S 0.3f       /* at least */
+#define FLUX_SETTLE_MAX_S 2.0f   /* at most: then measured anyway (and found poor, no_speed) */
+#define FLUX_IN_BAND_S 0.1f      /* the speed within half the tolerance this long: settled */
+#define FLUX_SWITCH_S 0.05f      /* i_d from +I to -I */
+#define FLUX_TURNS 10            /* whole electrical turns per run, at least */
+#define FLUX_TURNS_MAX 80        /* at most: more while the run's scatter is above its target */
+#define FLUX_RUN_RELATIVE 0.005f /* a run's target: the two give 0.7 x this, within the limit */
+#define FLUX_EMF_FRACTION 0.1f   /* of the DC link, with the parameter set's flux */
 #define FLUX_OVERSPEED_FRACTION 0.3f
 #define FLUX_SPEED_BW 30.0f /* rad/s, the speed loop's bandwidth */
 #define FLUX_SPEED_TOLERANCE 0.05f
@@ -32,6 +36,7 @@ void ident_flux_begin(ident_ctx_t *x, ident_flux_t *s)
     s->speed_ref = 0.0f;
     s->run = 0;
     s->max_speed_error = 0.0f;
+    s->in_band = 0u;
     s->run_n[0] = s->run_n[1] = 0;
     x->frame = IDENT_FRAME_ROTOR;
     x->damping = 0.0f;
@@ -111,6 +116,20 @@ static void flux_close_turn(ident_ctx_t *x, ident_flux_t *s, const ident_input_t
     flux_open_turn(s, in);
 }
 
+/* A run is complete after FLUX_TURNS turns once its per-turn estimates' standard error is within
+ * FLUX_RUN_RELATIVE of their mean, or after FLUX_TURNS_MAX: a weak magnet's smaller voltage
+ * (the same noise) is measured over more turns instead of being reported poor. */
+static bool flux_run_complete(const ident_flux_t *s)
+{
+    const ident_blocks_t *b = &s->psi[s->run];
+    const float mean = ident_blocks_mean(b);
+    const float limit = FLUX_RUN_RELATIVE * ((mean < 0.0f) ? -mean : mean);
+    if (s->run_n[s->run] < FLUX_TURNS) {
+        return false;
+    }
+    return s->run_n[s->run] >= FLUX_TURNS_MAX || ident_blocks_sigma(b) <= limit;
+}
+
 /* Samples of the running measurement; true once its turns are complete. */
 static bool flux_measure(ident_ctx_t *x, ident_flux_t *s, const ident_input_t *in)
 {
@@ -128,7 +147,7 @@ static bool flux_measure(ident_ctx_t *x, ident_flux_t *s, const ident_input_t *i
     if (turns >= 1.0f) {
         flux_close_turn(x, s, in);
     }
-    return s->run_n[s->run] >= FLUX_TURNS;
+    return flux_run_complete(s);
 }
 
 /* psi_f from the two runs: the dead-time voltage's size from u_d, its q part out of u_q. */
@@ -168,6 +187,18 @@ static ident_status_t flux_finish(ident_ctx_t *x, ident_flux_t *s)
     return IDENT_DONE;
 }
 
+/* Settled: the minimum settling time over and the speed within half the tolerance for
+ * FLUX_IN_BAND_S, or FLUX_SETTLE_MAX_S over. */
+static bool flux_settled(ident_ctx_t *x, ident_flux_t *s)
+{
+    const float err = (FLUX_TWO_PI * x->speed_e - s->speed_target) / s->speed_target;
+    const float a = (err < 0.0f) ? -err : err;
+    s->in_band = (a < 0.5f * FLUX_SPEED_TOLERANCE) ? s->in_band + 1u : 0u;
+    return x->t >= ident_periods(x, FLUX_SETTLE_MAX_S) ||
+           (x->t >= ident_periods(x, FLUX_SETTLE_S) &&
+            s->in_band >= ident_periods(x, FLUX_IN_BAND_S));
+}
+
 /* Start measuring a run: a fresh turn, fresh blocks. */
 static void flux_start_run(ident_ctx_t *x, ident_flux_t *s, const ident_input_t *in)
 {
@@ -189,7 +220,8 @@ ident_status_t ident_flux_step(ident_ctx_t *x, ident_flux_t *s, const ident_inpu
         }
         break;
     case FL_SETTLE:
-        if (x->t >= ident_periods(x, FLUX_SETTLE_S)) {
+        if (flux_settled(x, s)) {
+            s->in_band = 0u;
             flux_start_run(x, s, in);
         }
         break;

@@ -18,7 +18,9 @@
  * the inductance step ran, else the parameter set's) and the 6th-harmonic ripple of the dead
  * time averages out over whole turns. Every term is a mean over whole turns of per-period
  * values. The voltage is the regulator's request, the speed the encoder's count over the
- * turns. About 3.5 s.
+ * turns. About 3.5 s. A run starts once the speed has stayed near its target for a while (at most
+ * FLUX_SETTLE_MAX_S): the speed loop's gain and the test current's torque come from the
+ * parameter set's flux, so a weak magnet reaches the speed late (issue 25).
  */
 #ifndef IDENT_FLUX_H
 #define IDENT_FLUX_H
@@ -37,6 +39,7 @@ typedef struct {
     int32_t run_n[2];      /* turns in each run */
     ident_blocks_t psi[2]; /* per-turn raw estimates (without the dead-time q part) */
     float max_speed_error; /* relative, over the measurements */
+    uint32_t in_band;      /* consecutive settling periods with the speed near its target */
 } ident_flux_t;
 
 void ident_flux_begin(ident_ctx_t *x, ident_flux_t *s);
