@@ -229,6 +229,49 @@ static uint16_t drive_comm_take(const comm_t *c, ctl_params_t *p)
     return got;
 }
 
+/* A quantity of the machine model as the set p has it. */
+static float drive_comm_kept(const ctl_params_t *p, int16_t q)
+{
+    switch (q) {
+    case COMM_Q_R:
+        return p->resistance_ohm;
+    case COMM_Q_LD:
+        return p->ld_h;
+    case COMM_Q_LQ:
+        return p->lq_h;
+    case COMM_Q_LXY:
+        return p->l_xy_h;
+    default:
+        return p->pm_flux_wb;
+    }
+}
+
+/* The rule of sxlink_commission.h (SXL_COMM_KEPT_CONTRADICTS, SXL_COMM_FLUX_GROUP;
+ * docs/commissioning.md section 3.1): true when taking the quantities got into the set kept
+ * would keep a value its measurement contradicts, or take part of the flux group while another
+ * member was selected and has no number. */
+static bool drive_comm_mixed(const comm_t *c, const ctl_params_t *kept, uint16_t got)
+{
+    const ident_result_t *r = c->x.result;
+    uint16_t selected = 0u, unconfirmed = 0u;
+    int16_t k;
+    for (k = 0; k < (int16_t)COMM_STEP_END; k++) {
+        selected |= ((c->mask & (1u << k)) != 0u) ? comm_step_quantities(k) : 0u;
+    }
+    for (k = 0; k < (int16_t)COMM_Q_COUNT; k++) {
+        const uint16_t bit = (uint16_t)(1u << k);
+        if ((bit & SXL_COMM_MODEL_QUANTITIES & selected & (uint16_t)~got) == 0u) {
+            continue; /* taken, not selected, or not a model quantity */
+        }
+        if (r[k].quality != COMM_QUALITY_POOR) {
+            unconfirmed |= bit; /* failed or skipped: no number */
+        } else if (SXL_COMM_KEPT_CONTRADICTS(r[k].value, r[k].sigma, drive_comm_kept(kept, k))) {
+            return true;
+        }
+    }
+    return (got & SXL_COMM_FLUX_GROUP) != 0u && (unconfirmed & SXL_COMM_FLUX_GROUP) != 0u;
+}
+
 drive_comm_result_t drive_commission_apply(drive_t *d, uint16_t *applied)
 {
     const comm_t *c = &d->comm;
@@ -246,6 +289,10 @@ drive_comm_result_t drive_commission_apply(drive_t *d, uint16_t *applied)
     *p = d->params_bg;
     got = drive_comm_take(c, p);
     if (got == 0u && !offset) {
+        return DRIVE_COMM_REFUSED;
+    }
+    if (drive_comm_mixed(c, &d->params_bg, got)) {
+        d->comm.reason = COMM_REASON_MIXED_SET; /* the last refusal (COMMISSION_STATUS) */
         return DRIVE_COMM_REFUSED;
     }
     if (got != 0u) {

@@ -542,6 +542,46 @@ static void test_open_phase_in_each_step(void **state)
     }
 }
 
+/* A weak magnet (psi_f 0.0675 Wb, 0.3 x the reference; issue 25): psi_f ends poor (no_speed),
+ * 0.0672 Wb against the 0.225 Wb in force. Before, APPLY took R, L_q, L_xy and the offset and
+ * kept 0.225 Wb, and --out wrote that set: the speed collapsed at rated load. Now APPLY refuses
+ * the mix (nothing applied) and no file is written. */
+static void test_weak_magnet_mix_refused(void **state)
+{
+    char dir[] = "/tmp/sixphase-comm-weak-XXXXXX";
+    char path[64];
+    sim_config_t c;
+    sim_result_t r;
+    FILE *f;
+    (void)state;
+    assert_non_null(mkdtemp(dir));
+    config(&c, NULL, 0);
+    c.plant.psi_f_wb = 0.0675;
+    c.seed = 7u;
+    c.out_dir = dir;
+    c.write_trace = false;
+    c.write_fine = false;
+    run(&c, &r);
+    print_message("weak magnet: psi_f %.4f Wb %s (%s), apply %d, applied 0x%x\n",
+                  r.comm.value[SXL_COMM_Q_PSI_F],
+                  sxl_comm_quality_name((uint16_t)r.comm.quality[SXL_COMM_Q_PSI_F]),
+                  sxl_comm_reason_name((uint16_t)r.comm.reason_q[SXL_COMM_Q_PSI_F]),
+                  r.comm.apply_result, r.comm.applied);
+    assert_int_equal(r.comm.state, SXL_COMM_STATE_DONE);
+    assert_int_equal(r.comm.quality[SXL_COMM_Q_PSI_F], SXL_COMM_QUALITY_POOR);
+    assert_int_equal(r.comm.apply_result, 2); /* DRIVE_COMM_REFUSED */
+    assert_int_equal(r.comm.applied, 0u);
+    (void)snprintf(path, sizeof path, "%s/motor_params.h", dir);
+    f = fopen(path, "r");
+    if (f) {
+        (void)fclose(f);
+    }
+    assert_null(f);
+    (void)snprintf(path, sizeof path, "%s/metrics.json", dir);
+    (void)remove(path);
+    assert_int_equal(rmdir(dir), 0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -552,6 +592,7 @@ int main(void)
         cmocka_unit_test(test_load_torque_found),
         cmocka_unit_test(test_dragged_rotor_is_a_load),
         cmocka_unit_test(test_failed_sequence_writes_no_file),
+        cmocka_unit_test(test_weak_magnet_mix_refused),
         cmocka_unit_test(test_current_within_a_fraction_of_the_trip_level),
         cmocka_unit_test(test_refused_with_the_dc_link_low),
         cmocka_unit_test(test_refused_with_the_rotor_turning),
