@@ -229,43 +229,29 @@ static uint16_t drive_comm_take(const comm_t *c, ctl_params_t *p)
     return got;
 }
 
-/* A quantity of the machine model as the set p has it. */
-static float drive_comm_kept(const ctl_params_t *p, int16_t q)
-{
-    switch (q) {
-    case COMM_Q_R:
-        return p->resistance_ohm;
-    case COMM_Q_LD:
-        return p->ld_h;
-    case COMM_Q_LQ:
-        return p->lq_h;
-    case COMM_Q_LXY:
-        return p->l_xy_h;
-    default:
-        return p->pm_flux_wb;
-    }
-}
-
 /* The rule of sxlink_commission.h (SXL_COMM_KEPT_CONTRADICTS, SXL_COMM_FLUX_GROUP;
- * docs/commissioning.md section 3.1): true when taking the quantities got into the set kept
- * would keep a value its measurement contradicts, or take part of the flux group while another
+ * docs/commissioning.md section 3.1): true when taking the quantities got into the set p would
+ * keep a value its measurement contradicts, or take part of the flux group while another
  * member was selected and has no number. */
-static bool drive_comm_mixed(const comm_t *c, const ctl_params_t *kept, uint16_t got)
+static bool drive_comm_mixed(const comm_t *c, const ctl_params_t *p, uint16_t got)
 {
+    /* the model's quantities R, L_d, L_q, L_xy, psi_f are numbers COMM_Q_R.. in this order */
+    const float kept[5] = {p->resistance_ohm, p->ld_h, p->lq_h, p->l_xy_h, p->pm_flux_wb};
     const ident_result_t *r = c->x.result;
     uint16_t selected = 0u, unconfirmed = 0u;
     int16_t k;
     for (k = 0; k < (int16_t)COMM_STEP_END; k++) {
         selected |= ((c->mask & (1u << k)) != 0u) ? comm_step_quantities(k) : 0u;
     }
-    for (k = 0; k < (int16_t)COMM_Q_COUNT; k++) {
-        const uint16_t bit = (uint16_t)(1u << k);
-        if ((bit & SXL_COMM_MODEL_QUANTITIES & selected & (uint16_t)~got) == 0u) {
-            continue; /* taken, not selected, or not a model quantity */
+    selected &= (uint16_t)(SXL_COMM_MODEL_QUANTITIES & ~got);
+    for (k = 0; k < 5; k++) {
+        const int16_t q = (int16_t)(COMM_Q_R + k);
+        if ((selected & (1u << q)) == 0u) {
+            continue; /* taken, or not selected */
         }
-        if (r[k].quality != COMM_QUALITY_POOR) {
-            unconfirmed |= bit; /* failed or skipped: no number */
-        } else if (SXL_COMM_KEPT_CONTRADICTS(r[k].value, r[k].sigma, drive_comm_kept(kept, k))) {
+        if (r[q].quality != COMM_QUALITY_POOR) {
+            unconfirmed |= (uint16_t)(1u << q); /* failed or skipped: no number */
+        } else if (SXL_COMM_KEPT_CONTRADICTS(r[q].value, r[q].sigma, kept[k])) {
             return true;
         }
     }
