@@ -29,7 +29,7 @@ uint16_t comm_step_quantities(int16_t step)
     uint16_t mask = 0u;
     int16_t q;
     for (q = 0; q < COMM_Q_COUNT; q++) {
-        mask |= (quantity_step[q] == step) ? (uint16_t)(1u << q) : 0u;
+        mask = (uint16_t)(mask | ((quantity_step[q] == step) ? (1u << q) : 0u));
     }
     return mask;
 }

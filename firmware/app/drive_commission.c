@@ -241,7 +241,8 @@ static bool drive_comm_mixed(const comm_t *c, const ctl_params_t *p, uint16_t go
     uint16_t selected = 0u, unconfirmed = 0u;
     int16_t k;
     for (k = 0; k < (int16_t)COMM_STEP_END; k++) {
-        selected |= ((c->mask & (1u << k)) != 0u) ? comm_step_quantities(k) : 0u;
+        selected =
+            (uint16_t)(selected | (((c->mask & (1u << k)) != 0u) ? comm_step_quantities(k) : 0u));
     }
     selected &= (uint16_t)(SXL_COMM_MODEL_QUANTITIES & ~got);
     for (k = 0; k < 5; k++) {
@@ -250,7 +251,7 @@ static bool drive_comm_mixed(const comm_t *c, const ctl_params_t *p, uint16_t go
             continue; /* taken, or not selected */
         }
         if (r[q].quality != COMM_QUALITY_POOR) {
-            unconfirmed |= (uint16_t)(1u << q); /* failed or skipped: no number */
+            unconfirmed = (uint16_t)(unconfirmed | (1u << q)); /* failed or skipped: no number */
         } else if (SXL_COMM_KEPT_CONTRADICTS(r[q].value, r[q].sigma, kept[k])) {
             return true;
         }
