@@ -133,8 +133,9 @@ int sim_commission_loop(sim_run_t *rs, sim_result_t *r, char *err, size_t err_le
         (r->comm.state == SXL_COMM_STATE_FAILED && r->comm.reason == SXL_COMM_REASON_OPEN_PHASE)) {
         r->comm.apply_result = rs->ops->commission_apply(&r->comm.applied);
     }
-    /* a failed or refused sequence writes no file: it would hold nothing worth building */
-    return (c->out_dir && r->comm.state == SXL_COMM_STATE_DONE)
+    /* a failed or refused sequence writes no file: it would hold nothing worth building; nor
+     * does one whose set the drive refused to apply (a mixed set, docs/commissioning.md 3.1) */
+    return (c->out_dir && r->comm.state == SXL_COMM_STATE_DONE && r->comm.apply_result == 0)
                ? comm_write_params(rs, r, err, err_len)
                : 0;
 }

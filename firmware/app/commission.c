@@ -19,24 +19,19 @@ static const float step_seconds[SXL_COMM_STEP_COUNT] = {
     IDENT_PHASE_SECONDS,      IDENT_ENCODER_SECONDS,    IDENT_RESISTANCE_SECONDS,
     IDENT_INDUCTANCE_SECONDS, IDENT_INDUCTANCE_SECONDS, IDENT_FLUX_SECONDS};
 
+/* Each quantity's step, from the quantity list (sxlink_commission.h). */
+#define COMM_QUANTITY_STEP(id, number, name, step, ...) COMM_STEP_##step,
+static const int16_t quantity_step[COMM_Q_COUNT] = {SXL_COMM_QUANTITY_LIST(COMM_QUANTITY_STEP)};
+#undef COMM_QUANTITY_STEP
+
 uint16_t comm_step_quantities(int16_t step)
 {
-    switch (step) {
-    case COMM_STEP_PHASES:
-        return (uint16_t)(1u << COMM_Q_PHASES);
-    case COMM_STEP_ENCODER:
-        return (uint16_t)((1u << COMM_Q_COUNTS) | (1u << COMM_Q_OFFSET));
-    case COMM_STEP_RESISTANCE:
-        return (uint16_t)(1u << COMM_Q_R);
-    case COMM_STEP_INDUCTANCE:
-        return (uint16_t)((1u << COMM_Q_LD) | (1u << COMM_Q_LQ));
-    case COMM_STEP_LXY:
-        return (uint16_t)(1u << COMM_Q_LXY);
-    case COMM_STEP_FLUX:
-        return (uint16_t)(1u << COMM_Q_PSI_F);
-    default:
-        return 0u;
+    uint16_t mask = 0u;
+    int16_t q;
+    for (q = 0; q < COMM_Q_COUNT; q++) {
+        mask = (uint16_t)(mask | ((quantity_step[q] == step) ? (1u << q) : 0u));
     }
+    return mask;
 }
 
 void comm_init(comm_t *c)

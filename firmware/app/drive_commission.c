@@ -229,6 +229,36 @@ static uint16_t drive_comm_take(const comm_t *c, ctl_params_t *p)
     return got;
 }
 
+/* The rule of sxlink_commission.h (SXL_COMM_KEPT_CONTRADICTS, SXL_COMM_FLUX_GROUP;
+ * docs/commissioning.md section 3.1): true when taking the quantities got into the set p would
+ * keep a value its measurement contradicts, or take part of the flux group while another
+ * member was selected and has no number. */
+static bool drive_comm_mixed(const comm_t *c, const ctl_params_t *p, uint16_t got)
+{
+    /* the model's quantities R, L_d, L_q, L_xy, psi_f are numbers COMM_Q_R.. in this order */
+    const float kept[5] = {p->resistance_ohm, p->ld_h, p->lq_h, p->l_xy_h, p->pm_flux_wb};
+    const ident_result_t *r = c->x.result;
+    uint16_t selected = 0u, unconfirmed = 0u;
+    int16_t k;
+    for (k = 0; k < (int16_t)COMM_STEP_END; k++) {
+        selected =
+            (uint16_t)(selected | (((c->mask & (1u << k)) != 0u) ? comm_step_quantities(k) : 0u));
+    }
+    selected &= (uint16_t)(SXL_COMM_MODEL_QUANTITIES & ~got);
+    for (k = 0; k < 5; k++) {
+        const int16_t q = (int16_t)(COMM_Q_R + k);
+        if ((selected & (1u << q)) == 0u) {
+            continue; /* taken, or not selected */
+        }
+        if (r[q].quality != COMM_QUALITY_POOR) {
+            unconfirmed = (uint16_t)(unconfirmed | (1u << q)); /* failed or skipped: no number */
+        } else if (SXL_COMM_KEPT_CONTRADICTS(r[q].value, r[q].sigma, kept[k])) {
+            return true;
+        }
+    }
+    return (got & SXL_COMM_FLUX_GROUP) != 0u && (unconfirmed & SXL_COMM_FLUX_GROUP) != 0u;
+}
+
 drive_comm_result_t drive_commission_apply(drive_t *d, uint16_t *applied)
 {
     const comm_t *c = &d->comm;
@@ -246,6 +276,10 @@ drive_comm_result_t drive_commission_apply(drive_t *d, uint16_t *applied)
     *p = d->params_bg;
     got = drive_comm_take(c, p);
     if (got == 0u && !offset) {
+        return DRIVE_COMM_REFUSED;
+    }
+    if (drive_comm_mixed(c, &d->params_bg, got)) {
+        d->comm.reason = COMM_REASON_MIXED_SET; /* the last refusal (COMMISSION_STATUS) */
         return DRIVE_COMM_REFUSED;
     }
     if (got != 0u) {

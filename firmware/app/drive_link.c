@@ -392,8 +392,10 @@ static uint16_t on_capture_stop(drive_t *d, const sxl_frame_t *req, sxl_frame_t 
 }
 
 /* Commissioning (sxlink_commission.h): each quantity's scales on the wire. */
-#define LINK_COMM_SCALE(id, number, name, unit, scale, xscale, extra) CTL_FLOAT_LITERAL(scale),
-#define LINK_COMM_XSCALE(id, number, name, unit, scale, xscale, extra) CTL_FLOAT_LITERAL(xscale),
+#define LINK_COMM_SCALE(id, number, name, step, unit, scale, xscale, extra)                        \
+    CTL_FLOAT_LITERAL(scale),
+#define LINK_COMM_XSCALE(id, number, name, step, unit, scale, xscale, extra)                       \
+    CTL_FLOAT_LITERAL(xscale),
 static const float link_comm_scale[COMM_Q_COUNT] = {SXL_COMM_QUANTITY_LIST(LINK_COMM_SCALE)};
 static const float link_comm_xscale[COMM_Q_COUNT] = {SXL_COMM_QUANTITY_LIST(LINK_COMM_XSCALE)};
 #undef LINK_COMM_SCALE

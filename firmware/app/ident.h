@@ -21,7 +21,8 @@
 
 /* The lists of sxlink_commission.h as enums. */
 #define IDENT_ENUM_STEP(id, number, name, text) COMM_STEP_##id = number,
-#define IDENT_ENUM_QUANTITY(id, number, name, unit, scale, xscale, extra) COMM_Q_##id = number,
+#define IDENT_ENUM_QUANTITY(id, number, name, step, unit, scale, xscale, extra)                    \
+    COMM_Q_##id = number,
 #define IDENT_ENUM_QUALITY(id, number, name, text) COMM_QUALITY_##id = number,
 #define IDENT_ENUM_REASON(id, number, name, text) COMM_REASON_##id = number,
 #define IDENT_ENUM_STATE(id, number, name, text) COMM_STATE_##id = number,

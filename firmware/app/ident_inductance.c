@@ -9,6 +9,17 @@
 #define IND_RIPPLE_OTHER 0.25f  /* q, x, y */
 #define IND_POOR_RELATIVE 0.02f /* 1-sigma above 2 %: POOR */
 #define IND_MOVED_TURNS 0.003f  /* electrical turns of rotor motion (about 1 degree): POOR */
+#define IND_ATANH_TERMS 24      /* terms of the series of atanh(y) / y */
+#define IND_SIZE_MIN 0.2f       /* the measured amplitude: within these of the set's */
+#define IND_SIZE_MAX 5.0f
+#define IND_DROOP_Y_MAX 0.9f /* R N T / (2 L_raw) beyond this: taken as this */
+
+/* 1 / (2k + 1), k = 0..IND_ATANH_TERMS - 1: the series atanh(y) / y = sum y^2k / (2k + 1). */
+static const float ind_odd_inverse[IND_ATANH_TERMS] = {
+    1.0f,         1.0f / 3.0f,  1.0f / 5.0f,  1.0f / 7.0f,  1.0f / 9.0f,  1.0f / 11.0f,
+    1.0f / 13.0f, 1.0f / 15.0f, 1.0f / 17.0f, 1.0f / 19.0f, 1.0f / 21.0f, 1.0f / 23.0f,
+    1.0f / 25.0f, 1.0f / 27.0f, 1.0f / 29.0f, 1.0f / 31.0f, 1.0f / 33.0f, 1.0f / 35.0f,
+    1.0f / 37.0f, 1.0f / 39.0f, 1.0f / 41.0f, 1.0f / 43.0f, 1.0f / 45.0f, 1.0f / 47.0f};
 
 enum { IN_SETTLE, IN_INJECT };
 
@@ -44,11 +55,22 @@ static ident_blocks_t *ind_store(ident_inductance_t *s, int16_t axis)
     return &s->l[(axis < IDENT_AXIS_X) ? axis : 2];
 }
 
-static void ind_start_axis(ident_ctx_t *x, ident_inductance_t *s, const ident_input_t *in)
+/* The square wave's amplitude for the ripple of the axis with inductance l. */
+static float ind_amplitude(const ident_ctx_t *x, const ident_inductance_t *s, float l)
 {
     const float ripple = (s->axis == IDENT_AXIS_D) ? IND_RIPPLE_D : IND_RIPPLE_OTHER;
+    return ripple * x->i_test * l / ((float)IND_HALF_PERIODS * x->m.ts);
+}
+
+static void ind_start_axis(ident_ctx_t *x, ident_inductance_t *s, const ident_input_t *in)
+{
+    const ident_blocks_t *xy = ind_store(s, IDENT_AXIS_X);
+    /* y is sized from x's estimate; every other axis first probes with the set's inductance */
+    s->sized = s->axis == IDENT_AXIS_Y && xy->blocks >= 2;
     s->amplitude =
-        ripple * x->i_test * ind_inductance(x, s->axis) / ((float)IND_HALF_PERIODS * x->m.ts);
+        ind_amplitude(x, s, s->sized ? ident_blocks_mean(xy) : ind_inductance(x, s->axis));
+    s->resize = 0.0f;
+    s->skip = 0;
     s->sign[0] = s->sign[1] = 0;
     s->sum_pos = s->sum_neg = 0.0f;
     s->n_pos = s->n_neg = 0;
@@ -70,9 +92,64 @@ void ident_inductance_begin(ident_ctx_t *x, ident_inductance_t *s, ident_axis_t 
 {
     s->axis = (int16_t)first;
     s->last_axis = (int16_t)last;
+    /* the droop's resistance: the resistance step's when it is ok, else the set's */
+    s->r = (x->result[COMM_Q_R].quality == COMM_QUALITY_OK) ? x->result[COMM_Q_R].value : x->m.r;
     x->frame = IDENT_FRAME_COMMAND;
     x->traj.target = 0.0f;
     ident_goto(x, IN_SETTLE);
+}
+
+/* The resistive droop taken out of a block's raw estimate l_raw = 2 U T / (mean change in +
+ * periods - mean change in - periods) (docs/commissioning.md section 2.4): over a half period of
+ * N periods the current relaxes towards its end value with the time constant L / R, so the
+ * ripple's periodic steady state gives l_raw = L x / tanh x with x = R N T / (2 L); with
+ * c = R N T / 2 that is tanh x = c / l_raw, so L = c / atanh(c / l_raw) = l_raw / (atanh(y) / y),
+ * y = c / l_raw. R: the resistance step's (s->r). A fixed number of series terms: bounded. */
+static float ind_droop(const ident_ctx_t *x, const ident_inductance_t *s, float l_raw)
+{
+    float y = 0.5f * s->r * (float)IND_HALF_PERIODS * x->m.ts / l_raw;
+    float z, sum = 0.0f;
+    int16_t k;
+    if (!(y > 0.0f)) {
+        return l_raw;
+    }
+    y = (y > IND_DROOP_Y_MAX) ? IND_DROOP_Y_MAX : y;
+    z = y * y;
+    for (k = IND_ATANH_TERMS - 1; k >= 0; k--) {
+        sum = sum * z + ind_odd_inverse[k];
+    }
+    return l_raw / sum;
+}
+
+/* A block's estimate: filed, or while probing, the amplitude the axis' measured inductance
+ * asks for (the probe's block dropped; ind_resize applies it). */
+static void ind_add_block(ident_ctx_t *x, ident_inductance_t *s, float l)
+{
+    float a;
+    if (s->sized) {
+        ident_blocks_add_block(ind_store(s, s->axis), l);
+        return;
+    }
+    a = ind_amplitude(x, s, l);
+    a = (a < IND_SIZE_MIN * s->amplitude) ? IND_SIZE_MIN * s->amplitude : a;
+    s->resize = (a > IND_SIZE_MAX * s->amplitude) ? IND_SIZE_MAX * s->amplitude : a;
+    s->sized = true;
+}
+
+/* The amplitude the probe asked for, applied in the middle of a + half period, where the
+ * centred ripple crosses its mean: the ripple stays centred. The blocks start again from there
+ * (the next change still the old amplitude's), and the axis' square waves are counted anew. */
+static void ind_resize(ident_inductance_t *s, uint32_t t)
+{
+    if (!(s->resize > 0.0f) || t % (2u * IND_HALF_PERIODS) != 0u) {
+        return;
+    }
+    s->amplitude = s->resize;
+    s->resize = 0.0f;
+    s->sum_pos = s->sum_neg = 0.0f;
+    s->n_pos = s->n_neg = 0;
+    s->skip = 1;
+    s->waves = 0;
 }
 
 /* One period's change of the axis current, filed by the sign that caused it: the command of
@@ -82,6 +159,10 @@ static void ind_accumulate(ident_ctx_t *x, ident_inductance_t *s)
     const float i = ind_current(x, s->axis);
     const float di = i - s->last_i;
     s->last_i = i;
+    if (s->skip > 0) { /* a change the amplitude before a resize caused */
+        s->skip--;
+        return;
+    }
     if (s->sign[1] > 0) {
         s->sum_pos += di;
         s->n_pos++;
@@ -93,7 +174,7 @@ static void ind_accumulate(ident_ctx_t *x, ident_inductance_t *s)
         s->n_neg > 0) {
         const float slope = s->sum_pos / (float)s->n_pos - s->sum_neg / (float)s->n_neg;
         if (slope > 0.0f) {
-            ident_blocks_add_block(ind_store(s, s->axis), 2.0f * s->amplitude * x->m.ts / slope);
+            ind_add_block(x, s, ind_droop(x, s, 2.0f * s->amplitude * x->m.ts / slope));
         }
         s->sum_pos = s->sum_neg = 0.0f;
         s->n_pos = s->n_neg = 0;
@@ -183,6 +264,7 @@ ident_status_t ident_inductance_step(ident_ctx_t *x, ident_inductance_t *s, cons
         ind_inject(x, s->axis, 0.0f);
         return (s->sign[1] == 0) ? ind_end_axis(x, s) : IDENT_RUNNING;
     }
+    ind_resize(s, x->t - 1u);
     s->sign[0] = ind_next_sign(s, x->t - 1u);
     if (s->waves >= IND_WAVES) {
         s->sign[0] = 0;

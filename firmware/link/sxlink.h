@@ -301,6 +301,8 @@ const char *sxl_comm_quantity_name(uint16_t quantity);
 const char *sxl_comm_quantity_unit(uint16_t quantity);
 double sxl_comm_quantity_scale(uint16_t quantity); /* wire value = SI value x scale */
 double sxl_comm_quantity_extra_scale(uint16_t quantity);
+/* The quantities a step identifies, bit (1 << quantity) each (the quantity list's step). */
+uint16_t sxl_comm_step_quantities(uint16_t step);
 const char *sxl_comm_quality_name(uint16_t quality);
 const char *sxl_comm_reason_name(uint16_t reason);
 const char *sxl_comm_reason_text(uint16_t reason);

@@ -26,21 +26,37 @@
     (((mask) & ~SXL_COMM_STEPS_ALL) == 0u && ((mask)&0x1u) != 0u &&                                \
      (((mask)&0x3Cu) == 0u || ((mask)&0x2u) != 0u))
 
-/* Quantities: X(id, number, name, unit, scale, extra scale, extra's meaning). The reply carries
- * value and uncertainty as int32 of the SI value times scale, the extra times its own scale. */
+/* Quantities: X(id, number, name, the step that identifies it, unit, scale, extra scale, extra's
+ * meaning). The reply carries value and uncertainty as int32 of the SI value times scale, the
+ * extra times its own scale. */
 #define SXL_COMM_QUANTITY_LIST(X)                                                                  \
-    X(PHASES, 0, "phases", "", 1000.0, 1.0,                                                        \
+    X(PHASES, 0, "phases", PHASES, "", 1000.0, 1.0,                                                \
       "smallest phase current over its share (value); the phase that failed, 0..5 = A..F, or -1")  \
-    X(COUNTS, 1, "counts_per_elec_turn", "counts", 1000.0, 1.0, "pole pairs the count implies")    \
-    X(OFFSET, 2, "encoder_offset", "deg", 1000.0, 1000.0,                                          \
+    X(COUNTS, 1, "counts_per_elec_turn", ENCODER, "counts", 1000.0, 1.0,                           \
+      "pole pairs the count implies")                                                              \
+    X(OFFSET, 2, "encoder_offset", ENCODER, "deg", 1000.0, 1000.0,                                 \
       "friction's lag (half the forward-backward difference), or a load's, deg")                   \
-    X(R, 3, "r", "ohm", 1.0e6, 1.0, "-")                                                           \
-    X(LD, 4, "ld", "H", 1.0e9, 1.0, "rotor motion during the test, encoder counts")                \
-    X(LQ, 5, "lq", "H", 1.0e9, 1.0, "rotor motion during the test, encoder counts")                \
-    X(LXY, 6, "lxy", "H", 1.0e9, 1.0, "rotor motion during the test, encoder counts")              \
-    X(PSI_F, 7, "psi_f", "Wb", 1.0e6, 10.0, "test speed, r/min")
+    X(R, 3, "r", RESISTANCE, "ohm", 1.0e6, 1.0, "-")                                               \
+    X(LD, 4, "ld", INDUCTANCE, "H", 1.0e9, 1.0, "rotor motion during the test, encoder counts")    \
+    X(LQ, 5, "lq", INDUCTANCE, "H", 1.0e9, 1.0, "rotor motion during the test, encoder counts")    \
+    X(LXY, 6, "lxy", LXY, "H", 1.0e9, 1.0, "rotor motion during the test, encoder counts")         \
+    X(PSI_F, 7, "psi_f", FLUX, "Wb", 1.0e6, 10.0, "test speed, r/min")
 
 #define SXL_COMM_QUANTITY_COUNT 8u
+
+/* What an apply (the drive's COMMISSION_APPLY, the host tool's parameter file) may not mix
+ * (docs/commissioning.md section 3.1). Each of R, L_d, L_q, L_xy and psi_f is taken when its
+ * quality is ok, else kept (the drive's set in force, the file's reference machine). Refused:
+ *  - a kept quantity whose measurement (poor: a number) lies more than 3 of its sigmas from
+ *    the kept value: the set would hold a value the machine was just measured to contradict;
+ *  - the flux group L_d, L_q, psi_f (the torque and flux model: one flux linkage map) with a
+ *    member taken and another one selected but without a number (failed or skipped): the
+ *    measured members would be paired with one the sequence could not confirm.
+ * The reason is MIXED_SET. SXL_COMM_KEPT_CONTRADICTS works on float and double alike. */
+#define SXL_COMM_MODEL_QUANTITIES 0xF8u /* R, L_d, L_q, L_xy, psi_f */
+#define SXL_COMM_FLUX_GROUP 0xB0u       /* L_d, L_q, psi_f */
+#define SXL_COMM_KEPT_CONTRADICTS(value, sigma, kept)                                              \
+    ((value) - (kept) > 3 * (sigma) || (kept) - (value) > 3 * (sigma))
 
 /* Quality of a result: X(id, number, name, meaning). */
 #define SXL_COMM_QUALITY_LIST(X)                                                                   \
@@ -78,9 +94,11 @@
     X(LOAD_TORQUE, 19, "load_torque",                                                              \
       "a load torque on the shaft biases the offset: commission with the shaft free")              \
     X(ROTOR_TURNING, 20, "rotor_turning",                                                          \
-      "the rotor turns faster than the sequence's spin: wait until it stands still")
+      "the rotor turns faster than the sequence's spin: wait until it stands still")               \
+    X(MIXED_SET, 21, "mixed_set",                                                                  \
+      "the set would keep a value its measurement contradicts, or take L_d, L_q, psi_f in part")
 
-#define SXL_COMM_REASON_COUNT 21u
+#define SXL_COMM_REASON_COUNT 22u
 
 /* State of the sequence (COMMISSION_STATUS): X(id, number, name, meaning). */
 #define SXL_COMM_STATE_LIST(X)                                                                     \

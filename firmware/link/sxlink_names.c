@@ -25,9 +25,10 @@ static const char *const run_refusal_names[SXL_RUN_REFUSAL_NAME_COUNT] = {
 /* Commissioning's lists (sxlink_commission.h), by number. */
 #define COMM_NAME(id, number, name, ...) [number] = name,
 #define COMM_TEXT(id, number, name, text) [number] = text,
-#define COMM_UNIT(id, number, name, unit, scale, xscale, extra) [number] = unit,
-#define COMM_SCALE(id, number, name, unit, scale, xscale, extra) [number] = scale,
-#define COMM_XSCALE(id, number, name, unit, scale, xscale, extra) [number] = xscale,
+#define COMM_UNIT(id, number, name, step, unit, scale, xscale, extra) [number] = unit,
+#define COMM_SCALE(id, number, name, step, unit, scale, xscale, extra) [number] = scale,
+#define COMM_XSCALE(id, number, name, step, unit, scale, xscale, extra) [number] = xscale,
+#define COMM_STEP(id, number, name, step, ...) [number] = SXL_COMM_STEP_##step,
 static const char *const comm_step_names[SXL_COMM_STEP_COUNT] = {SXL_COMM_STEP_LIST(COMM_NAME)};
 static const char *const comm_quantity_names[SXL_COMM_QUANTITY_COUNT] = {
     SXL_COMM_QUANTITY_LIST(COMM_NAME)};
@@ -37,6 +38,8 @@ static const double comm_quantity_scales[SXL_COMM_QUANTITY_COUNT] = {
     SXL_COMM_QUANTITY_LIST(COMM_SCALE)};
 static const double comm_quantity_xscales[SXL_COMM_QUANTITY_COUNT] = {
     SXL_COMM_QUANTITY_LIST(COMM_XSCALE)};
+static const uint16_t comm_quantity_steps[SXL_COMM_QUANTITY_COUNT] = {
+    SXL_COMM_QUANTITY_LIST(COMM_STEP)};
 static const char *const comm_quality_names[SXL_COMM_QUALITY_COUNT] = {
     SXL_COMM_QUALITY_LIST(COMM_NAME)};
 static const char *const comm_reason_texts[SXL_COMM_REASON_COUNT] = {
@@ -49,6 +52,7 @@ static const char *const comm_state_names[SXL_COMM_STATE_COUNT] = {SXL_COMM_STAT
 #undef COMM_UNIT
 #undef COMM_SCALE
 #undef COMM_XSCALE
+#undef COMM_STEP
 
 static const char *name_in(const char *const *names, uint16_t count, uint16_t k)
 {
@@ -78,6 +82,15 @@ double sxl_comm_quantity_scale(uint16_t quantity)
 double sxl_comm_quantity_extra_scale(uint16_t quantity)
 {
     return (quantity < SXL_COMM_QUANTITY_COUNT) ? comm_quantity_xscales[quantity] : 1.0;
+}
+
+uint16_t sxl_comm_step_quantities(uint16_t step)
+{
+    uint16_t q, mask = 0u;
+    for (q = 0u; q < SXL_COMM_QUANTITY_COUNT; q++) {
+        mask = (uint16_t)(mask | ((comm_quantity_steps[q] == step) ? (1u << q) : 0u));
+    }
+    return mask;
 }
 
 const char *sxl_comm_quality_name(uint16_t quality)

@@ -1,7 +1,7 @@
 /*
  * sixphase-link identify: run the drive's commissioning (docs/commissioning.md) over the link.
  *
- *   identify [--steps all|LIST] [--current FRACTION] [--apply] [--out FILE] [--wait S]
+ *   identify [--steps all|LIST] [--current FRACTION] [--apply] [--partial] [--out FILE] [--wait S]
  *
  * Starts the sequence (COMMISSION_START), polls COMMISSION_STATUS with the progress on a
  * terminal, reads every result (COMMISSION_RESULT) and prints one line per quantity with its
@@ -11,8 +11,12 @@
  * the file as it was, and a file that cannot be written is refused before the start. LIST:
  * phases,encoder,r,ldq,lxy,psi_f (the phase check and, for r..psi_f, the encoder are required, as
  * the drive requires). FRACTION: the test current as a fraction of rated, 0.1..0.8 (default 0.4).
- * Exit 0 when the sequence finished with every step done, 1 when it failed, was refused or timed
- * out, 2 for bad usage.
+ * Trustworthy or refused (docs/commissioning.md section 3.1): a selected quantity that is not
+ * ok (poor, failed) refuses the apply and the file, unless --partial asks for the ok ones; then
+ * the drive refuses a set that mixes contradicting values (MIXED_SET), and the file is held to
+ * the same rule against the reference machine its missing entries stand for.
+ * Exit 0 when the sequence finished with every step done and what was asked for is applied and
+ * written, 1 when it failed, was refused or timed out, 2 for bad usage.
  */
 #define _DEFAULT_SOURCE /* usleep */
 
@@ -22,6 +26,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "ctl_machine.h"
 #include "link_tool.h"
 #include "motor_params_file.h"
 
@@ -31,6 +36,7 @@ typedef struct {
     uint16_t mask;
     uint16_t permille;
     int apply;
+    int partial; /* --partial: the ok results of an incomplete sequence are taken */
     const char *out;
     double wait_s;
 } identify_request_t;
@@ -70,13 +76,15 @@ static int identify_parse(int argc, char **argv, identify_request_t *r)
     r->mask = SXL_COMM_STEPS_ALL;
     r->permille = SXL_COMM_CURRENT_DEFAULT_PERMILLE;
     r->apply = 0;
+    r->partial = 0;
     r->out = NULL;
     r->wait_s = 120.0;
     for (i = 0; i < argc; i++) {
         const char *v = (i + 1 < argc) ? argv[i + 1] : NULL;
         double x;
-        if (strcmp(argv[i], "--apply") == 0) {
-            r->apply = 1;
+        if (strcmp(argv[i], "--apply") == 0 || strcmp(argv[i], "--partial") == 0) {
+            r->apply |= (argv[i][2] == 'a') ? 1 : 0;
+            r->partial |= (argv[i][2] == 'p') ? 1 : 0;
             continue;
         }
         if (strcmp(argv[i], "--steps") != 0 && strcmp(argv[i], "--current") != 0 &&
@@ -166,8 +174,9 @@ static int identify_wait(int fd, const options_t *o, double wait_s, uint16_t *st
     return 0;
 }
 
-int identify_result_reply(const sxl_frame_t *reply, uint16_t q, motor_params_t *m)
+int identify_result_reply(const sxl_frame_t *reply, uint16_t q, identify_results_t *res)
 {
+    motor_params_t *m = &res->m;
     static const motor_param_t file_id[SXL_COMM_QUANTITY_COUNT] = {
         MOTOR_PARAM_COUNT, MOTOR_PARAM_POLE_PAIRS, MOTOR_PARAM_ENCODER_OFFSET,
         MOTOR_PARAM_R,     MOTOR_PARAM_LD,         MOTOR_PARAM_LQ,
@@ -190,6 +199,10 @@ int identify_result_reply(const sxl_frame_t *reply, uint16_t q, motor_params_t *
     printf("%-20s %12.6g %-6s +- %-10.3g %-8s %-14s extra %g\n", sxl_comm_quantity_name(q), value,
            sxl_comm_quantity_unit(q), sigma, sxl_comm_quality_name(r[SXL_CR2_QUALITY]),
            sxl_comm_reason_name(r[SXL_CR2_REASON]), extra);
+    res->quality[q] = r[SXL_CR2_QUALITY];
+    res->reason[q] = r[SXL_CR2_REASON];
+    res->value[q] = value;
+    res->sigma[q] = sigma;
     if (r[SXL_CR2_QUALITY] == SXL_COMM_QUALITY_OK && file_id[q] != MOTOR_PARAM_COUNT) {
         if (q == SXL_COMM_Q_OFFSET) { /* degrees -> 2^32 per turn */
             const double turns = value / 360.0 - floor(value / 360.0);
@@ -204,15 +217,15 @@ int identify_result_reply(const sxl_frame_t *reply, uint16_t q, motor_params_t *
     return 0;
 }
 
-/* Reads one result; prints it; files an OK one into m. */
-static int identify_result(int fd, const options_t *o, uint16_t q, motor_params_t *m)
+/* Reads one result; prints it; keeps it in res. */
+static int identify_result(int fd, const options_t *o, uint16_t q, identify_results_t *res)
 {
     uint16_t payload[1];
     sxl_frame_t reply;
     int rc;
     payload[0] = q;
     rc = exchange(fd, o, SXL_CMD_COMMISSION_RESULT, payload, 1u, &reply);
-    return (rc != 0) ? rc : identify_result_reply(&reply, q, m);
+    return (rc != 0) ? rc : identify_result_reply(&reply, q, res);
 }
 
 int identify_apply_reply(const sxl_frame_t *r)
@@ -225,10 +238,17 @@ int identify_apply_reply(const sxl_frame_t *r)
     return 0;
 }
 
-static int identify_apply(int fd, const options_t *o)
+/* APPLY; a refusal names the drive's reason (COMMISSION_STATUS: the last refusal). */
+static int identify_apply(int fd, const options_t *o, const identify_request_t *req)
 {
+    uint16_t st[SXL_CT_SIZE] = {0u};
     sxl_frame_t reply;
     const int rc = exchange(fd, o, SXL_CMD_COMMISSION_APPLY, NULL, 0u, &reply);
+    if (rc == 0 && reply.payload[0] == SXL_ERR_REFUSED && identify_status(fd, o, st) == 0) {
+        return fail(EXIT_IO, "apply refused: %s (%s)%s%s", sxl_comm_reason_text(st[SXL_CT_REASON]),
+                    sxl_comm_reason_name(st[SXL_CT_REASON]), req->out ? "; not written: " : "",
+                    req->out ? req->out : "");
+    }
     return (rc != 0) ? rc : identify_apply_reply(&reply);
 }
 
@@ -259,14 +279,104 @@ static int identify_check(const motor_params_t *m, const identify_request_t *req
                 req->out ? " or written to " : "", req->out ? req->out : "");
 }
 
+/* The quantities of the selected steps, bit per quantity. */
+static uint16_t identify_selected(uint16_t mask)
+{
+    uint16_t k, q = 0u;
+    for (k = 0u; k < SXL_COMM_STEP_COUNT; k++) {
+        q = (uint16_t)(q | (((mask & (1u << k)) != 0u) ? sxl_comm_step_quantities(k) : 0u));
+    }
+    return q;
+}
+
+/* ", name quality (reason)" of quantity q appended to list. */
+static void identify_list(char *list, size_t cap, const identify_results_t *res, uint16_t q)
+{
+    const size_t n = strlen(list);
+    (void)snprintf(list + n, cap - n, "%s%s %s (%s)", n ? ", " : "", sxl_comm_quantity_name(q),
+                   sxl_comm_quality_name(res->quality[q]), sxl_comm_reason_name(res->reason[q]));
+}
+
+/* Without --partial every selected quantity must be ok: 0, or the exit status after one line
+ * naming the ones that are not. */
+static int identify_complete(const identify_results_t *res, const identify_request_t *req)
+{
+    const uint16_t selected = identify_selected(req->mask);
+    char list[512] = "";
+    uint16_t q;
+    for (q = 0u; q < SXL_COMM_QUANTITY_COUNT; q++) {
+        if ((selected & (1u << q)) != 0u && res->quality[q] != SXL_COMM_QUALITY_OK) {
+            identify_list(list, sizeof list, res, q);
+        }
+    }
+    if (list[0] == '\0') {
+        return 0;
+    }
+    return fail(EXIT_IO, "identify: %s: nothing applied%s%s (--partial takes the ok results)", list,
+                req->out ? " or written to " : "", req->out ? req->out : "");
+}
+
+/* The value a missing entry of the parameter file stands for: the reference machine's. */
+static double identify_reference(uint16_t q)
+{
+    switch (q) {
+    case SXL_COMM_Q_R:
+        return CTL_MACHINE_R_OHM;
+    case SXL_COMM_Q_LD:
+        return CTL_MACHINE_LD_H;
+    case SXL_COMM_Q_LQ:
+        return CTL_MACHINE_LQ_H;
+    case SXL_COMM_Q_LXY:
+        return CTL_MACHINE_LXY_H;
+    default:
+        return CTL_MACHINE_PSI_F_WB;
+    }
+}
+
+/* --partial --out: the file is held to the drive's rule for APPLY (sxlink_commission.h), with
+ * the reference machine as the values it keeps. 0, or the exit status after one line. */
+static int identify_file_mixed(const identify_results_t *res, const identify_request_t *req)
+{
+    const uint16_t selected = identify_selected(req->mask) & SXL_COMM_MODEL_QUANTITIES;
+    uint16_t got = 0u, unconfirmed = 0u, q;
+    char list[512] = "";
+    for (q = 0u; q < SXL_COMM_QUANTITY_COUNT; q++) {
+        got = (uint16_t)(got | ((res->quality[q] == SXL_COMM_QUALITY_OK) ? (1u << q) : 0u));
+    }
+    for (q = 0u; q < SXL_COMM_QUANTITY_COUNT; q++) {
+        if ((selected & ~got & (1u << q)) == 0u) {
+            continue;
+        }
+        if (res->quality[q] != SXL_COMM_QUALITY_POOR) {
+            unconfirmed = (uint16_t)(unconfirmed | (1u << q));
+        } else if (SXL_COMM_KEPT_CONTRADICTS(res->value[q], res->sigma[q], identify_reference(q))) {
+            identify_list(list, sizeof list, res, q);
+            (void)snprintf(list + strlen(list), sizeof list - strlen(list),
+                           " against the reference machine's %g", identify_reference(q));
+        }
+    }
+    if (list[0] == '\0' &&
+        ((got & SXL_COMM_FLUX_GROUP) == 0u || (unconfirmed & SXL_COMM_FLUX_GROUP) == 0u)) {
+        return 0;
+    }
+    if (list[0] == '\0') {
+        (void)snprintf(list, sizeof list, "L_d, L_q and psi_f in part");
+    }
+    return fail(EXIT_IO, "identify: %s: %s (%s); not written: %s", list,
+                sxl_comm_reason_text(SXL_COMM_REASON_MIXED_SET),
+                sxl_comm_reason_name(SXL_COMM_REASON_MIXED_SET), req->out);
+}
+
 /* The sequence after a start that was accepted: wait, read, check, apply, write. */
 static int identify_finish(int fd, const options_t *o, const identify_request_t *req)
 {
     uint16_t st[SXL_CT_SIZE];
-    motor_params_t m;
+    identify_results_t res;
     uint16_t q;
     int rc = identify_wait(fd, o, req->wait_s, st);
-    motor_params_clear(&m);
+    const int done = rc == 0 && st[SXL_CT_STATE] == SXL_COMM_STATE_DONE;
+    memset(&res, 0, sizeof res);
+    motor_params_clear(&res.m);
     if (rc != 0) {
         return rc;
     }
@@ -274,13 +384,19 @@ static int identify_finish(int fd, const options_t *o, const identify_request_t 
            sxl_comm_reason_name(st[SXL_CT_REASON]),
            (double)sxl_get_u32(&st[SXL_CT_PERIODS]) * 1e-4);
     for (q = 0u; q < SXL_COMM_QUANTITY_COUNT && rc == 0; q++) {
-        rc = identify_result(fd, o, q, &m);
+        rc = identify_result(fd, o, q, &res);
     }
     if (rc == 0) {
-        rc = identify_check(&m, req);
+        rc = identify_check(&res.m, req);
     }
-    if (rc == 0 && req->apply && st[SXL_CT_STATE] == SXL_COMM_STATE_DONE) {
-        rc = identify_apply(fd, o);
+    if (rc == 0 && done && !req->partial) {
+        rc = identify_complete(&res, req);
+    }
+    if (rc == 0 && done && req->partial && req->out) {
+        rc = identify_file_mixed(&res, req);
+    }
+    if (rc == 0 && req->apply && done) {
+        rc = identify_apply(fd, o, req);
     }
     if (rc == 0 && st[SXL_CT_STATE] != SXL_COMM_STATE_DONE) {
         /* an earlier, good file stays: a failed sequence's file would hold nothing useful */
@@ -289,7 +405,7 @@ static int identify_finish(int fd, const options_t *o, const identify_request_t 
                     req->out ? req->out : "");
     }
     if (rc == 0 && req->out) {
-        rc = identify_write(req->out, &m);
+        rc = identify_write(req->out, &res.m);
     }
     return rc;
 }

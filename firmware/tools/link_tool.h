@@ -69,9 +69,18 @@ int cap_arm_reply(const sxl_frame_t *r);
 int cap_read_reply(const sxl_frame_t *r, int *j, int count, int16_t *out);
 /* A commissioning status reply: its SXL_CT_SIZE fields into st. */
 int identify_status_reply(const sxl_frame_t *r, uint16_t *st);
-/* A commissioning result reply for quantity q (below SXL_COMM_QUANTITY_COUNT): printed, and
- * filed into *m when OK. */
-int identify_result_reply(const sxl_frame_t *r, uint16_t q, motor_params_t *m);
+/* The results as identify read them: every quantity's quality, reason, value and sigma (SI,
+ * degrees for the offset), and the OK ones as the motor parameter file holds them. */
+typedef struct {
+    uint16_t quality[SXL_COMM_QUANTITY_COUNT];
+    uint16_t reason[SXL_COMM_QUANTITY_COUNT];
+    double value[SXL_COMM_QUANTITY_COUNT];
+    double sigma[SXL_COMM_QUANTITY_COUNT];
+    motor_params_t m;
+} identify_results_t;
+/* A commissioning result reply for quantity q (below SXL_COMM_QUANTITY_COUNT): printed, kept
+ * in *res, and filed into res->m when OK. */
+int identify_result_reply(const sxl_frame_t *r, uint16_t q, identify_results_t *res);
 /* An apply reply: the quantities applied, printed. */
 int identify_apply_reply(const sxl_frame_t *r);
 

@@ -662,7 +662,7 @@ static int parse_options(int argc, char **argv, options_t *o, int *next)
                 "                  [--trigger immediate|fault|rising:SIG:LEVEL|falling:SIG:LEVEL]\n"
                 "                  [--wait S] [--out FILE.csv] [--plot FILE.png]\n"
                 "          identify [--steps all|phases,encoder,r,ldq,lxy,psi_f] [--current F]\n"
-                "                   [--apply] [--out FILE.h] [--wait S]\n"
+                "                   [--apply] [--partial] [--out FILE.h] [--wait S]\n"
                 "          open-phase  open-phase-action stop|ride-through [min-loss|max-torque]\n"
                 "          isolate A..F  restore\n"
                 "          torque-limited  torque-limited continue|stop [--stop-after S]\n");

@@ -727,6 +727,100 @@ static void test_commission_results_and_apply(void **state)
     assert_int_equal(send(SXL_CMD_COMMISSION_APPLY), SXL_ERR_REFUSED);
 }
 
+/* The weak-magnet machine of issue 25: every step done, psi_f poor (no_speed) at 0.0672 Wb
+ * against the 0.225 Wb in force. APPLY took R, L_d, L_q, L_xy and the offset and kept 0.225 Wb:
+ * the drive lost the speed at rated load, no fault. Now a kept value its measurement
+ * contradicts, or the flux group (L_d, L_q, psi_f) taken in part while a member has no number,
+ * refuses the whole APPLY with mixed_set; a poor value that agrees with the one kept, a failed
+ * R or L_xy, or a step not selected do not. */
+static void comm_results_all_ok(void)
+{
+    ident_result_t *res = d.comm.x.result;
+    d.comm.state = COMM_STATE_DONE;
+    d.comm.reason = COMM_REASON_NONE;
+    d.comm.mask = SXL_COMM_STEPS_ALL;
+    res[COMM_Q_OFFSET] = (ident_result_t){90.5f, 0.1f, 0.25f, COMM_QUALITY_OK, COMM_REASON_NONE};
+    res[COMM_Q_R] = (ident_result_t){2.5f, 0.01f, 0.0f, COMM_QUALITY_OK, COMM_REASON_NONE};
+    res[COMM_Q_LD] = (ident_result_t){0.04f, 2e-4f, 3.0f, COMM_QUALITY_OK, COMM_REASON_NONE};
+    res[COMM_Q_LQ] = (ident_result_t){0.06f, 3e-4f, 3.0f, COMM_QUALITY_OK, COMM_REASON_NONE};
+    res[COMM_Q_LXY] = (ident_result_t){0.011f, 6e-5f, 3.0f, COMM_QUALITY_OK, COMM_REASON_NONE};
+    res[COMM_Q_PSI_F] = (ident_result_t){0.2f, 1e-3f, 600.0f, COMM_QUALITY_OK, COMM_REASON_NONE};
+    d.comm.x.offset_abs = 0x405B05B0u;
+    mock_encoder_offset = 0u;
+    mock_rec.request_params = 0u;
+    ctl_params_default(&d.params_bg); /* the set in force: the reference machine */
+    d.ctl.config_ready = 0;           /* the ISR took the last set */
+}
+
+static uint16_t comm_apply(void)
+{
+    req.len = 0u;
+    return send(SXL_CMD_COMMISSION_APPLY);
+}
+
+static void check_refused_mixed(void)
+{
+    assert_int_equal(comm_apply(), SXL_ERR_REFUSED);
+    assert_int_equal(mock_rec.request_params, 0u); /* nothing applied */
+    assert_int_equal(mock_encoder_offset, 0u);
+    assert_int_equal(send(SXL_CMD_COMMISSION_STATUS), SXL_OK);
+    assert_int_equal(rep.payload[1 + SXL_CT_STATE], SXL_COMM_STATE_DONE);
+    assert_int_equal(rep.payload[1 + SXL_CT_REASON], SXL_COMM_REASON_MIXED_SET);
+}
+
+static void check_applied(uint16_t quantities)
+{
+    assert_int_equal(comm_apply(), SXL_OK);
+    assert_int_equal(sxl_get_u16(&rep.payload[1 + SXL_CA2_APPLIED]), quantities);
+}
+
+static void test_commission_apply_refuses_a_mixed_set(void **state)
+{
+    ident_result_t *res = d.comm.x.result;
+    const uint16_t all = (1u << SXL_COMM_Q_OFFSET) | (uint16_t)SXL_COMM_MODEL_QUANTITIES;
+    (void)state;
+    calibrate();
+    /* psi_f poor, 170 sigma from the 0.225 Wb kept */
+    comm_results_all_ok();
+    res[COMM_Q_PSI_F] =
+        (ident_result_t){0.0672f, 9e-4f, 560.0f, COMM_QUALITY_POOR, COMM_REASON_NO_SPEED};
+    check_refused_mixed();
+    /* with L_d poor too (rotor_moved, the reproducer's run): still refused */
+    res[COMM_Q_LD] =
+        (ident_result_t){0.0349f, 2e-4f, 14.0f, COMM_QUALITY_POOR, COMM_REASON_ROTOR_MOVED};
+    check_refused_mixed();
+    /* R poor and 25 % off the 2 ohm kept: refused as well */
+    comm_results_all_ok();
+    res[COMM_Q_R] = (ident_result_t){2.5f, 0.05f, 0.0f, COMM_QUALITY_POOR, COMM_REASON_SCATTER};
+    check_refused_mixed();
+    /* psi_f failed (no number) while L_d and L_q are taken: refused */
+    comm_results_all_ok();
+    res[COMM_Q_PSI_F] =
+        (ident_result_t){0.0f, 0.0f, 0.0f, COMM_QUALITY_FAILED, COMM_REASON_TIMEOUT};
+    check_refused_mixed();
+    /* ... and with the whole flux group without a number: R, L_xy and the offset taken */
+    res[COMM_Q_LD].quality = res[COMM_Q_LQ].quality = COMM_QUALITY_FAILED;
+    check_applied((1u << SXL_COMM_Q_OFFSET) | (1u << SXL_COMM_Q_R) | (1u << SXL_COMM_Q_LXY));
+    /* psi_f poor but within 3 sigma of the 0.225 Wb kept: no contradiction */
+    comm_results_all_ok();
+    res[COMM_Q_PSI_F] =
+        (ident_result_t){0.2235f, 1e-3f, 560.0f, COMM_QUALITY_POOR, COMM_REASON_NO_SPEED};
+    check_applied((uint16_t)(all & ~(1u << SXL_COMM_Q_PSI_F)));
+    assert_true(mock_rec.requested.pm_flux_wb == 0.225f);
+    /* R failed: its term is the set's own, taken alone */
+    comm_results_all_ok();
+    res[COMM_Q_R] = (ident_result_t){0.0f, 0.0f, 0.0f, COMM_QUALITY_FAILED, COMM_REASON_SCATTER};
+    check_applied((uint16_t)(all & ~(1u << SXL_COMM_Q_R)));
+    /* psi_f not selected: L_d and L_q are taken with the psi_f in force */
+    comm_results_all_ok();
+    d.comm.mask = SXL_COMM_STEPS_ALL & ~(1u << SXL_COMM_STEP_FLUX);
+    res[COMM_Q_PSI_F] = (ident_result_t){0.0f, 0.0f, 0.0f, COMM_QUALITY_NOT_RUN, COMM_REASON_NONE};
+    check_applied((uint16_t)(all & ~(1u << SXL_COMM_Q_PSI_F)));
+    /* everything ok */
+    comm_results_all_ok();
+    check_applied(all);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -746,6 +840,7 @@ int main(void)
         cmocka_unit_test_setup(test_torque_limited_action_commands, setup),
         cmocka_unit_test_setup(test_commission_start_validates, setup),
         cmocka_unit_test_setup(test_commission_results_and_apply, setup),
+        cmocka_unit_test_setup(test_commission_apply_refuses_a_mixed_set, setup),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

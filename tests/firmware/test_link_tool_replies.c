@@ -152,7 +152,12 @@ static void assert_one_line(const char *text, const char *must_contain)
 
 typedef struct {
     int32_t value[SXL_COMM_QUANTITY_COUNT]; /* as the reply carries them (SI x scale) */
-    int32_t pole_pairs;                     /* the extra of the count's result */
+    int32_t sigma[SXL_COMM_QUANTITY_COUNT];
+    uint16_t quality[SXL_COMM_QUANTITY_COUNT];
+    uint16_t reason[SXL_COMM_QUANTITY_COUNT];
+    int32_t pole_pairs; /* the extra of the count's result */
+    int apply_refused;  /* APPLY answered REFUSED, the status' reason MIXED_SET */
+    int applies;        /* APPLY requests seen */
 } drive_results_t;
 
 /* A machine in range: the reference one's R 2.6 ohm, L_d 35 mH, ... (scales of
@@ -168,9 +173,16 @@ static void good_results(drive_results_t *d)
     d->value[6] = 10000000; /* L_xy */
     d->value[7] = 200000;   /* psi_f, Wb */
     d->pole_pairs = 3;
+    for (int q = 0; q < (int)SXL_COMM_QUANTITY_COUNT; q++) {
+        d->sigma[q] = 10;
+        d->quality[q] = SXL_COMM_QUALITY_OK;
+        d->reason[q] = SXL_COMM_REASON_NONE;
+    }
+    d->apply_refused = 0;
+    d->applies = 0;
 }
 
-static void identify_answer(session_t *s, const sxl_frame_t *req, const drive_results_t *d)
+static void identify_answer(session_t *s, const sxl_frame_t *req, drive_results_t *d)
 {
     uint16_t p[1u + SXL_CR2_SIZE];
     memset(p, 0, sizeof p);
@@ -187,29 +199,32 @@ static void identify_answer(session_t *s, const sxl_frame_t *req, const drive_re
     case SXL_CMD_COMMISSION_STATUS:
         p[1u + SXL_CT_STATE] = SXL_COMM_STATE_DONE;
         p[1u + SXL_CT_PROGRESS] = 100u;
+        p[1u + SXL_CT_REASON] = d->applies ? SXL_COMM_REASON_MIXED_SET : SXL_COMM_REASON_NONE;
         reply(s, req->cmd, p, 1u + SXL_CT_SIZE);
         break;
     case SXL_CMD_COMMISSION_RESULT: {
         const uint16_t q = req->payload[0];
         assert_true(q < SXL_COMM_QUANTITY_COUNT);
         p[1u + SXL_CR2_QUANTITY] = q;
-        p[1u + SXL_CR2_QUALITY] = SXL_COMM_QUALITY_OK;
+        p[1u + SXL_CR2_QUALITY] = d->quality[q];
+        p[1u + SXL_CR2_REASON] = d->reason[q];
         sxl_put_i32(&p[1u + SXL_CR2_VALUE], d->value[q]);
-        sxl_put_i32(&p[1u + SXL_CR2_SIGMA], 10);
+        sxl_put_i32(&p[1u + SXL_CR2_SIGMA], d->sigma[q]);
         sxl_put_i32(&p[1u + SXL_CR2_EXTRA], q == 1u ? d->pole_pairs : 0);
         reply(s, req->cmd, p, 1u + SXL_CR2_SIZE);
         break;
     }
-    default:
-        reply(s, req->cmd, p, 1u + SXL_CA2_SIZE); /* APPLY: nothing applied */
+    default: /* APPLY: nothing applied, or refused */
+        d->applies++;
+        p[0] = d->apply_refused ? SXL_ERR_REFUSED : SXL_OK;
+        reply(s, req->cmd, p, d->apply_refused ? 1u : 1u + SXL_CA2_SIZE);
         break;
     }
 }
 
-/* identify --out PATH against a drive with these results; the tool's exit status. */
-static int identify_with(const drive_results_t *d, const char *path, char *err, size_t cap)
+/* identify with args against a drive with these results; the tool's exit status. */
+static int identify_args(drive_results_t *d, const char *const *args, char *err, size_t cap)
 {
-    const char *const args[] = {"identify", "--out", path, NULL};
     sxl_decoder_t dec;
     sxl_frame_t req;
     session_t s;
@@ -219,6 +234,13 @@ static int identify_with(const drive_results_t *d, const char *path, char *err, 
         identify_answer(&s, &req, d);
     }
     return finish(&s, err, cap);
+}
+
+/* identify --out PATH against a drive with these results; the tool's exit status. */
+static int identify_with(drive_results_t *d, const char *path, char *err, size_t cap)
+{
+    const char *const args[] = {"identify", "--out", path, NULL};
+    return identify_args(d, args, err, cap);
 }
 
 static void test_identify_refuses_values_out_of_range(void **state)
@@ -249,6 +271,60 @@ static void test_identify_refuses_values_out_of_range(void **state)
     assert_int_equal(motor_params_read(file, &m, err, sizeof err), 0);
     assert_true(m.value[MOTOR_PARAM_R] > 2.59 && m.value[MOTOR_PARAM_R] < 2.61);
     assert_true(m.value[MOTOR_PARAM_POLE_PAIRS] == 3.0);
+    assert_int_equal(remove(file), 0);
+    assert_int_equal(rmdir(path), 0);
+}
+
+/* Issue 25's weak-magnet machine: every step done, psi_f poor (no_speed) at 0.0672 Wb. Before,
+ * identify --apply --out exited 0, applied the rest and wrote a file without psi_f, L_d and
+ * L_q (the reference 0.225 Wb kept). Now: refused in one line naming it, no APPLY sent, no
+ * file; --partial asks for the ok ones, and then a file that would keep 0.225 Wb against the
+ * measured 0.0672 is refused (mixed_set), as is an APPLY the drive refuses; a poor psi_f that
+ * agrees with the reference is left out and the rest written. */
+static void test_identify_incomplete_is_refused(void **state)
+{
+    char path[] = "/tmp/sixphase-replies-XXXXXX", file[64], err[1024];
+    drive_results_t d;
+    motor_params_t m;
+    (void)state;
+    assert_non_null(mkdtemp(path));
+    (void)snprintf(file, sizeof file, "%s/motor.h", path);
+    {
+        const char *const strict[] = {"identify", "--apply", "--out", file, NULL};
+        const char *const partial[] = {"identify", "--apply", "--partial", "--out", file, NULL};
+        const char *const partial_apply[] = {"identify", "--partial", "--apply", NULL};
+        const char *const plain[] = {"identify", NULL};
+        good_results(&d);
+        d.value[7] = 67200; /* psi_f 0.0672 Wb +- 0.0009, poor */
+        d.sigma[7] = 900;
+        d.quality[7] = SXL_COMM_QUALITY_POOR;
+        d.reason[7] = SXL_COMM_REASON_NO_SPEED;
+        assert_int_equal(identify_args(&d, strict, err, sizeof err), 1);
+        assert_one_line(err, "psi_f poor (no_speed): nothing applied or written");
+        assert_int_equal(d.applies, 0);
+        assert_int_not_equal(access(file, F_OK), 0);
+        assert_int_equal(identify_args(&d, plain, err, sizeof err), 1); /* no option: exit 1 */
+        assert_one_line(err, "psi_f poor (no_speed)");
+        assert_int_equal(identify_args(&d, partial, err, sizeof err), 1);
+        assert_one_line(err, "(mixed_set); not written");
+        assert_int_equal(d.applies, 0);
+        assert_int_not_equal(access(file, F_OK), 0);
+        d.apply_refused = 1; /* the drive's own rule */
+        assert_int_equal(identify_args(&d, partial_apply, err, sizeof err), 1);
+        assert_one_line(err, "apply refused: ");
+        assert_non_null(strstr(err, "(mixed_set)"));
+        assert_int_equal(d.applies, 1);
+        good_results(&d); /* poor, but within 3 sigma of 0.225 Wb: no contradiction */
+        d.value[7] = 224500;
+        d.sigma[7] = 1000;
+        d.quality[7] = SXL_COMM_QUALITY_POOR;
+        d.reason[7] = SXL_COMM_REASON_NO_SPEED;
+        assert_int_equal(identify_args(&d, partial, err, sizeof err), 0);
+        assert_int_equal(d.applies, 1);
+    }
+    assert_int_equal(motor_params_read(file, &m, err, sizeof err), 0);
+    assert_true((m.have & (1u << MOTOR_PARAM_PSI_F)) == 0u);
+    assert_true((m.have & (1u << MOTOR_PARAM_LD)) != 0u);
     assert_int_equal(remove(file), 0);
     assert_int_equal(rmdir(path), 0);
 }
@@ -347,6 +423,7 @@ int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_identify_refuses_values_out_of_range),
+        cmocka_unit_test(test_identify_incomplete_is_refused),
         cmocka_unit_test(test_capture_checks_reply_lengths),
     };
     if (argc != 2) {

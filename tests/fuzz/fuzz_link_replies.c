@@ -27,7 +27,7 @@ static void parse(uint16_t which, uint16_t arg, const sxl_frame_t *r)
 {
     static int16_t samples[REPLIES_SAMPLES];
     uint16_t st[SXL_CT_SIZE];
-    motor_params_t m;
+    identify_results_t res;
     int present = 0;
     int j = (int)arg * 8;
     switch (which) {
@@ -50,8 +50,8 @@ static void parse(uint16_t which, uint16_t arg, const sxl_frame_t *r)
         (void)identify_status_reply(r, st);
         break;
     case 6:
-        motor_params_clear(&m);
-        (void)identify_result_reply(r, (uint16_t)(arg % SXL_COMM_QUANTITY_COUNT), &m);
+        motor_params_clear(&res.m);
+        (void)identify_result_reply(r, (uint16_t)(arg % SXL_COMM_QUANTITY_COUNT), &res);
         break;
     case 7:
         (void)identify_apply_reply(r);

@@ -100,6 +100,10 @@ SEEDS = {
     "seed-plant-commission-ldq": LONG_START + commission(0x1B, 200) + plant(600, homed=False) + results(),
     "seed-plant-commission-stop": LONG_START + commission(0x3F) + plant(12, homed=False) + frame(STOP)
     + plant(2) + results(),
+    # stopped in the psi_f step (L_d and L_q ok, psi_f without a number): APPLY refuses the mixed
+    # set (docs/commissioning.md 3.1)
+    "seed-plant-commission-mixed": LONG_START + commission(0x3F) + plant(790, homed=False)
+    + frame(STOP) + plant(2) + results(),
     "seed-plant-commission-open": LONG_START + commission(0x3F) + plant(20, phase_open=2, homed=False)
     + results(),
     # RUN on the plant, a phase opens: OPEN_PHASE; cleared, RUN verifies the phases (open

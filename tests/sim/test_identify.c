@@ -254,12 +254,70 @@ static void test_identify_failure_keeps_the_file(void **state)
     (void)remove(path);
 }
 
+/* Issue 25's reproducer: a weak magnet (psi_f 0.0675 Wb, 0.3 x the reference) whose psi_f
+ * step ends poor (no_speed) and L_d poor (rotor_moved). Before, identify --apply --out exited 0,
+ * the file left out psi_f and L_d and the drive kept 0.225 Wb: at rated load the speed
+ * collapsed, no fault. Now identify refuses (exit 1, one line naming them, no file); asked for
+ * a partial apply, the drive refuses the mix itself (mixed_set). */
+static void test_identify_weak_magnet_refused(void **state)
+{
+    char *plant[] = {(char *)"--motor-psi-f", (char *)"0.0675", (char *)"--seed", (char *)"7",
+                     NULL};
+    char pty[160], out[8192], err[2048], path[] = "/tmp/sixphase-identify-weak-XXXXXX";
+    pid_t board;
+    int fd, rc;
+    (void)state;
+    fd = mkstemp(path);
+    assert_true(fd >= 0);
+    (void)close(fd);
+    (void)remove(path);
+    board = serve(plant, pty, sizeof pty);
+    sleep(1);
+    {
+        char *const argv[] = {(char *)SIXPHASE_LINK_EXE,
+                              (char *)"-d",
+                              pty,
+                              (char *)"-t",
+                              (char *)"2000",
+                              (char *)"identify",
+                              (char *)"--apply",
+                              (char *)"--out",
+                              path,
+                              NULL};
+        rc = run_cmd(argv, out, sizeof out, err, sizeof err);
+        print_message("%s%s", out, err);
+        assert_int_equal(rc, 1);
+        assert_non_null(strstr(err, "psi_f poor (no_speed)"));
+        assert_non_null(strstr(err, "nothing applied or written"));
+        assert_int_not_equal(access(path, F_OK), 0);
+    }
+    {
+        char *const argv[] = {(char *)SIXPHASE_LINK_EXE,
+                              (char *)"-d",
+                              pty,
+                              (char *)"-t",
+                              (char *)"2000",
+                              (char *)"identify",
+                              (char *)"--partial",
+                              (char *)"--apply",
+                              NULL};
+        rc = run_cmd(argv, out, sizeof out, err, sizeof err);
+        print_message("%s", err);
+        assert_int_equal(rc, 1);
+        assert_non_null(strstr(err, "apply refused"));
+        assert_non_null(strstr(err, "(mixed_set)"));
+        assert_null(strstr(out, "applied:"));
+    }
+    stop(board);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_identify_apply_and_file),
         cmocka_unit_test(test_identify_refused_with_the_dc_link_low),
         cmocka_unit_test(test_identify_failure_keeps_the_file),
+        cmocka_unit_test(test_identify_weak_magnet_refused),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
