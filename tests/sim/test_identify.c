@@ -255,10 +255,13 @@ static void test_identify_failure_keeps_the_file(void **state)
 }
 
 /* Issue 25's reproducer: a weak magnet (psi_f 0.0675 Wb, 0.3 x the reference) whose psi_f
- * step ends poor (no_speed) and L_d poor (rotor_moved). Before, identify --apply --out exited 0,
- * the file left out psi_f and L_d and the drive kept 0.225 Wb: at rated load the speed
- * collapsed, no fault. Now identify refuses (exit 1, one line naming them, no file); asked for
- * a partial apply, the drive refuses the mix itself (mixed_set). */
+ * step ended poor (no_speed) and whose L_d and L_q steps end poor (rotor_moved). Before,
+ * identify --apply --out exited 0, the file left out psi_f and L_d and the drive kept 0.225 Wb:
+ * at rated load the speed collapsed, no fault. Now identify refuses (exit 1, one line naming
+ * them, no file); asked for a partial apply, the drive takes psi_f (now measured ok) and keeps
+ * the inductances its poor results agree with (a mix is refused only where a poor result
+ * contradicts a kept value or the torque model is taken in part without a number:
+ * test_weak_magnet_mix_refused). */
 static void test_identify_weak_magnet_refused(void **state)
 {
     char *plant[] = {(char *)"--motor-psi-f", (char *)"0.0675", (char *)"--seed", (char *)"7",
@@ -287,7 +290,7 @@ static void test_identify_weak_magnet_refused(void **state)
         rc = run_cmd(argv, out, sizeof out, err, sizeof err);
         print_message("%s%s", out, err);
         assert_int_equal(rc, 1);
-        assert_non_null(strstr(err, "psi_f poor (no_speed)"));
+        assert_non_null(strstr(err, "ld poor (rotor_moved)"));
         assert_non_null(strstr(err, "nothing applied or written"));
         assert_int_not_equal(access(path, F_OK), 0);
     }
@@ -302,11 +305,11 @@ static void test_identify_weak_magnet_refused(void **state)
                               (char *)"--apply",
                               NULL};
         rc = run_cmd(argv, out, sizeof out, err, sizeof err);
-        print_message("%s", err);
-        assert_int_equal(rc, 1);
-        assert_non_null(strstr(err, "apply refused"));
-        assert_non_null(strstr(err, "(mixed_set)"));
-        assert_null(strstr(out, "applied:"));
+        print_message("%s%s", out, err);
+        /* psi_f is measured now (the flux step waits for its speed and takes more turns); the
+         * inductances' poor values agree with the kept ones within 3 sigma: not a mixed set */
+        assert_int_equal(rc, 0);
+        assert_non_null(strstr(out, "applied:"));
     }
     stop(board);
 }
