@@ -10,19 +10,23 @@
 #define RES_RAMP_S 0.05f
 #define RES_LOW_FRACTION 0.5f
 #define RES_POOR_RELATIVE 0.01f /* 1-sigma above 1 % of R: POOR */
-#define RES_MIN_PHASE_A 0.05f   /* a phase this close to zero at the low level: POOR */
+#define RES_MIN_PHASE_A 0.05f   /* a phase's mean this close to zero at the low level: POOR */
 
 enum { RS_MOVE, RS_RAMP, RS_SETTLE, RS_MEASURE };
 
 void ident_resistance_begin(ident_ctx_t *x, ident_resistance_t *s)
 {
+    int16_t k;
     /* the nearest 15 + 30 k degrees: (2 k + 1) / 24 turn */
     const float a = x->traj.angle;
-    const float k = (float)(int32_t)(a * 12.0f); /* a in [0, 1): the 30-degree sector */
+    const float sector = (float)(int32_t)(a * 12.0f); /* a in [0, 1): the 30-degree sector */
     s->from = a;
-    s->to = (2.0f * k + 1.0f) / 24.0f;
+    s->to = (2.0f * sector + 1.0f) / 24.0f;
     s->level = 0;
-    s->min_phase_a = 1.0e9f;
+    for (k = 0; k < IDENT_PHASES; k++) {
+        s->low_phase_sum[k] = 0.0f;
+    }
+    s->low_n = 0;
     x->frame = IDENT_FRAME_COMMAND;
     x->traj.target = 0.0f;
     ident_goto(x, RS_MOVE);
@@ -31,6 +35,23 @@ void ident_resistance_begin(ident_ctx_t *x, ident_resistance_t *s)
 static float res_level_current(const ident_ctx_t *x, int16_t level)
 {
     return (level == 1) ? RES_LOW_FRACTION * x->i_test : x->i_test;
+}
+
+/* The smallest |mean phase current| at the low level: a phase whose current averages near zero
+ * changes sign between the levels, and its dead-time voltage no longer cancels. The mean, not
+ * the smallest sample: the switching ripple may touch zero on a low-inductance or many-pole
+ * machine for an instant without moving the mean voltage (issue 25's grid: R +0.55 % there,
+ * +0.53 % on the reference machine, reported poor by the smallest sample). */
+static float res_smallest_phase_mean(const ident_resistance_t *s)
+{
+    float smallest = 1.0e9f;
+    int16_t k;
+    for (k = 0; k < IDENT_PHASES && s->low_n > 0; k++) {
+        const float m = s->low_phase_sum[k] / (float)s->low_n;
+        const float a = (m < 0.0f) ? -m : m;
+        smallest = (a < smallest) ? a : smallest;
+    }
+    return smallest;
 }
 
 /* R and its uncertainty from the three levels, into the result. */
@@ -65,7 +86,8 @@ static ident_status_t res_finish(ident_ctx_t *x, ident_resistance_t *s)
         return IDENT_DONE; /* later steps do not need R to run */
     }
     {
-        const bool poor = sigma > RES_POOR_RELATIVE * r || s->min_phase_a < RES_MIN_PHASE_A;
+        const bool poor =
+            sigma > RES_POOR_RELATIVE * r || res_smallest_phase_mean(s) < RES_MIN_PHASE_A;
         ident_set_result(x, COMM_Q_R, r, sigma, 0.0f, poor ? COMM_QUALITY_POOR : COMM_QUALITY_OK,
                          poor ? COMM_REASON_SCATTER : COMM_REASON_NONE);
     }
@@ -79,9 +101,9 @@ static void res_sample(ident_ctx_t *x, ident_resistance_t *s, const ident_input_
     if (s->level == 1) {
         int16_t k;
         for (k = 0; k < IDENT_PHASES; k++) {
-            const float a = (in->i_phase[k] < 0.0f) ? -in->i_phase[k] : in->i_phase[k];
-            s->min_phase_a = (a < s->min_phase_a) ? a : s->min_phase_a;
+            s->low_phase_sum[k] += in->i_phase[k];
         }
+        s->low_n++;
     }
 }
 

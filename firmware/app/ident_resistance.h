@@ -15,10 +15,11 @@
 #include "ident.h"
 
 typedef struct {
-    float from, to;            /* commanded angle: start and the 15 + 30 k degree target */
-    int16_t level;             /* 0 high, 1 low, 2 high */
-    ident_blocks_t u[3], i[3]; /* along the vector: V, A, per level */
-    float min_phase_a;         /* smallest |phase current| at the low level, A */
+    float from, to;                    /* commanded angle: start and the 15 + 30 k degree target */
+    int16_t level;                     /* 0 high, 1 low, 2 high */
+    ident_blocks_t u[3], i[3];         /* along the vector: V, A, per level */
+    float low_phase_sum[IDENT_PHASES]; /* each phase's current summed at the low level, A */
+    int32_t low_n;                     /* its samples */
 } ident_resistance_t;
 
 void ident_resistance_begin(ident_ctx_t *x, ident_resistance_t *s);
