@@ -172,20 +172,42 @@ static float enc_offset_sample(ident_encoder_t *s, const ident_ctx_t *x, const i
     return s->ref + ident_wrap_half(d - s->ref);
 }
 
+/* How much more a constant torque lags the rotor at half the test current than at the test
+ * current: the stiffness about the aligned position is 3 Pn I (psi_f + (L_d - L_q) I), so the
+ * ratio is 2 (psi_f + (L_d - L_q) I) / (psi_f + (L_d - L_q) I / 2), 1.87 on the reference
+ * machine (the parameter set's: the later steps measure them). */
+static float enc_lag_ratio(const ident_ctx_t *x)
+{
+    const float dl = x->m.ld - x->m.lq;
+    const float k1 = x->m.psi_f + dl * x->i_test;
+    const float k2 = x->m.psi_f + dl * 0.5f * x->i_test;
+    const float r = (k1 > 0.0f && k2 > 0.0f) ? 2.0f * k1 / k2 : 2.0f;
+    return (r > 1.1f && r < 4.0f) ? r : 2.0f;
+}
+
 /* The offset from both directions, into the result and the context. */
 static ident_status_t enc_finish(ident_ctx_t *x, ident_encoder_t *s)
 {
     const float mf = ident_blocks_mean(&s->fwd);
     const float mb = ident_blocks_mean(&s->bwd);
-    /* forward at I: offset + a + b, backward: offset + a - b, forward at I / 2: offset + 2 a +
-     * 2 b, with b friction's lag and a a load's */
-    const float load_lag = ident_blocks_mean(&s->fwd2) - mf - 0.5f * (mf - mb);
+    const float r = enc_lag_ratio(x);
+    /* forward at I: offset + a + b, backward: offset + a - b, forward at I / 2: offset +
+     * r (a + b), with b friction's lag and a a load's (a constant torque's lag goes as one over
+     * the stiffness, enc_lag_ratio). A small load's lag is taken out of the offset: offset =
+     * (r mf - fwd2) / (r - 1); one above ENC_LOAD_LAG_TURNS fails the step (the later steps
+     * would be dragged too). */
+    const float lag = (ident_blocks_mean(&s->fwd2) - mf) / (r - 1.0f); /* a + b */
+    const float load_lag = lag - 0.5f * (mf - mb);
     const float sf = ident_blocks_sigma(&s->fwd);
-    const float sb = ident_blocks_sigma(&s->bwd);
-    const float sigma = 0.5f * ctl_sqrtf(sf * sf + sb * sb);
+    const float s2 = ident_blocks_sigma(&s->fwd2);
+    /* the scatter of (r mf - fwd2) / (r - 1), and the ratio's own uncertainty (the set's L_d,
+     * L_q and psi_f, not yet measured: taken as the reluctance term's whole size) */
+    const float random = ctl_sqrtf(r * r * sf * sf + s2 * s2) / (r - 1.0f);
+    const float ratio_error = lag * (2.0f - r) / (r - 1.0f);
+    const float sigma = ctl_sqrtf(random * random + ratio_error * ratio_error);
     float absolute;
     const bool loaded = load_lag > ENC_LOAD_LAG_TURNS || load_lag < -ENC_LOAD_LAG_TURNS;
-    x->offset_turns = 0.5f * (mf + mb);
+    x->offset_turns = 0.5f * (mf + mb) - load_lag;
     x->offset_known = true;
     x->offset_abs = x->m.hal_offset +
                     (uint32_t)(int32_t)(ident_wrap_half(x->offset_turns) * 2147483648.0f) * 2u;
