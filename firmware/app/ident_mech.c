@@ -89,10 +89,16 @@ static float mech_point_speed(const ident_mech_t *s, int16_t k)
 }
 
 /* The probe reached -w_top: the first inertia, and the speed loop from it. */
-static void mech_probe_done(ident_ctx_t *x, ident_mech_t *s, float w)
+static ident_status_t mech_probe_done(ident_ctx_t *x, ident_mech_t *s, float w)
 {
     const float j = s->torque_sum * x->m.ts / w;
-    const float kp = MECH_SPEED_BW * j / s->kt; /* A per rad/s: the loop crosses at BW */
+    float kp;
+    if (!(j > 1.0e-6f && j < 1000.0f)) { /* no loop can be built on it */
+        ident_set_result(x, COMM_Q_INERTIA, j, 0.0f, 0.0f, COMM_QUALITY_FAILED,
+                         COMM_REASON_OUT_OF_RANGE);
+        return ident_fail(x, COMM_REASON_OUT_OF_RANGE);
+    }
+    kp = MECH_SPEED_BW * j / s->kt; /* A per rad/s: the loop crosses at BW */
     s->j_probe = j;
     s->speed_pi.kp = kp;
     s->speed_pi.ki_ts = kp * 0.25f * MECH_SPEED_BW * x->m.ts;
@@ -100,6 +106,7 @@ static void mech_probe_done(ident_ctx_t *x, ident_mech_t *s, float w)
     s->speed_ref = w;
     s->accel_max = 0.5f * s->kt * x->i_test / j;
     ident_goto(x, MC_MOVE);
+    return IDENT_RUNNING;
 }
 
 /* The reference one period closer to target; true once there. */
@@ -235,9 +242,11 @@ static void mech_run_close(ident_mech_t *s)
     ident_mech_fit_t *f = &s->fit;
     const float n = (float)f->n;
     const float den = n * f->stt - f->st * f->st;
-    if (f->n >= MECH_RUN_MIN_PERIODS && den > 0.0f && s->runs < IDENT_MECH_RUNS) {
+    const float alpha = (den > 0.0f) ? (n * f->stw - f->st * f->sw) / den : 0.0f;
+    /* a run too short to fit, or flat (nothing to divide by), is left out */
+    if (f->n >= MECH_RUN_MIN_PERIODS && mech_abs(alpha) > 0.0f && s->runs < IDENT_MECH_RUNS) {
         const int16_t k = s->runs;
-        s->run_alpha[k] = (n * f->stw - f->st * f->sw) / den;
+        s->run_alpha[k] = alpha;
         s->run_torque[k] = f->storque / n;
         s->run_w[k] = f->sw / n;
         s->run_sign[k] = f->ssign / n;
@@ -371,10 +380,7 @@ ident_status_t ident_mech_step(ident_ctx_t *x, ident_mech_t *s, const ident_inpu
     switch (x->phase) {
     case MC_PROBE:
         s->torque_sum += mech_torque(x, s);
-        if (w <= -s->w_top) {
-            mech_probe_done(x, s, w);
-        }
-        return IDENT_RUNNING;
+        return (w <= -s->w_top) ? mech_probe_done(x, s, w) : IDENT_RUNNING;
     case MC_RUNS:
         if (mech_runs(x, s, w)) {
             s->speed_pi.integ = 0.0f;
