@@ -16,7 +16,7 @@
     X(INDUCTANCE, 3, "ldq", "L_d and L_q from a square wave at standstill")                        \
     X(LXY, 4, "lxy", "L_xy from a square wave in the x-y plane")                                   \
     X(FLUX, 5, "psi_f", "magnet flux at steady speed")                                             \
-    X(MECH, 6, "mech", "friction at steady speeds, inertia from torque reversals")
+    X(MECH, 6, "mech", "friction at steady speeds, inertia from acceleration-deceleration runs")
 
 #define SXL_COMM_STEP_COUNT 7u
 #define SXL_COMM_STEPS_ALL 0x7Fu
