@@ -37,8 +37,8 @@ void sim_cli_usage(FILE *f)
         "                   [--sensor-span A]\n"
         "                   plant (the controller keeps the reference machine): [--motor-r OHM]\n"
         "                   [--motor-ld H] [--motor-lq H] [--motor-lxy H] [--motor-psi-f WB]\n"
-        "                   [--motor-pole-pairs N] [--encoder-offset-deg DEG] "
-        "[--encoder-reversed]\n"
+        "                   [--motor-pole-pairs N] [--motor-j KGM2] [--motor-b NMS]\n"
+        "                   [--encoder-offset-deg DEG] [--encoder-reversed]\n"
         "                   [--encoder-stuck]\n"
         "                   controller (the plant stays): [--ctl-r OHM] [--ctl-ld H] [--ctl-lq H]\n"
         "                   [--ctl-lxy H] [--ctl-psi-f WB] [--ctl-pole-pairs N]\n"
@@ -197,6 +197,8 @@ enum {
     G_MOTOR_LXY,
     G_MOTOR_PSI_F,
     G_MOTOR_POLES,
+    G_MOTOR_J,
+    G_MOTOR_B,
     G_ENC_OFFSET,
     G_ENC_REVERSED,
     G_ENC_STUCK,
@@ -253,6 +255,8 @@ static const opt_t options[] = {
     NUM("--motor-psi-f", cfg.plant.psi_f_wb, G_MOTOR_PSI_F, 1e-3, 5.0),
     {"--motor-pole-pairs", OPT_INTEGER, OPT_RUN, F(cfg.plant.pole_pairs), G_MOTOR_POLES, 1.0, 64.0,
      0, NULL},
+    NUM("--motor-j", cfg.plant.j_kgm2, G_MOTOR_J, 1e-5, 100.0),
+    NUM("--motor-b", cfg.plant.b_nms, G_MOTOR_B, 0.0, 10.0),
     NUM("--encoder-offset-deg", encoder_offset_deg, G_ENC_OFFSET, -360.0, 360.0),
     FLAG("--encoder-reversed", OPT_SET_BOOL, cfg.plant.encoder_reversed, G_ENC_REVERSED, 1),
     FLAG("--encoder-stuck", OPT_SET_BOOL, cfg.plant.encoder_stuck, G_ENC_STUCK, 1),
@@ -265,7 +269,7 @@ static const opt_t options[] = {
      NULL},
     NUM("--ctl-encoder-offset-deg", ctl_encoder_offset_deg, G_CTL_ENC_OFFSET, -360.0, 360.0),
     {"--ctl-params", OPT_FILE, OPT_RUN, F(ctl_params_path), G_CTL_PARAMS, 0.0, 0.0, 0, NULL},
-    {"--commission-steps", OPT_INTEGER, OPT_RUN, F(cfg.commission_steps), G_COMM_STEPS, 1.0, 63.0,
+    {"--commission-steps", OPT_INTEGER, OPT_RUN, F(cfg.commission_steps), G_COMM_STEPS, 1.0, 127.0,
      0, NULL},
     {"--commission-current", OPT_INTEGER, OPT_RUN, F(cfg.commission_permille), G_COMM_CURRENT,
      100.0, 800.0, 0, NULL},
@@ -627,6 +631,21 @@ static int check_combination(const sim_cli_t *o, const int *seen, unsigned where
     return 0;
 }
 
+/* The inertia and the speed gains of a motor parameter file (the friction is the plant's). */
+static int cli_read_ctl_speed_loop(const motor_params_t *m, sim_ctl_machine_t *c)
+{
+    if (m->have & (1u << MOTOR_PARAM_INERTIA)) {
+        c->j_kgm2 = m->value[MOTOR_PARAM_INERTIA];
+    }
+    if (m->have & (1u << MOTOR_PARAM_SPEED_KP)) {
+        c->speed_kp = m->value[MOTOR_PARAM_SPEED_KP];
+    }
+    if (m->have & (1u << MOTOR_PARAM_SPEED_KI)) {
+        c->speed_ki = m->value[MOTOR_PARAM_SPEED_KI];
+    }
+    return 0;
+}
+
 /* The controller's machine from a motor parameter file (firmware/tools/motor_params_file.h). */
 static int cli_read_ctl_params(sim_cli_t *o, char *err, size_t len)
 {
@@ -658,7 +677,7 @@ static int cli_read_ctl_params(sim_cli_t *o, char *err, size_t len)
         c->encoder_offset_rad =
             m.value[MOTOR_PARAM_ENCODER_OFFSET] / 4294967296.0 * 360.0 * CLI_DEG_TO_RAD;
     }
-    return 0;
+    return cli_read_ctl_speed_loop(&m, c);
 }
 
 /* What follows from the options once they are all known: --lxy sets the controller's L_xy too

@@ -189,8 +189,8 @@ static void rc_row(FILE *f, const char *label, const rep_case_t *cases, int n, c
 /* What the drive identified on the report plant, beside the truth. */
 static void rc_identified_table(FILE *f, const rep_case_t *id)
 {
-    static const char *const units[SIM_COMM_QUANTITIES] = {"",  "counts", "deg", "ohm",
-                                                           "H", "H",      "H",   "Wb"};
+    static const char *const units[SIM_COMM_QUANTITIES] = {
+        "", "counts", "deg", "ohm", "H", "H", "H", "Wb", "kg m^2", "N m s/rad"};
     const sim_commission_result_t *cr = &id->res.comm;
     int q;
     fprintf(f, "| quantity | true | identified | error | 1 sigma | quality |\n"

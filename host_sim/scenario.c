@@ -78,6 +78,7 @@ void sim_config_default(sim_config_t *c)
     plant_params_default(&c->plant);
     c->ctl.r_ohm = c->ctl.ld_h = c->ctl.lq_h = c->ctl.lxy_h = c->ctl.psi_f_wb = -1.0;
     c->ctl.pole_pairs = 0;
+    c->ctl.j_kgm2 = c->ctl.speed_kp = c->ctl.speed_ki = -1.0;
     c->ctl.encoder_offset_rad = 0.0;
     c->commission_steps = SXL_COMM_STEPS_ALL;
     c->commission_permille = SXL_COMM_CURRENT_DEFAULT_PERMILLE;

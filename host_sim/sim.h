@@ -31,6 +31,8 @@ typedef struct {
     double r_ohm, ld_h, lq_h, lxy_h, psi_f_wb; /* < 0: the reference machine's */
     int pole_pairs;                            /* <= 0: the reference machine's */
     double encoder_offset_rad; /* the HAL's index offset (FW_ENCODER_OFFSET), electrical */
+    double j_kgm2;             /* <= 0: the reference machine's (not the plant's) */
+    double speed_kp, speed_ki; /* the speed PI's gains; <= 0: the core's defaults */
 } sim_ctl_machine_t;
 
 typedef struct {
@@ -118,7 +120,7 @@ typedef struct sim_observer {
 } sim_observer_t;
 
 /* The commissioning scenario's outcome: the drive's results beside the plant's values. */
-#define SIM_COMM_QUANTITIES 8
+#define SIM_COMM_QUANTITIES 10
 typedef struct {
     bool ran;
     int state, reason, step; /* sxlink_commission.h lists */
@@ -126,10 +128,11 @@ typedef struct {
     double value[SIM_COMM_QUANTITIES], sigma[SIM_COMM_QUANTITIES], extra[SIM_COMM_QUANTITIES];
     int quality[SIM_COMM_QUANTITIES], reason_q[SIM_COMM_QUANTITIES];
     double truth[SIM_COMM_QUANTITIES]; /* the plant's (NaN where there is none) */
-    int apply_result;    /* drive_commission_apply's, after a DONE sequence or one failed on an open
-                            phase */
-    unsigned applied;    /* quantities applied */
-    double phase_peak_a; /* largest |phase current| of the plant, at each period's end */
+    int apply_result; /* drive_commission_apply's, after a DONE sequence or one failed on an open
+                         phase */
+    unsigned applied; /* quantities applied */
+    double speed_kp, speed_ki; /* the speed gains of the set applied (N m s/rad, N m/rad) */
+    double phase_peak_a;       /* largest |phase current| of the plant, at each period's end */
 } sim_commission_result_t;
 
 typedef struct {

@@ -27,6 +27,8 @@ static void comm_truth(const plant_params_t *p, double truth[SIM_COMM_QUANTITIES
     truth[5] = p->lq_h;
     truth[6] = p->lxy_h;
     truth[7] = p->psi_f_wb;
+    truth[8] = p->j_kgm2;
+    truth[9] = p->b_nms;
 }
 
 /* The drive's report into the result. */
@@ -54,9 +56,10 @@ static void comm_collect(sim_run_t *rs, sim_result_t *r)
 static int comm_write_params(const sim_run_t *rs, const sim_result_t *r, char *err, size_t err_len)
 {
     static const motor_param_t file_id[SIM_COMM_QUANTITIES] = {
-        MOTOR_PARAM_COUNT, MOTOR_PARAM_POLE_PAIRS, MOTOR_PARAM_ENCODER_OFFSET,
-        MOTOR_PARAM_R,     MOTOR_PARAM_LD,         MOTOR_PARAM_LQ,
-        MOTOR_PARAM_LXY,   MOTOR_PARAM_PSI_F};
+        MOTOR_PARAM_COUNT,   MOTOR_PARAM_POLE_PAIRS, MOTOR_PARAM_ENCODER_OFFSET,
+        MOTOR_PARAM_R,       MOTOR_PARAM_LD,         MOTOR_PARAM_LQ,
+        MOTOR_PARAM_LXY,     MOTOR_PARAM_PSI_F,      MOTOR_PARAM_INERTIA,
+        MOTOR_PARAM_FRICTION};
     const sim_commission_result_t *cr = &r->comm;
     motor_params_t m;
     char path[1200];
@@ -76,6 +79,10 @@ static int comm_write_params(const sim_run_t *rs, const sim_result_t *r, char *e
             s = 0.0;
         }
         motor_params_set(&m, file_id[q], v, s, "ok");
+    }
+    if ((cr->applied & (1u << SXL_COMM_Q_INERTIA)) != 0u) { /* the gains APPLY designed */
+        motor_params_set(&m, MOTOR_PARAM_SPEED_KP, cr->speed_kp, 0.0, "from the inertia");
+        motor_params_set(&m, MOTOR_PARAM_SPEED_KI, cr->speed_ki, 0.0, "from the inertia");
     }
     (void)snprintf(path, sizeof path, "%s/motor_params.h", rs->cfg->out_dir);
     f = fopen(path, "w");
@@ -131,7 +138,10 @@ int sim_commission_loop(sim_run_t *rs, sim_result_t *r, char *err, size_t err_le
     comm_collect(rs, r);
     if (r->comm.state == SXL_COMM_STATE_DONE ||
         (r->comm.state == SXL_COMM_STATE_FAILED && r->comm.reason == SXL_COMM_REASON_OPEN_PHASE)) {
-        r->comm.apply_result = rs->ops->commission_apply(&r->comm.applied);
+        double gains[2];
+        r->comm.apply_result = rs->ops->commission_apply(&r->comm.applied, gains);
+        r->comm.speed_kp = gains[0];
+        r->comm.speed_ki = gains[1];
     }
     /* a failed or refused sequence writes no file: it would hold nothing worth building; nor
      * does one whose set the drive refused to apply (a mixed set, docs/commissioning.md 3.1) */

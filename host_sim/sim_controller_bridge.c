@@ -283,11 +283,14 @@ static void bridge_commission_status(sim_comm_status_t *st)
     }
 }
 
-static int bridge_commission_apply(unsigned *applied)
+static int bridge_commission_apply(unsigned *applied, double speed_gains[2])
 {
     uint16_t a = 0u;
     const int rc = (int)drive_commission_apply(&bridge_drive, &a);
+    const ctl_params_t *p = (a != 0u) ? &bridge_drive.params_req : ctl_params(&bridge_drive.ctl);
     *applied = (unsigned)a;
+    speed_gains[0] = (double)p->speed_kp_nm_per_rad_s;
+    speed_gains[1] = (double)p->speed_ki_nm_per_rad;
     return rc;
 }
 static unsigned long bridge_link_frames(void) { return (unsigned long)bridge_link.frames_handled; }

@@ -70,7 +70,7 @@ typedef struct {
 } sim_ctl_status_t;
 
 /* The commissioning sequence as the drive reports it (sxlink_commission.h lists, SI). */
-#define SIM_CTL_COMM_QUANTITIES 8
+#define SIM_CTL_COMM_QUANTITIES 10
 typedef struct {
     int state, step, reason, progress;
     unsigned long periods;
@@ -126,7 +126,8 @@ typedef struct {
      * 0 accepted, else drive_comm_result_t */
     int (*commission_start)(unsigned mask, unsigned permille);
     void (*commission_status)(sim_comm_status_t *st);
-    int (*commission_apply)(unsigned *applied);
+    /* speed_gains: kp, ki of the set it handed to the core (those in force when none) */
+    int (*commission_apply)(unsigned *applied, double speed_gains[2]);
 } sim_ctl_ops_t;
 
 /* Defined by the two builds of the bridge. The float build's symbols are all

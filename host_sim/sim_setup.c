@@ -49,10 +49,13 @@ void sim_ctl_machine_resolve(const sim_config_t *c, sim_ctl_machine_t *m)
     m->psi_f_wb = setup_ctl_value(c->ctl.psi_f_wb, CTL_MACHINE_PSI_F_WB);
     m->pole_pairs = sim_ctl_pole_pairs(c);
     m->encoder_offset_rad = c->ctl.encoder_offset_rad;
+    m->j_kgm2 = setup_ctl_value(c->ctl.j_kgm2, CTL_MACHINE_INERTIA_KG_M2);
+    m->speed_kp = c->ctl.speed_kp;
+    m->speed_ki = c->ctl.speed_ki;
 }
 
 /* The controller as the firmware's parameter set would configure it for this run: the
- * controller's machine (sim_ctl_machine_t), the plant's inertia. */
+ * controller's machine (sim_ctl_machine_t), its inertia the reference machine's unless set. */
 static void setup_controller_config(const sim_run_t *rs, sim_ctl_config_t *cc)
 {
     const sim_config_t *c = rs->cfg;
@@ -69,7 +72,6 @@ static void setup_controller_config(const sim_run_t *rs, sim_ctl_config_t *cc)
     cc->pulse_pattern = c->pulse_pattern;
     cc->flux_tie_band = c->flux_tie_band;
     cc->light_load_current_a = c->light_load_current_a;
-    cc->j_kgm2 = p->j_kgm2;
     cc->flux_ref_wb = 0.0;
     sim_ctl_machine_t m;
     sim_ctl_machine_resolve(c, &m);
@@ -79,6 +81,9 @@ static void setup_controller_config(const sim_run_t *rs, sim_ctl_config_t *cc)
     cc->lxy_h = m.lxy_h;
     cc->psi_f_wb = m.psi_f_wb;
     cc->pole_pairs = m.pole_pairs;
+    cc->j_kgm2 = m.j_kgm2;
+    cc->speed_kp = m.speed_kp;
+    cc->speed_ki = m.speed_ki;
     cc->torque_limit_nm = rs->plan.torque_limit;
     cc->protect = c->protect ? 1 : 0;
     cc->current_full_span_a = 2.0 * p->current_sensor_span_a;

@@ -131,4 +131,20 @@ static inline bool ctl_params_valid(const ctl_params_t *p)
  * electrical per-unit speed. */
 float ctl_speed_gain_pu(float gain_si, int16_t pole_pairs);
 
+/* The speed PI's design from the inertia (docs/commissioning.md, "Speed loop from the
+ * inertia"): the loop L(s) = (kp + ki / s) / (J s) crosses over at w_c with kp = J w_c, and its
+ * integral corner sits CTL_SPEED_DESIGN_RATIO below, ki = kp w_c / ratio: phase margin
+ * atan(ratio) = 76 deg less the delay's w_c Td (the torque loop and the speed measurement, about
+ * 1 ms: 9 deg), closed-loop poles a double pole at -w_c / 2. w_c is 150 rad/s, the fixed gains'
+ * crossover on the reference machine (kp 1.5 N m s/rad at 0.01 kg m^2): well below the 10 kHz
+ * period's and the encoder speed's bandwidth, so the speed noise stays out of the torque. On a
+ * heavy rotor it comes down so that kp stays within CTL_SPEED_DESIGN_KP_PU_MAX per unit (the
+ * fixed-point range ctl_params_check guards, 100). */
+#define CTL_SPEED_DESIGN_CROSSOVER_RAD_S 150.0f
+#define CTL_SPEED_DESIGN_RATIO 4.0f
+#define CTL_SPEED_DESIGN_KP_PU_MAX 90.0f
+
+/* p's speed gains from p's inertia and pole pairs, as above. */
+void ctl_speed_gains_from_inertia(ctl_params_t *p);
+
 #endif /* CTL_PARAMS_H */

@@ -38,6 +38,18 @@ float ctl_speed_gain_pu(float gain_si, int16_t pole_pairs)
     return gain_si * CTL_BASE_OMEGA_RAD_S_F / ((float)pole_pairs * CTL_BASE_TORQUE_NM_F);
 }
 
+void ctl_speed_gains_from_inertia(ctl_params_t *p)
+{
+    const float kp_max =
+        CTL_SPEED_DESIGN_KP_PU_MAX / ctl_speed_gain_pu(1.0f, p->pole_pairs); /* N m s/rad */
+    float wc = CTL_SPEED_DESIGN_CROSSOVER_RAD_S;
+    if (p->inertia_kg_m2 * wc > kp_max) {
+        wc = kp_max / p->inertia_kg_m2;
+    }
+    p->speed_kp_nm_per_rad_s = p->inertia_kg_m2 * wc;
+    p->speed_ki_nm_per_rad = p->speed_kp_nm_per_rad_s * wc / CTL_SPEED_DESIGN_RATIO;
+}
+
 static ctl_param_error_t check_machine(const ctl_params_t *p)
 {
     ctl_model_t model;

@@ -17,7 +17,8 @@
 
 static const float step_seconds[SXL_COMM_STEP_COUNT] = {
     IDENT_PHASE_SECONDS,      IDENT_ENCODER_SECONDS,    IDENT_RESISTANCE_SECONDS,
-    IDENT_INDUCTANCE_SECONDS, IDENT_INDUCTANCE_SECONDS, IDENT_FLUX_SECONDS};
+    IDENT_INDUCTANCE_SECONDS, IDENT_INDUCTANCE_SECONDS, IDENT_FLUX_SECONDS,
+    IDENT_MECH_SECONDS};
 
 /* Each quantity's step, from the quantity list (sxlink_commission.h). */
 #define COMM_QUANTITY_STEP(id, number, name, step, ...) COMM_STEP_##step,
@@ -141,8 +142,11 @@ static void comm_begin_step(comm_t *c)
     case COMM_STEP_LXY:
         ident_inductance_begin(x, &c->s.inductance, IDENT_AXIS_X, IDENT_AXIS_Y);
         break;
-    default:
+    case COMM_STEP_FLUX:
         ident_flux_begin(x, &c->s.flux);
+        break;
+    default:
+        ident_mech_begin(x, &c->s.mech);
         break;
     }
 }
@@ -160,8 +164,10 @@ static ident_status_t comm_run_step(comm_t *c, const ident_input_t *in)
     case COMM_STEP_INDUCTANCE:
     case COMM_STEP_LXY:
         return ident_inductance_step(x, &c->s.inductance, in);
-    default:
+    case COMM_STEP_FLUX:
         return ident_flux_step(x, &c->s.flux, in);
+    default:
+        return ident_mech_step(x, &c->s.mech, in);
     }
 }
 

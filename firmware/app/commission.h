@@ -2,9 +2,9 @@
  * The commissioning sequence (docs/commissioning.md): the drive identifies its motor and
  * aligns its encoder in the state COMMISSION, one call per control period from the ISR. The
  * steps run in order (sxlink_commission.h): phase check, encoder, resistance, L_d and L_q,
- * L_xy, magnet flux; each leaves the machine as the next expects it, each has its own result
- * checks and a time bound (three times its nominal duration plus 2 s: TIMEOUT). A failed
- * step ends the sequence (the later ones are SKIPPED); the results so far stay readable. The
+ * L_xy, magnet flux, inertia and friction; each leaves the machine as the next expects it, each has
+ * its own result checks and a time bound (three times its nominal duration plus 2 s: TIMEOUT). A
+ * failed step ends the sequence (the later ones are SKIPPED); the results so far stay readable. The
  * drive forces the outputs off whenever the sequence ends.
  *
  * The background asks for a start (comm_request); the ISR starts it from READY (comm_start).
@@ -19,6 +19,7 @@
 #include "ident_encoder.h"
 #include "ident_flux.h"
 #include "ident_inductance.h"
+#include "ident_mech.h"
 #include "ident_phase.h"
 #include "ident_resistance.h"
 
@@ -32,6 +33,7 @@ typedef union {
     ident_resistance_t resistance;
     ident_inductance_t inductance;
     ident_flux_t flux;
+    ident_mech_t mech;
 } comm_step_state_t;
 
 /* Every step's open-phase watch: over each window, each phase's |measured| and |commanded|

@@ -201,6 +201,19 @@ ctl_q drive_commission_angle(const drive_t *d)
     return ctl_from_float(turns - (float)(int32_t)turns);
 }
 
+/* An OK inertia into p, and the speed loop's gains designed for it (ctl_params.h); its bit.
+ * The friction is reported, not applied: the control core has no term for it. */
+static uint16_t drive_comm_take_mechanics(const comm_t *c, ctl_params_t *p)
+{
+    const ident_result_t *j = &c->x.result[COMM_Q_INERTIA];
+    if (j->quality != COMM_QUALITY_OK) {
+        return 0u;
+    }
+    p->inertia_kg_m2 = j->value;
+    ctl_speed_gains_from_inertia(p);
+    return (uint16_t)(1u << COMM_Q_INERTIA);
+}
+
 /* The quantities whose quality is OK into p; their bits. */
 static uint16_t drive_comm_take(const comm_t *c, ctl_params_t *p)
 {
@@ -274,7 +287,7 @@ drive_comm_result_t drive_commission_apply(drive_t *d, uint16_t *applied)
         return DRIVE_COMM_REFUSED; /* when the phase opened is unknown: no result is trusted */
     }
     *p = d->params_bg;
-    got = drive_comm_take(c, p);
+    got = (uint16_t)(drive_comm_take(c, p) | drive_comm_take_mechanics(c, p));
     if (got == 0u && !offset) {
         return DRIVE_COMM_REFUSED;
     }

@@ -1,9 +1,9 @@
 /*
  * Motor identification (the drive's commissioning, docs/commissioning.md): what its steps
  * share. Each step (ident_phase.c, ident_encoder.c, ident_resistance.c, ident_inductance.c,
- * ident_flux.c) runs in the control ISR, one call per period, and leaves the machine in a
- * known state for the next (current on, rotor aligned with the commanded angle); the
- * sequencer (commission.c) calls them in order.
+ * ident_flux.c, ident_mech.c) runs in the control ISR, one call per period, and leaves the machine
+ * in a known state for the next (current on, rotor aligned with the commanded angle); the sequencer
+ * (commission.c) calls them in order.
  *
  * Single-precision float in SI units (A, V, s, H, Wb; angles in turns) whatever the control
  * core's arithmetic; no double, no libm (the core's sine and square root); bounded work per

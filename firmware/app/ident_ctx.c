@@ -27,7 +27,8 @@ ident_status_t ident_fail(ident_ctx_t *x, int16_t reason)
 
 /* The measurement scale's share of a quantity's relative uncertainty: R and the inductances
  * are a commanded voltage (a duty times the measured DC link) over measured currents; psi_f a
- * voltage over the speed, which the encoder counts exactly; the encoder's quantities are counts. */
+ * voltage over the speed, which the encoder counts exactly; the encoder's quantities are counts;
+ * inertia and friction a torque, a measured current times the flux, over a speed. */
 static float ident_scale_uncertainty(const ident_machine_t *m, comm_quantity_t q)
 {
     switch (q) {
@@ -38,6 +39,9 @@ static float ident_scale_uncertainty(const ident_machine_t *m, comm_quantity_t q
         return ctl_sqrtf(m->u_vdc * m->u_vdc + m->u_current * m->u_current);
     case COMM_Q_PSI_F:
         return m->u_vdc;
+    case COMM_Q_INERTIA:
+    case COMM_Q_FRICTION: /* a torque (a current times psi_f, whose share the step adds) */
+        return m->u_current;
     default:
         return 0.0f;
     }

@@ -106,6 +106,15 @@ static void fw_motor_params(ctl_params_t *p)
 #if defined(SIXPHASE_MOTOR_POLE_PAIRS)
     p->pole_pairs = (int16_t)SIXPHASE_MOTOR_POLE_PAIRS;
 #endif
+#if defined(SIXPHASE_MOTOR_INERTIA_KG_M2)
+    p->inertia_kg_m2 = SIXPHASE_MOTOR_INERTIA_KG_M2;
+#endif
+#if defined(SIXPHASE_MOTOR_SPEED_KP_NMS)
+    p->speed_kp_nm_per_rad_s = SIXPHASE_MOTOR_SPEED_KP_NMS;
+#endif
+#if defined(SIXPHASE_MOTOR_SPEED_KI_NM)
+    p->speed_ki_nm_per_rad = SIXPHASE_MOTOR_SPEED_KI_NM;
+#endif
     (void)p;
 }
 

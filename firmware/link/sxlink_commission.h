@@ -15,16 +15,17 @@
     X(RESISTANCE, 2, "r", "stator resistance from DC current at two levels")                       \
     X(INDUCTANCE, 3, "ldq", "L_d and L_q from a square wave at standstill")                        \
     X(LXY, 4, "lxy", "L_xy from a square wave in the x-y plane")                                   \
-    X(FLUX, 5, "psi_f", "magnet flux at steady speed")
+    X(FLUX, 5, "psi_f", "magnet flux at steady speed")                                             \
+    X(MECH, 6, "mech", "friction at steady speeds, inertia from acceleration-deceleration runs")
 
-#define SXL_COMM_STEP_COUNT 6u
-#define SXL_COMM_STEPS_ALL 0x3Fu
+#define SXL_COMM_STEP_COUNT 7u
+#define SXL_COMM_STEPS_ALL 0x7Fu
 /* The phase check always runs first, and every step after the encoder's needs it: a mask
- * without bit PHASES, or with any of bits 2..5 but not ENCODER, is refused. The rule, for the
+ * without bit PHASES, or with any of bits 2..6 but not ENCODER, is refused. The rule, for the
  * drive (comm_mask_valid) and the host tools alike; mask an unsigned value. */
 #define SXL_COMM_STEPS_VALID(mask)                                                                 \
     (((mask) & ~SXL_COMM_STEPS_ALL) == 0u && ((mask)&0x1u) != 0u &&                                \
-     (((mask)&0x3Cu) == 0u || ((mask)&0x2u) != 0u))
+     (((mask)&0x7Cu) == 0u || ((mask)&0x2u) != 0u))
 
 /* Quantities: X(id, number, name, the step that identifies it, unit, scale, extra scale, extra's
  * meaning). The reply carries value and uncertainty as int32 of the SI value times scale, the
@@ -40,9 +41,11 @@
     X(LD, 4, "ld", INDUCTANCE, "H", 1.0e9, 1.0, "rotor motion during the test, encoder counts")    \
     X(LQ, 5, "lq", INDUCTANCE, "H", 1.0e9, 1.0, "rotor motion during the test, encoder counts")    \
     X(LXY, 6, "lxy", LXY, "H", 1.0e9, 1.0, "rotor motion during the test, encoder counts")         \
-    X(PSI_F, 7, "psi_f", FLUX, "Wb", 1.0e6, 10.0, "test speed, r/min")
+    X(PSI_F, 7, "psi_f", FLUX, "Wb", 1.0e6, 10.0, "test speed, r/min")                             \
+    X(INERTIA, 8, "inertia", MECH, "kg m^2", 1.0e6, 1.0, "acceleration runs measured")             \
+    X(FRICTION, 9, "friction", MECH, "N m s/rad", 1.0e7, 1.0e6, "Coulomb friction, N m")
 
-#define SXL_COMM_QUANTITY_COUNT 8u
+#define SXL_COMM_QUANTITY_COUNT 10u
 
 /* What an apply (the drive's COMMISSION_APPLY, the host tool's parameter file) may not mix
  * (docs/commissioning.md section 3.1). Each of R, L_d, L_q, L_xy and psi_f is taken when its

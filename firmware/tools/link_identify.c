@@ -7,16 +7,17 @@
  * terminal, reads every result (COMMISSION_RESULT) and prints one line per quantity with its
  * 1-sigma uncertainty and quality; --apply asks the drive to take the identified values
  * (COMMISSION_APPLY); --out writes them as the firmware's motor parameter file
- * (motor_params_file.h: OK results only) once the sequence is done; after a failure it leaves
+ * (motor_params_file.h: OK results only, and the speed gains designed for an identified
+ * inertia as the drive's APPLY designs them) once the sequence is done; after a failure it leaves
  * the file as it was, and a file that cannot be written is refused before the start. LIST:
- * phases,encoder,r,ldq,lxy,psi_f (the phase check and, for r..psi_f, the encoder are required, as
- * the drive requires). FRACTION: the test current as a fraction of rated, 0.1..0.8 (default 0.4).
- * Trustworthy or refused (docs/commissioning.md section 3.1): a selected quantity that is not
- * ok (poor, failed) refuses the apply and the file, unless --partial asks for the ok ones; then
- * the drive refuses a set that mixes contradicting values (MIXED_SET), and the file is held to
- * the same rule against the reference machine its missing entries stand for.
- * Exit 0 when the sequence finished with every step done and what was asked for is applied and
- * written, 1 when it failed, was refused or timed out, 2 for bad usage.
+ * phases,encoder,r,ldq,lxy,psi_f,mech (the phase check and, for r..mech, the encoder are
+ * required, as the drive requires). FRACTION: the test current as a fraction of rated, 0.1..0.8
+ * (default 0.4). Trustworthy or refused (docs/commissioning.md section 3.1): a selected quantity
+ * that is not ok (poor, failed) refuses the apply and the file, unless --partial asks for the ok
+ * ones; then the drive refuses a set that mixes contradicting values (MIXED_SET), and the file is
+ * held to the same rule against the reference machine its missing entries stand for. Exit 0 when
+ * the sequence finished with every step done and what was asked for is applied and written, 1 when
+ * it failed, was refused or timed out, 2 for bad usage.
  */
 #define _DEFAULT_SOURCE /* usleep */
 
@@ -27,6 +28,7 @@
 #include <unistd.h>
 
 #include "ctl_machine.h"
+#include "ctl_params.h"
 #include "link_tool.h"
 #include "motor_params_file.h"
 
@@ -98,7 +100,7 @@ static int identify_parse(int argc, char **argv, identify_request_t *r)
             if (identify_steps(v, &r->mask) != 0) {
                 return fail(EXIT_USAGE,
                             "identify: bad --steps '%s' (all or a list of "
-                            "phases,encoder,r,ldq,lxy,psi_f)",
+                            "phases,encoder,r,ldq,lxy,psi_f,mech)",
                             v);
             }
         } else if (strcmp(argv[i], "--current") == 0) {
@@ -120,8 +122,8 @@ static int identify_parse(int argc, char **argv, identify_request_t *r)
         i++;
     }
     if (!SXL_COMM_STEPS_VALID((unsigned)r->mask)) { /* the drive's own rule */
-        return fail(EXIT_USAGE, "identify: --steps needs phases, and encoder before r, ldq, lxy "
-                                "or psi_f");
+        return fail(EXIT_USAGE, "identify: --steps needs phases, and encoder before r, ldq, lxy, "
+                                "psi_f or mech");
     }
     return 0;
 }
@@ -178,9 +180,10 @@ int identify_result_reply(const sxl_frame_t *reply, uint16_t q, identify_results
 {
     motor_params_t *m = &res->m;
     static const motor_param_t file_id[SXL_COMM_QUANTITY_COUNT] = {
-        MOTOR_PARAM_COUNT, MOTOR_PARAM_POLE_PAIRS, MOTOR_PARAM_ENCODER_OFFSET,
-        MOTOR_PARAM_R,     MOTOR_PARAM_LD,         MOTOR_PARAM_LQ,
-        MOTOR_PARAM_LXY,   MOTOR_PARAM_PSI_F};
+        MOTOR_PARAM_COUNT,   MOTOR_PARAM_POLE_PAIRS, MOTOR_PARAM_ENCODER_OFFSET,
+        MOTOR_PARAM_R,       MOTOR_PARAM_LD,         MOTOR_PARAM_LQ,
+        MOTOR_PARAM_LXY,     MOTOR_PARAM_PSI_F,      MOTOR_PARAM_INERTIA,
+        MOTOR_PARAM_FRICTION};
     const uint16_t *r = &reply->payload[1];
     double scale, value, sigma, extra;
     if (reply->payload[0] != SXL_OK) {
@@ -250,6 +253,26 @@ static int identify_apply(int fd, const options_t *o, const identify_request_t *
                     req->out ? req->out : "");
     }
     return (rc != 0) ? rc : identify_apply_reply(&reply);
+}
+
+/* The speed PI's gains for an identified inertia, as the drive's APPLY designs them
+ * (ctl_speed_gains_from_inertia), with the pole pairs the count confirmed or the reference's. */
+static void identify_speed_gains(motor_params_t *m)
+{
+    ctl_params_t p;
+    if ((m->have & (1u << MOTOR_PARAM_INERTIA)) == 0u) {
+        return;
+    }
+    ctl_params_default(&p);
+    if ((m->have & (1u << MOTOR_PARAM_POLE_PAIRS)) != 0u) {
+        p.pole_pairs = (int16_t)m->value[MOTOR_PARAM_POLE_PAIRS];
+    }
+    p.inertia_kg_m2 = (float)m->value[MOTOR_PARAM_INERTIA];
+    ctl_speed_gains_from_inertia(&p);
+    motor_params_set(m, MOTOR_PARAM_SPEED_KP, (double)p.speed_kp_nm_per_rad_s, 0.0,
+                     "from the inertia");
+    motor_params_set(m, MOTOR_PARAM_SPEED_KI, (double)p.speed_ki_nm_per_rad, 0.0,
+                     "from the inertia");
 }
 
 static int identify_write(const char *path, const motor_params_t *m)
@@ -387,6 +410,7 @@ static int identify_finish(int fd, const options_t *o, const identify_request_t 
         rc = identify_result(fd, o, q, &res);
     }
     if (rc == 0) {
+        identify_speed_gains(&res.m);
         rc = identify_check(&res.m, req);
     }
     if (rc == 0 && done && !req->partial) {

@@ -30,7 +30,15 @@
     X(MOTOR_PARAM_POLE_PAIRS, "POLE_PAIRS", "pole pairs (checked)", "", 1.0, 64.0, 1)              \
     X(MOTOR_PARAM_ENCODER_OFFSET, "ENCODER_OFFSET",                                                \
       "electrical angle of the encoder index to the d axis, 2^32 = one turn", "", 0.0,             \
-      4294967295.0, 1)
+      4294967295.0, 1)                                                                             \
+    X(MOTOR_PARAM_INERTIA, "INERTIA_KG_M2", "rotor and load inertia", "kg m^2", 1e-6, 1000.0, 0)   \
+    X(MOTOR_PARAM_FRICTION, "FRICTION_NMS",                                                        \
+      "viscous friction (reported; the controller has no term for it)", "N m s/rad", 0.0, 1000.0,  \
+      0)                                                                                           \
+    X(MOTOR_PARAM_SPEED_KP, "SPEED_KP_NMS", "speed PI gain, per mechanical rad/s", "N m s/rad",    \
+      0.0, 1e4, 0)                                                                                 \
+    X(MOTOR_PARAM_SPEED_KI, "SPEED_KI_NM", "speed PI integral gain, per mechanical rad",           \
+      "N m/rad", 0.0, 1e6, 0)
 
 #define MOTOR_PARAM_ENUM(id, name, text, unit, lo, hi, integer) id,
 typedef enum { MOTOR_PARAM_LIST(MOTOR_PARAM_ENUM) MOTOR_PARAM_COUNT } motor_param_t;

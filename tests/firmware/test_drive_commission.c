@@ -84,7 +84,7 @@ static void test_requests_checked_and_refused_outside_ready(void **state)
     calibrate();
     /* bad masks and currents */
     assert_int_equal(drive_request_commission(&d, 0u, 400u), DRIVE_COMM_INVALID);
-    assert_int_equal(drive_request_commission(&d, 0x40u | 0x3Fu, 400u), DRIVE_COMM_INVALID);
+    assert_int_equal(drive_request_commission(&d, 0x80u | 0x7Fu, 400u), DRIVE_COMM_INVALID);
     assert_int_equal(drive_request_commission(&d, 0x3Eu, 400u), DRIVE_COMM_INVALID); /* no phases */
     assert_int_equal(drive_request_commission(&d, 0x05u, 400u),
                      DRIVE_COMM_INVALID); /* no encoder */

@@ -629,7 +629,7 @@ static void test_commission_start_validates(void **state)
     sxl_put_u16(&req.payload[SXL_CC_CURRENT], 400u);
     assert_int_equal(send(SXL_CMD_COMMISSION_START), SXL_ERR_REFUSED); /* calibrating */
     calibrate();
-    req.payload[SXL_CC_MASK] = 0x7Fu; /* an unknown step */
+    req.payload[SXL_CC_MASK] = 0xFFu; /* an unknown step */
     assert_int_equal(send(SXL_CMD_COMMISSION_START), SXL_ERR_VALUE);
     req.payload[SXL_CC_MASK] = 0x05u; /* R without the encoder step */
     assert_int_equal(send(SXL_CMD_COMMISSION_START), SXL_ERR_VALUE);

@@ -172,6 +172,8 @@ static void good_results(drive_results_t *d)
     d->value[5] = 62000000; /* L_q */
     d->value[6] = 10000000; /* L_xy */
     d->value[7] = 200000;   /* psi_f, Wb */
+    d->value[8] = 10000;    /* inertia, kg m^2 */
+    d->value[9] = 10000;    /* friction, N m s/rad */
     d->pole_pairs = 3;
     for (int q = 0; q < (int)SXL_COMM_QUANTITY_COUNT; q++) {
         d->sigma[q] = 10;

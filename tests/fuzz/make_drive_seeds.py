@@ -42,7 +42,7 @@ def commission(mask, permille=400):
 
 def results():
     out = frame(COMM_STATUS) + bytes([BACKGROUND_TAG, 0])
-    for q in range(8):
+    for q in range(10):
         out += frame(COMM_RESULT, bytes([q]))
     return out + frame(COMM_APPLY) + bytes([BACKGROUND_TAG, 0])
 
@@ -96,6 +96,10 @@ SEEDS = {
                                                           0, 0, 0]) + frame(COMM_APPLY),
     # the whole sequence, then its results read and applied
     "seed-plant-commission-all": LONG_START + commission(0x3F) + plant(1000, homed=False) + results(),
+    # the mechanics' step after the phase check and the encoder (the probe, the friction points,
+    # the runs): 14.4 s + 7 s of plant
+    "seed-plant-commission-mech": LONG_START + commission(0x43) + plant(900, homed=False)
+    + results(),
     "seed-plant-commission-r": LONG_START + commission(0x07, 800) + plant(500, homed=False) + results(),
     "seed-plant-commission-ldq": LONG_START + commission(0x1B, 200) + plant(600, homed=False) + results(),
     "seed-plant-commission-stop": LONG_START + commission(0x3F) + plant(12, homed=False) + frame(STOP)

@@ -142,7 +142,7 @@ static void test_identify_apply_and_file(void **state)
     }
     stop(board);
     assert_non_null(strstr(out, "commissioning done"));
-    assert_non_null(strstr(out, "applied: quantities 0x00FC"));
+    assert_non_null(strstr(out, "applied: quantities 0x01FC")); /* the machine and the inertia */
     assert_int_equal(motor_params_read(path, &m, err, sizeof err), 0);
     assert_true(m.have == (1u << MOTOR_PARAM_COUNT) - 1u);
     assert_true(m.value[MOTOR_PARAM_R] > 2.6 * 0.97 && m.value[MOTOR_PARAM_R] < 2.6 * 1.03);
@@ -152,6 +152,11 @@ static void test_identify_apply_and_file(void **state)
         const double deg = m.value[MOTOR_PARAM_ENCODER_OFFSET] * 360.0 / 4294967296.0;
         assert_true(deg > 75.0 && deg < 79.0);
     }
+    /* the inertia (the plant's 0.01 kg m^2) and the speed gains designed for it */
+    assert_true(m.value[MOTOR_PARAM_INERTIA] > 0.01 * 0.95 &&
+                m.value[MOTOR_PARAM_INERTIA] < 0.01 * 1.05);
+    assert_true(m.value[MOTOR_PARAM_SPEED_KP] > 1.5 * 0.95 &&
+                m.value[MOTOR_PARAM_SPEED_KP] < 1.5 * 1.05);
     /* the file on the same machine: the drive holds 1500 r/min at rated load */
     {
         char *const with[] = {(char *)SIXPHASE_SIM_EXE,

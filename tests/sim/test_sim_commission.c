@@ -140,7 +140,8 @@ static void check_plant(const plant_t *p, int arith)
     assert_int_equal(r.comm.apply_result, 0);
     assert_int_equal(r.comm.applied, (1u << SXL_COMM_Q_OFFSET) | (1u << SXL_COMM_Q_R) |
                                          (1u << SXL_COMM_Q_LD) | (1u << SXL_COMM_Q_LQ) |
-                                         (1u << SXL_COMM_Q_LXY) | (1u << SXL_COMM_Q_PSI_F));
+                                         (1u << SXL_COMM_Q_LXY) | (1u << SXL_COMM_Q_PSI_F) |
+                                         (1u << SXL_COMM_Q_INERTIA));
 }
 
 static void test_five_plants_fixed(void **state)
@@ -512,7 +513,9 @@ static void test_open_phase_checked_again_after_clear(void **state)
 /* Phase C opens during each step of the sequence (the reference machine; the steps run 0 to
  * 0.048 s, to 14.4 s, 17.2 s, 18.2 s, 19.2 s and 22.7 s): every step watches, the sequence ends
  * FAILED with reason open_phase within 100 ms, and APPLY takes nothing (results measured before
- * the opening are not trusted either: when it opened is unknown). Before, only the first 45 ms
+ * the opening are not trusted either: when it opened is unknown); the mechanics' step (22.7 to
+ * 29.6 s) likewise in its runs (while its speed loop holds a speed only the friction's few mA
+ * flow, and an opening there is found at the runs, 0.4 s later). Before, only the first 45 ms
  * were watched: the sequence ended "done" with R, L_q and L_xy off, or failed on load_torque. */
 /* A weak magnet (psi_f 0.3 and 0.45 x the reference): the speed loop's gain and the test current's
  * torque come from the parameter set's flux, so the rotor reaches the flux step's speed late, and
@@ -595,7 +598,7 @@ static void test_small_load_lag_taken_out(void **state)
 
 static void test_open_phase_in_each_step(void **state)
 {
-    static const double opens_s[SXL_COMM_STEP_COUNT] = {0.02, 1.0, 15.5, 17.7, 18.7, 20.5};
+    static const double opens_s[SXL_COMM_STEP_COUNT] = {0.02, 1.0, 15.5, 17.7, 18.7, 20.5, 28.8};
     int step;
     (void)state;
     for (step = 0; step < (int)SXL_COMM_STEP_COUNT; step++) {
@@ -712,6 +715,149 @@ static void test_droop_and_amplitude(void **state)
     }
 }
 
+/* ---- inertia and friction (issue 25, item 4) ---- */
+
+#define MECH_STEPS                                                                                 \
+    ((1u << SXL_COMM_STEP_PHASES) | (1u << SXL_COMM_STEP_ENCODER) | (1u << SXL_COMM_STEP_MECH))
+#define REF_J 0.01  /* the reference machine's, kg m^2 */
+#define REF_B 0.001 /* the plant's default viscous friction, N m s/rad */
+
+/* The mechanics' step alone (phase check and encoder before it) on a plant with inertia j and
+ * friction b, the controller keeping the reference machine. */
+static void run_mech(double j, double b, int arith, sim_result_t *r)
+{
+    sim_config_t c;
+    config(&c, NULL, arith);
+    c.plant.j_kgm2 = j;
+    c.plant.b_nms = b;
+    c.commission_steps = (int)MECH_STEPS;
+    run(&c, r);
+}
+
+/* The gains ctl_speed_gains_from_inertia designs (ctl_params.h), in double: kp = J w_c,
+ * ki = kp w_c / 4, w_c = 150 rad/s unless kp would pass 90 per unit (3 pole pairs). */
+static void designed_gains(double j, double *kp, double *ki, double *wc)
+{
+    const double kp_max = 90.0 * 3.0 * 17.188733853924696 / 942.47779607693797;
+    *wc = (j * 150.0 > kp_max) ? kp_max / j : 150.0;
+    *kp = j * *wc;
+    *ki = *kp * *wc / 4.0;
+}
+
+/* J within 5 %, B within 20 % or 2e-4 N m s/rad, on plants with 0.2 and 10 times the reference
+ * inertia and 0, 1 and 10 times its friction, in both arithmetics; the inertia applied with the
+ * speed gains designed for it. Before: no such step (the mask was refused, nothing measured). */
+static void test_inertia_and_friction_over_the_range(void **state)
+{
+    static const double js[] = {0.2 * REF_J, 10.0 * REF_J};
+    static const double bs[] = {0.0, REF_B, 10.0 * REF_B};
+    size_t a, k, m;
+    (void)state;
+    for (a = 0; a < 2; a++) {
+        for (k = 0; k < sizeof js / sizeof js[0]; k++) {
+            for (m = 0; m < sizeof bs / sizeof bs[0]; m++) {
+                sim_result_t r;
+                const double *v = r.comm.value;
+                double kp, ki, wc;
+                run_mech(js[k], bs[m], (int)a, &r);
+                print_message(
+                    "%-5s J %.3g B %.3g: J %+.2f %% (sigma %.2f %%), B %+.2e (sigma %.1e, "
+                    "Tc %+.1e N m), kp %.3g ki %.3g (%.1f s)\n",
+                    r.arith, js[k], bs[m], 100.0 * (v[SXL_COMM_Q_INERTIA] / js[k] - 1.0),
+                    100.0 * r.comm.sigma[SXL_COMM_Q_INERTIA] / js[k],
+                    v[SXL_COMM_Q_FRICTION] - bs[m], r.comm.sigma[SXL_COMM_Q_FRICTION],
+                    r.comm.extra[SXL_COMM_Q_FRICTION], r.comm.speed_kp, r.comm.speed_ki,
+                    r.comm.duration_s);
+                assert_int_equal(r.comm.state, SXL_COMM_STATE_DONE);
+                assert_int_equal(r.fault, 0);
+                assert_int_equal(r.comm.quality[SXL_COMM_Q_INERTIA], SXL_COMM_QUALITY_OK);
+                assert_int_equal(r.comm.quality[SXL_COMM_Q_FRICTION], SXL_COMM_QUALITY_OK);
+                assert_true(fabs(v[SXL_COMM_Q_INERTIA] / js[k] - 1.0) < 0.05);
+                assert_true(fabs(v[SXL_COMM_Q_FRICTION] - bs[m]) < fmax(0.2 * bs[m], 2e-4));
+                assert_true(r.comm.sigma[SXL_COMM_Q_INERTIA] > 0.0);
+                assert_true((r.comm.applied & (1u << SXL_COMM_Q_INERTIA)) != 0u);
+                designed_gains(v[SXL_COMM_Q_INERTIA], &kp, &ki, &wc);
+                assert_true(fabs(r.comm.speed_kp / kp - 1.0) < 1e-4);
+                assert_true(fabs(r.comm.speed_ki / ki - 1.0) < 1e-4);
+            }
+        }
+    }
+}
+
+/* A speed step at 1000 r/min, no load, the product's DDC: overshoot (%) and the time until the
+ * speed (2 ms means of the plant's: the light rotor's speed carries +-0.6 r/min of the torque's
+ * ripple) stays within 5 % of the step. */
+static void speed_step(double j, double step_rpm, double kp, double ki, double *overshoot,
+                       double *settle_s)
+{
+    const double to_rpm = 60.0 / (2.0 * 3.14159265358979323846);
+    const long before = 10000, after = 15000, block = 20;
+    sim_config_t c;
+    sim_result_t r;
+    sim_run_t rs;
+    double peak = 0.0, sum = 0.0;
+    long k, last_out = 0;
+    config(&c, NULL, 0);
+    c.scenario = SIM_SCEN_STEADY;
+    c.speed_rpm = 1000.0;
+    c.load_nm = 0.0;
+    c.duration_s = (double)(before + after) * 1e-4;
+    c.plant.j_kgm2 = j;
+    c.ctl.j_kgm2 = j;
+    c.ctl.speed_kp = kp;
+    c.ctl.speed_ki = ki;
+    start_stepwise(&rs, &c, &r);
+    for (k = 0; k < before + after; k++) {
+        if (k == before) {
+            rs.ops->set_speed_rpm(1000.0 + step_rpm);
+        }
+        assert_int_equal(sim_loop_period(&rs, &r, k), 0);
+        sum += rs.x.omega_m * to_rpm;
+        if (k >= before && (k + 1) % block == 0) {
+            const double rise = sum / (double)block - 1000.0;
+            peak = fmax(peak, rise);
+            last_out = (fabs(rise - step_rpm) > 0.05 * step_rpm) ? k + 1 : last_out;
+        }
+        sum = ((k + 1) % block == 0) ? 0.0 : sum;
+    }
+    sim_teardown(&rs, true);
+    *overshoot = 100.0 * (peak - step_rpm) / step_rpm;
+    *settle_s = (double)(last_out - before) * 1e-4;
+}
+
+/* The speed loop on 0.2 and 10 times the reference inertia: the gains designed from the
+ * identified inertia against today's fixed ones (1.5 N m s/rad, 60 N m/rad). The design (a
+ * double pole at -w_c/2, a zero at -w_c/4) overshoots 13.6 % and settles within 5 % after
+ * 8.3 / w_c; the targets (docs/commissioning.md): overshoot at most 20 %, settling within
+ * 10 / w_c, at both inertias. The fixed gains meet neither on the heavy rotor. */
+static void test_speed_step_with_designed_gains(void **state)
+{
+    static const double js[] = {0.2 * REF_J, 10.0 * REF_J};
+    /* steps no gain here turns into more than 7 N m (the torque limit): linear responses */
+    static const double steps_rpm[] = {40.0, 10.0};
+    size_t k;
+    (void)state;
+    for (k = 0; k < sizeof js / sizeof js[0]; k++) {
+        sim_result_t r;
+        double kp, ki, wc, os_d, ts_d, os_f, ts_f;
+        run_mech(js[k], REF_B, 0, &r);
+        assert_int_equal(r.comm.quality[SXL_COMM_Q_INERTIA], SXL_COMM_QUALITY_OK);
+        designed_gains(r.comm.value[SXL_COMM_Q_INERTIA], &kp, &ki, &wc);
+        speed_step(js[k], steps_rpm[k], r.comm.speed_kp, r.comm.speed_ki, &os_d, &ts_d);
+        speed_step(js[k], steps_rpm[k], 1.5, 60.0, &os_f, &ts_f);
+        print_message("J %.3g kg m^2, %.0f r/min step: designed kp %.3g ki %.4g (w_c %.1f rad/s): "
+                      "overshoot %.1f %%, settling %.1f ms; fixed kp 1.5 ki 60: overshoot %.1f %%, "
+                      "settling %.1f ms\n",
+                      js[k], steps_rpm[k], r.comm.speed_kp, r.comm.speed_ki, wc, os_d, 1e3 * ts_d,
+                      os_f, 1e3 * ts_f);
+        assert_true(os_d < 20.0);
+        assert_true(ts_d < 10.0 / wc);
+        if (js[k] > REF_J) {
+            assert_true(os_f > 20.0 && ts_f > 10.0 / wc);
+        }
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -733,6 +879,8 @@ int main(void)
         cmocka_unit_test(test_weak_magnet),
         cmocka_unit_test(test_small_load_lag_taken_out),
         cmocka_unit_test(test_resistance_ripple_is_not_a_sign_change),
+        cmocka_unit_test(test_inertia_and_friction_over_the_range),
+        cmocka_unit_test(test_speed_step_with_designed_gains),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
