@@ -342,7 +342,8 @@ SIXPHASE_RAMFUNC static void open_phase_restart(ctl_protect_t *p)
 }
 
 /* Mean |i| per phase over a window of at least CTL_PROTECT_OPEN_PHASE_WINDOW periods that also
- * spans one electrical turn: a healthy phase then carries current for part of it whatever the
+ * spans one electrical turn made while current flows (six phases' |i| summing to at least three
+ * times the minimum mean): a healthy phase then carries current for part of it whatever the
  * current vector's angle, while near standstill (a reversal's zero crossing) one phase may
  * rightly carry none for a long time. A window that reaches 4 times its length without a turn
  * (below about 125 r/min at 10 kHz, 3 pole pairs) is dropped unjudged. Phases that carry no
@@ -351,14 +352,22 @@ SIXPHASE_RAMFUNC static uint16_t check_open_phase(ctl_protect_t *p, const ctl_pr
                                                   const ctl_protect_input_t *in)
 {
     int16_t k;
+    ctl_q flowing = CTL_Q(0.0);
     if (!in->running) {
         open_phase_restart(p);
         return 0u;
     }
     for (k = 0; k < 6; k++) { /* sums of |i| / 64: 1,600 periods at 3 pu stay in range */
-        p->open_sum[k] = ctl_add(p->open_sum[k], sixty_fourth(ctl_abs(in->i_phase[k])));
+        const ctl_q a = sixty_fourth(ctl_abs(in->i_phase[k]));
+        p->open_sum[k] = ctl_add(p->open_sum[k], a);
+        flowing = ctl_add(flowing, a);
     }
-    p->open_turns = ctl_add(p->open_turns, ctl_abs(ctl_mul(in->omega_e, l->ts_turns)));
+    /* the turn counts only while current flows: a vector that stops (the current switched off
+     * while the rotor coasts on) turns no longer, and a phase's share from before would be
+     * judged against a turn it did not make (commissioning's mechanics step: OPEN_PHASE) */
+    if (flowing >= ctl_mul(l->open_phase_min_mean, CTL_Q(0.046875))) { /* 3 x min / 64 */
+        p->open_turns = ctl_add(p->open_turns, ctl_abs(ctl_mul(in->omega_e, l->ts_turns)));
+    }
     p->open_count++;
     if (p->open_count < CTL_PROTECT_OPEN_PHASE_WINDOW || p->open_turns < CTL_Q(1.0)) {
         if (p->open_count >= 4 * CTL_PROTECT_OPEN_PHASE_WINDOW) {

@@ -193,21 +193,31 @@ static ident_status_t enc_finish(ident_ctx_t *x, ident_encoder_t *s)
     const float r = enc_lag_ratio(x);
     /* forward at I: offset + a + b, backward: offset + a - b, forward at I / 2: offset +
      * r (a + b), with b friction's lag and a a load's (a constant torque's lag goes as one over
-     * the stiffness, enc_lag_ratio). A small load's lag is taken out of the offset: offset =
-     * (r mf - fwd2) / (r - 1); one above ENC_LOAD_LAG_TURNS fails the step (the later steps
-     * would be dragged too). */
+     * the stiffness, enc_lag_ratio). A load's lag that stands out of its scatter (3 sigma) is
+     * taken out of the offset, offset = (r mf - fwd2) / (r - 1), and above ENC_LOAD_LAG_TURNS
+     * fails the step (the later steps would be dragged too); one that does not is left in. */
     const float lag = (ident_blocks_mean(&s->fwd2) - mf) / (r - 1.0f); /* a + b */
     const float load_lag = lag - 0.5f * (mf - mb);
     const float sf = ident_blocks_sigma(&s->fwd);
+    const float sb = ident_blocks_sigma(&s->bwd);
     const float s2 = ident_blocks_sigma(&s->fwd2);
-    /* the scatter of (r mf - fwd2) / (r - 1), and the ratio's own uncertainty (the set's L_d,
-     * L_q and psi_f, not yet measured: taken as the reluctance term's whole size) */
-    const float random = ctl_sqrtf(r * r * sf * sf + s2 * s2) / (r - 1.0f);
-    const float ratio_error = lag * (2.0f - r) / (r - 1.0f);
-    const float sigma = ctl_sqrtf(random * random + ratio_error * ratio_error);
+    /* the load lag's own scatter: a heavy, undamped rotor swings about the half-current sweep */
+    const float s_lag = ctl_sqrtf(r * r * sf * sf + s2 * s2) / (r - 1.0f);
+    const bool significant = load_lag > 3.0f * s_lag || load_lag < -3.0f * s_lag;
+    const bool loaded =
+        significant && (load_lag > ENC_LOAD_LAG_TURNS || load_lag < -ENC_LOAD_LAG_TURNS);
+    float sigma;
     float absolute;
-    const bool loaded = load_lag > ENC_LOAD_LAG_TURNS || load_lag < -ENC_LOAD_LAG_TURNS;
-    x->offset_turns = 0.5f * (mf + mb) - load_lag;
+    if (significant) {
+        /* (r mf - fwd2) / (r - 1)'s scatter, and the ratio's own uncertainty (the set's L_d, L_q
+         * and psi_f, not yet measured: taken as the reluctance term's whole effect) */
+        const float ratio_error = lag * (2.0f - r) / (r - 1.0f);
+        sigma = ctl_sqrtf(s_lag * s_lag + ratio_error * ratio_error);
+        x->offset_turns = 0.5f * (mf + mb) - load_lag;
+    } else { /* no load to be seen (one below 3 s_lag may hide: docs/commissioning.md 2.2) */
+        sigma = 0.5f * ctl_sqrtf(sf * sf + sb * sb);
+        x->offset_turns = 0.5f * (mf + mb);
+    }
     x->offset_known = true;
     x->offset_abs = x->m.hal_offset +
                     (uint32_t)(int32_t)(ident_wrap_half(x->offset_turns) * 2147483648.0f) * 2u;

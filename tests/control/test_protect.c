@@ -415,6 +415,36 @@ static void slow_stationary_vector(ctl_protect_input_t *in, int32_t n)
     in->omega_e = ctl_from_float((float)(w / CTL_BASE_OMEGA_RAD_S));
 }
 
+/* Commissioning's mechanics step: the current vector stands with phase A at right angles to it
+ * (0.2 s, the rotor at rest), then the current is switched off while the rotor coasts at
+ * 300 r/min. The rotor's turn is not the current's: before, the window completed its turn on the
+ * coasting rotor and judged the standing part (OPEN_PHASE, phase A); now a turn counts only while
+ * current flows. */
+static void stand_then_coast(ctl_protect_input_t *in, int32_t n)
+{
+    static const double deg[6] = {0.0, 120.0, 240.0, 30.0, 150.0, 270.0};
+    int k;
+    for (k = 0; k < 6; k++) { /* at rest at 90 degrees: phase A carries nothing */
+        in->i_phase[k] = amps(7.0 * cos((90.0 - deg[k]) * TEST_PI / 180.0));
+    }
+    in->omega_e = CTL_Q(0.0);
+    if (n >= 2000) {
+        in->omega_e =
+            ctl_from_float((float)(300.0 / 60.0 * 2.0 * TEST_PI * 3.0 / CTL_BASE_OMEGA_RAD_S));
+        for (k = 0; k < 6; k++) {
+            in->i_phase[k] = amps((k % 2 == 0) ? 0.01 : -0.01); /* the sensors' noise */
+        }
+    }
+}
+
+static void test_open_phase_needs_the_current_to_turn(void **state)
+{
+    (void)state;
+    assert_int_equal(periods_to_detect(stand_then_coast, CTL_FAULT_OPEN_PHASE,
+                                       20 * CTL_PROTECT_OPEN_PHASE_WINDOW),
+                     -1);
+}
+
 static void test_open_phase_not_judged_without_a_turn(void **state)
 {
     (void)state;
@@ -626,6 +656,7 @@ int main(void)
         cmocka_unit_test_setup(test_stopped_encoder_under_torque, setup),
         cmocka_unit_test_setup(test_open_phase, setup),
         cmocka_unit_test_setup(test_open_phase_not_judged_without_a_turn, setup),
+        cmocka_unit_test_setup(test_open_phase_needs_the_current_to_turn, setup),
         cmocka_unit_test_setup(test_open_phase_names_the_phase, setup),
         cmocka_unit_test_setup(test_isolated_phase_is_not_judged, setup),
         cmocka_unit_test_setup(test_accepted_fault_records_again, setup),
