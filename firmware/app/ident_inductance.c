@@ -1,7 +1,10 @@
 /* Identification steps 4 and 5, the inductances: see ident_inductance.h. */
 #include "ident_inductance.h"
 
-#define IND_SETTLE_S 0.1f
+#define IND_SETTLE_S 0.1f     /* at least */
+#define IND_SETTLE_MAX_S 2.0f /* at most: a rotor still swinging is then measured anyway */
+#define IND_STILL_S 0.05f     /* the rotor within IND_STILL_COUNTS this long: still */
+#define IND_STILL_COUNTS 2
 #define IND_HALF_PERIODS 10u    /* control periods per half square wave (500 Hz at 10 kHz) */
 #define IND_BLOCK_WAVES 10u     /* square waves per estimate */
 #define IND_WAVES 200           /* square waves per axis */
@@ -240,18 +243,40 @@ static ident_status_t ind_end_axis(ident_ctx_t *x, ident_inductance_t *s)
     return IDENT_RUNNING;
 }
 
+/* Settling before an axis: at least IND_SETTLE_S, and until the rotor has stayed within
+ * IND_STILL_COUNTS for IND_STILL_S (at most IND_SETTLE_MAX_S): the swing a step change of the
+ * current leaves dies away with the damping the encoder step sized from the set's inertia, ten
+ * times slower on a rotor ten times heavier (issue 25's grid: rotor_moved). The axis' bias
+ * voltage is averaged over the settling's second half while the rotor is still. */
+static bool ind_settled(ident_ctx_t *x, ident_inductance_t *s, const ident_input_t *in)
+{
+    const uint32_t n = ident_periods(x, IND_SETTLE_S);
+    const int32_t d = in->position - s->still_ref;
+    if (x->t == 0u || d > IND_STILL_COUNTS || d < -IND_STILL_COUNTS) {
+        s->still_ref = in->position;
+        s->still_n = 0;
+    } else {
+        s->still_n++;
+    }
+    if (x->t <= n / 2u || s->still_n == 0) {
+        s->u_sum = 0.0f;
+        s->u_n = 0;
+    } else {
+        s->u_sum += ind_output(x, s->axis);
+        s->u_n++;
+    }
+    if (x->t >= ident_periods(x, IND_SETTLE_MAX_S) && s->u_n == 0) {
+        s->u_sum = ind_output(x, s->axis); /* swinging throughout: this period's output */
+        s->u_n = 1;
+    }
+    return (x->t >= n && s->still_n >= (int32_t)ident_periods(x, IND_STILL_S)) ||
+           x->t >= ident_periods(x, IND_SETTLE_MAX_S);
+}
+
 ident_status_t ident_inductance_step(ident_ctx_t *x, ident_inductance_t *s, const ident_input_t *in)
 {
     if (x->phase == IN_SETTLE) {
-        const uint32_t n = ident_periods(x, IND_SETTLE_S);
-        if (x->t <= n / 2u) {
-            s->u_sum = 0.0f;
-            s->u_n = 0;
-        } else {
-            s->u_sum += ind_output(x, s->axis);
-            s->u_n++;
-        }
-        if (x->t >= n) {
+        if (ind_settled(x, s, in)) {
             ind_start_axis(x, s, in);
         }
         return IDENT_RUNNING;

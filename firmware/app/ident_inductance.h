@@ -50,6 +50,8 @@ typedef struct {
     float u_sum;   /* the axis' regulator output over the settling's second half */
     int32_t u_n;
     ident_blocks_t l[3]; /* H: d, q, and x and y pooled */
+    int32_t still_ref;   /* settling: the position the rotor has stayed near */
+    int32_t still_n;     /* settling: periods it has stayed within IND_STILL_COUNTS of it */
     int32_t p_start;     /* position at the axis' start */
     int32_t moved;       /* largest |position - p_start| during the axis */
 } ident_inductance_t;
