@@ -110,7 +110,8 @@ typedef struct {
     X(CTL_PARAM_FLUX_TIE_BAND, "DDC flux tie band outside 0..1 duty level")                        \
     X(CTL_PARAM_PULSE_PATTERN, "unknown pulse pattern")                                            \
     X(CTL_PARAM_OPEN_PHASE, "open phase outside -1..5 or unknown post-fault strategy")             \
-    X(CTL_PARAM_LIGHT_LOAD_CURRENT, "light-load current outside 0..1000 A")
+    X(CTL_PARAM_LIGHT_LOAD_CURRENT,                                                                \
+      "light-load current outside 0 A..the torque limit's current (limit / 3 Pn psi_f)")
 
 #define CTL_PARAM_ERROR_ENUM(code, text) code,
 typedef enum { CTL_PARAM_ERRORS(CTL_PARAM_ERROR_ENUM) CTL_PARAM_ERROR_COUNT } ctl_param_error_t;

@@ -7,6 +7,7 @@
 #include <cmocka.h>
 
 #include "ctl_flux_ref.h"
+#include "ctl_params.h"
 #include "ctl_pu.h"
 #include "ctl_speed_pi.h"
 #include "test_support.h"
@@ -185,6 +186,37 @@ static void test_flux_ref_light_load_floor(void **state)
     }
 }
 
+/* The light-load current's range: 0 (plain MTPA) up to the current the torque limit takes,
+ * 7 / (3 x 3 x 0.225) = 3.457 A on the reference set; beyond it, negative or not a number: the
+ * set is refused with its own reason. Each end builds a table that rises with torque. */
+static void test_light_load_current_range(void **state)
+{
+    ctl_params_t p;
+    ctl_params_t q;
+    const float top = 7.0f / (3.0f * 3.0f * 0.225f);
+    const float ends[2] = {0.0f, 0.999f * top};
+    int k;
+    (void)state;
+    ctl_params_default(&p);
+    assert_int_equal(ctl_params_check(&p), CTL_PARAM_OK);
+    for (k = 0; k < 2; k++) {
+        ctl_flux_ref_t f;
+        int16_t i;
+        q = p, q.light_load_current_a = ends[k];
+        assert_int_equal(ctl_params_check(&q), CTL_PARAM_OK);
+        ctl_flux_ref_init(&f, CTL_FLUX_REF_MTPA, 0.26f, &reference_machine, 7.0f, ends[k]);
+        for (i = 1; i < CTL_FLUX_REF_TABLE_POINTS; i++) {
+            assert_true(f.table[i] >= f.table[i - 1]);
+        }
+    }
+    q = p, q.light_load_current_a = 1.001f * top;
+    assert_int_equal(ctl_params_check(&q), CTL_PARAM_LIGHT_LOAD_CURRENT);
+    q = p, q.light_load_current_a = -0.1f;
+    assert_int_equal(ctl_params_check(&q), CTL_PARAM_LIGHT_LOAD_CURRENT);
+    q = p, q.light_load_current_a = (float)NAN;
+    assert_int_equal(ctl_params_check(&q), CTL_PARAM_LIGHT_LOAD_CURRENT);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -194,6 +226,7 @@ int main(void)
         cmocka_unit_test(test_flux_ref_constant),
         cmocka_unit_test(test_flux_ref_mtpa),
         cmocka_unit_test(test_flux_ref_light_load_floor),
+        cmocka_unit_test(test_light_load_current_range),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
