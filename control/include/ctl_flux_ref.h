@@ -36,9 +36,9 @@ typedef struct {
 } ctl_flux_ref_machine_t;
 
 /* SI in; torque_max_nm sets the table span, floor_a the light-load current floor (0: plain
- * MTPA). The parameters must have passed ctl_params_check (positive inductances and magnet
- * flux, torque_max_nm >= 1 mN*m, floor_a >= 0). Background only: the MTPA table takes
- * thousands of square roots. */
+ * MTPA; above the current of the table's top it is that current). The parameters must have passed
+ * ctl_params_check (positive inductances and magnet flux, torque_max_nm >= 1 mN*m, floor_a >= 0).
+ * Background only: the MTPA table takes thousands of square roots. */
 void ctl_flux_ref_init(ctl_flux_ref_t *f, ctl_flux_ref_mode_t mode, float constant_wb,
                        const ctl_flux_ref_machine_t *m, float torque_max_nm, float floor_a);
 

@@ -79,7 +79,8 @@ typedef struct {
     float flux_ref_wb;          /* used when flux_ref_mode is constant */
     float light_load_current_a; /* MTPA: the current magnitude kept at light load, a d-axis
                                  * current at no load (no torque), so an open phase can be found
-                                 * there (docs/faults.md); 0: plain MTPA */
+                                 * there (docs/faults.md); 0: plain MTPA; at most the current
+                                 * of the MTPA table's top (the torque limit) takes effect */
     /* speed loop */
     float speed_kp_nm_per_rad_s; /* per mechanical rad/s */
     float speed_ki_nm_per_rad;   /* per mechanical rad */
@@ -110,8 +111,7 @@ typedef struct {
     X(CTL_PARAM_FLUX_TIE_BAND, "DDC flux tie band outside 0..1 duty level")                        \
     X(CTL_PARAM_PULSE_PATTERN, "unknown pulse pattern")                                            \
     X(CTL_PARAM_OPEN_PHASE, "open phase outside -1..5 or unknown post-fault strategy")             \
-    X(CTL_PARAM_LIGHT_LOAD_CURRENT,                                                                \
-      "light-load current outside 0 A..the torque limit's current (limit / 3 Pn psi_f)")
+    X(CTL_PARAM_LIGHT_LOAD_CURRENT, "light-load current outside 0..1000 A")
 
 #define CTL_PARAM_ERROR_ENUM(code, text) code,
 typedef enum { CTL_PARAM_ERRORS(CTL_PARAM_ERROR_ENUM) CTL_PARAM_ERROR_COUNT } ctl_param_error_t;

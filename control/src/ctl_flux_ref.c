@@ -54,37 +54,30 @@ static float floor_point_flux(float i, float target, float ld, float lq, float p
     return ctl_sqrtf((psi_f + ld * id) * (psi_f + ld * id) + (lq * iq) * (lq * iq));
 }
 
-/* The flux of the smallest current on the MTPA curve that gives the torque target (SI);
- * torque rises monotonically with current on that curve, so bisect the current magnitude.
- * Below the floor current the point moves along the floor's circle toward -d instead. */
-static float mtpa_flux_for_torque(float target, float ld, float lq, float psi_f, int16_t pp,
-                                  float floor_a)
+/* The smallest current on the MTPA curve that gives the torque target (SI); torque rises
+ * monotonically with current on that curve, so bisect the current magnitude. */
+static float mtpa_current_for_torque(const ctl_flux_ref_machine_t *m, float target)
 {
     float lo = 0.0f;
     float hi = 1.0f;
     float t;
     float flux;
     int16_t it;
-    mtpa_point(hi, ld, lq, psi_f, pp, &t, &flux);
+    mtpa_point(hi, m->ld_h, m->lq_h, m->psi_f_wb, m->pole_pairs, &t, &flux);
     while (t < target && hi < 1.0e4f) {
         hi *= 2.0f;
-        mtpa_point(hi, ld, lq, psi_f, pp, &t, &flux);
+        mtpa_point(hi, m->ld_h, m->lq_h, m->psi_f_wb, m->pole_pairs, &t, &flux);
     }
     for (it = 0; it < 40; it++) {
         const float mid = 0.5f * (lo + hi);
-        mtpa_point(mid, ld, lq, psi_f, pp, &t, &flux);
+        mtpa_point(mid, m->ld_h, m->lq_h, m->psi_f_wb, m->pole_pairs, &t, &flux);
         if (t < target) {
             lo = mid;
         } else {
             hi = mid;
         }
     }
-    if (0.5f * (lo + hi) < floor_a) {
-        return floor_point_flux(floor_a, target, ld, lq, psi_f, pp,
-                                mtpa_id(floor_a, ld, lq, psi_f));
-    }
-    mtpa_point(0.5f * (lo + hi), ld, lq, psi_f, pp, &t, &flux);
-    return flux;
+    return 0.5f * (lo + hi);
 }
 
 void ctl_flux_ref_init(ctl_flux_ref_t *f, ctl_flux_ref_mode_t mode, float constant_wb,
@@ -97,11 +90,24 @@ void ctl_flux_ref_init(ctl_flux_ref_t *f, ctl_flux_ref_mode_t mode, float consta
     f->constant = ctl_from_float(constant_wb / psi_b);
     f->torque_max = ctl_from_float(torque_max_pu);
     f->points_per_torque = ctl_from_float((float)(CTL_FLUX_REF_TABLE_POINTS - 1) / torque_max_pu);
-    for (k = 0; k < CTL_FLUX_REF_TABLE_POINTS; k++) {
+    /* from the top down: the top's current bounds the floor (there the reference is plain MTPA);
+     * below the floor current the point of the floor's circle that gives the target, else the
+     * MTPA point (one call site each: inlined, for the background's stack bound) */
+    for (k = CTL_FLUX_REF_TABLE_POINTS - 1; k >= 0; k--) {
         const float target = torque_max_nm * (float)k / (float)(CTL_FLUX_REF_TABLE_POINTS - 1);
-        f->table[k] = ctl_from_float(
-            mtpa_flux_for_torque(target, m->ld_h, m->lq_h, m->psi_f_wb, m->pole_pairs, floor_a) /
-            psi_b);
+        const float i = mtpa_current_for_torque(m, target);
+        float t;
+        float flux;
+        if (k == CTL_FLUX_REF_TABLE_POINTS - 1 && floor_a > i) {
+            floor_a = i;
+        }
+        if (i < floor_a) {
+            flux = floor_point_flux(floor_a, target, m->ld_h, m->lq_h, m->psi_f_wb, m->pole_pairs,
+                                    mtpa_id(floor_a, m->ld_h, m->lq_h, m->psi_f_wb));
+        } else {
+            mtpa_point(i, m->ld_h, m->lq_h, m->psi_f_wb, m->pole_pairs, &t, &flux);
+        }
+        f->table[k] = ctl_from_float(flux / psi_b);
     }
 }
 

@@ -114,10 +114,8 @@ static ctl_param_error_t check_control(const ctl_params_t *p)
     if (!ctl_float_in_range(p->torque_limit_nm, 1.0e-3f, 500.0f)) {
         return CTL_PARAM_TORQUE_LIMIT;
     }
-    /* at most the current the torque limit takes (i_q only): a larger floor would hold the
-     * flux below the magnet's at every torque the drive may ask for */
-    if (!ctl_float_in_range(p->light_load_current_a, 0.0f,
-                            p->torque_limit_nm / (3.0f * (float)p->pole_pairs * p->pm_flux_wb))) {
+    /* the table takes at most the current of its top (ctl_flux_ref_init) */
+    if (!ctl_float_in_range(p->light_load_current_a, 0.0f, 1000.0f)) {
         return CTL_PARAM_LIGHT_LOAD_CURRENT;
     }
     if (!ctl_float_in_range(p->speed_kp_nm_per_rad_s, 0.0f, 1.0e4f) ||

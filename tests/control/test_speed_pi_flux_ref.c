@@ -186,19 +186,20 @@ static void test_flux_ref_light_load_floor(void **state)
     }
 }
 
-/* The light-load current's range: 0 (plain MTPA) up to the current the torque limit takes,
- * 7 / (3 x 3 x 0.225) = 3.457 A on the reference set; beyond it, negative or not a number: the
- * set is refused with its own reason. Each end builds a table that rises with torque. */
+/* The light-load current's range: 0 (plain MTPA) up to 1000 A accepted, negative or not a number
+ * refused with its own reason. A floor above the current of the table's top (the torque limit's
+ * MTPA current, 3.5 A at 7 N m) takes effect as that current: the top stays the plain MTPA
+ * point, and the table rises with torque at both ends of the range. */
 static void test_light_load_current_range(void **state)
 {
     ctl_params_t p;
     ctl_params_t q;
-    const float top = 7.0f / (3.0f * 3.0f * 0.225f);
-    const float ends[2] = {0.0f, 0.999f * top};
+    ctl_flux_ref_t plain;
+    const float ends[2] = {0.0f, 1000.0f};
     int k;
     (void)state;
     ctl_params_default(&p);
-    assert_int_equal(ctl_params_check(&p), CTL_PARAM_OK);
+    ctl_flux_ref_init(&plain, CTL_FLUX_REF_MTPA, 0.26f, &reference_machine, 7.0f, 0.0f);
     for (k = 0; k < 2; k++) {
         ctl_flux_ref_t f;
         int16_t i;
@@ -208,8 +209,10 @@ static void test_light_load_current_range(void **state)
         for (i = 1; i < CTL_FLUX_REF_TABLE_POINTS; i++) {
             assert_true(f.table[i] >= f.table[i - 1]);
         }
+        assert_near((double)ctl_to_float(f.table[CTL_FLUX_REF_TABLE_POINTS - 1]),
+                    (double)ctl_to_float(plain.table[CTL_FLUX_REF_TABLE_POINTS - 1]), 1e-4);
     }
-    q = p, q.light_load_current_a = 1.001f * top;
+    q = p, q.light_load_current_a = 1000.5f;
     assert_int_equal(ctl_params_check(&q), CTL_PARAM_LIGHT_LOAD_CURRENT);
     q = p, q.light_load_current_a = -0.1f;
     assert_int_equal(ctl_params_check(&q), CTL_PARAM_LIGHT_LOAD_CURRENT);
