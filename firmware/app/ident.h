@@ -140,5 +140,8 @@ float ident_rotor_angle(const ident_ctx_t *x, const ident_input_t *in);
 
 /* 0..1 raised-cosine ramp at t of n periods. */
 float ident_ramp(uint32_t t, uint32_t n);
+/* A speed loop's step (the flux and the mechanics steps): i_q reference = kp e + integral,
+ * within the test current; the integrator moves only while i_q is within it. */
+void ident_speed_loop(ident_ctx_t *x, ident_pi_t *pi, float error);
 
 #endif /* IDENT_H */

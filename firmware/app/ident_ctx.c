@@ -65,6 +65,19 @@ float ident_rotor_angle(const ident_ctx_t *x, const ident_input_t *in)
     return a - (float)(int32_t)a;
 }
 
+void ident_speed_loop(ident_ctx_t *x, ident_pi_t *pi, float error)
+{
+    float iq = pi->kp * error + pi->integ + pi->ki_ts * error;
+    if (iq > x->i_test) {
+        iq = x->i_test;
+    } else if (iq < -x->i_test) {
+        iq = -x->i_test;
+    } else {
+        pi->integ += pi->ki_ts * error;
+    }
+    x->ref_dq[1] = iq;
+}
+
 float ident_ramp(uint32_t t, uint32_t n)
 {
     float s, c;

@@ -45,22 +45,6 @@ void ident_flux_begin(ident_ctx_t *x, ident_flux_t *s)
     ident_goto(x, FL_ACCEL);
 }
 
-/* The speed loop: i_q within the test current. */
-static void flux_speed_loop(ident_ctx_t *x, ident_flux_t *s)
-{
-    const float w = FLUX_TWO_PI * x->speed_e;
-    const float e = s->speed_ref - w;
-    float iq = s->speed_pi.kp * e + s->speed_pi.integ + s->speed_pi.ki_ts * e;
-    if (iq > x->i_test) {
-        iq = x->i_test;
-    } else if (iq < -x->i_test) {
-        iq = -x->i_test;
-    } else {
-        s->speed_pi.integ += s->speed_pi.ki_ts * e;
-    }
-    x->ref_dq[1] = iq;
-}
-
 static void flux_open_turn(ident_flux_t *s, const ident_input_t *in)
 {
     s->turn_start = in->position;
@@ -251,6 +235,6 @@ ident_status_t ident_flux_step(ident_ctx_t *x, ident_flux_t *s, const ident_inpu
     default:
         break;
     }
-    flux_speed_loop(x, s);
+    ident_speed_loop(x, &s->speed_pi, s->speed_ref - FLUX_TWO_PI * x->speed_e);
     return IDENT_RUNNING;
 }

@@ -65,21 +65,6 @@ void ident_mech_begin(ident_ctx_t *x, ident_mech_t *s)
     ident_goto(x, MC_PROBE);
 }
 
-/* i_q from the speed error, within the test current. */
-static void mech_speed_loop(ident_ctx_t *x, ident_mech_t *s, float w)
-{
-    const float e = s->speed_ref - w;
-    float iq = s->speed_pi.kp * e + s->speed_pi.integ + s->speed_pi.ki_ts * e;
-    if (iq > x->i_test) {
-        iq = x->i_test;
-    } else if (iq < -x->i_test) {
-        iq = -x->i_test;
-    } else {
-        s->speed_pi.integ += s->speed_pi.ki_ts * e;
-    }
-    x->ref_dq[1] = iq;
-}
-
 /* The friction point k's speed: -w_top (where the probe ends), -w_top/2, +w_top/2, +w_top
  * (where the runs begin). */
 static float mech_point_speed(const ident_mech_t *s, int16_t k)
@@ -398,6 +383,6 @@ ident_status_t ident_mech_step(ident_ctx_t *x, ident_mech_t *s, const ident_inpu
         mech_friction_period(x, s, in);
         break;
     }
-    mech_speed_loop(x, s, w);
+    ident_speed_loop(x, &s->speed_pi, s->speed_ref - w);
     return IDENT_RUNNING;
 }
