@@ -14,12 +14,13 @@ to fail are listed in tools/commission_grid_known.txt (open work of issue 25; --
 --write-known records today's): exit status 1 when a result fails that is not listed, when a
 listed one passes (take it off the list), or (--check) when the table differs.
 """
-import argparse
 import concurrent.futures
 import json
 import os
 import subprocess
 import sys
+
+import sim_doc_table
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
@@ -93,18 +94,16 @@ def known_outside():
                          for line in f if line.strip() and not line.startswith("#"))
 
 
-def sim_args(m, mech):
+def sim_args(m):
     a = ["--motor-r", repr(m["r"]), "--motor-ld", repr(m["ld"]), "--motor-lq", repr(m["lq"]),
          "--motor-lxy", repr(m["lxy"]), "--motor-psi-f", repr(m["psi"]),
          "--motor-pole-pairs", str(m["pp"]), "--ctl-pole-pairs", str(m["pp"])]
-    if mech:
-        a += ["--motor-j", repr(m["j"]), "--motor-b", repr(m["b"])]
-    return a
+    return a + ["--motor-j", repr(m["j"]), "--motor-b", repr(m["b"])]
 
 
-def run_one(sim, m, arith, mech):
+def run_one(sim, m, arith):
     cmd = [sim, "run", "--controller", "ddc", "--scenario", "commission", "--arith", arith,
-           "--no-trace"] + sim_args(m, mech)
+           "--no-trace"] + sim_args(m)
     out = subprocess.run(cmd, capture_output=True, text=True, check=False)
     if out.returncode != 0:
         raise RuntimeError("%s: %s" % (" ".join(cmd), out.stderr.strip()))
@@ -138,11 +137,11 @@ def judge(c, key, limit):
     return (text if ok else "**" + text + "**"), ok
 
 
-def table(sim, jobs, mech):
-    quantities = [q for q in QUANTITIES if mech or q[0] not in ("inertia", "friction")]
+def table(sim, jobs):
+    quantities = QUANTITIES
     runs = [(name, m, a) for name, m in MACHINES for a in ARITHS]
     with concurrent.futures.ThreadPoolExecutor(max_workers=jobs) as pool:
-        results = list(pool.map(lambda r: run_one(sim, r[1], r[2], mech), runs))
+        results = list(pool.map(lambda r: run_one(sim, r[1], r[2]), runs))
     head = "| machine | arithmetic | sequence | " + " | ".join(
         "%s error (sigma)" % q[1] for q in quantities) + " |"
     lines = [head, "|" + "---|" * (3 + len(quantities))]
@@ -160,52 +159,21 @@ def table(sim, jobs, mech):
     return "\n".join(lines) + "\n", failures, len(runs)
 
 
-def replace_block(doc, block):
-    start = doc.index(BEGIN) + len(BEGIN)
-    end = doc.index(END)
-    return doc[:start] + "\n" + block + doc[end:]
-
-
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    mode = ap.add_mutually_exclusive_group(required=True)
-    mode.add_argument("--write", action="store_true", help="rewrite the table in the doc")
-    mode.add_argument("--check", action="store_true", help="compare with the committed table")
-    ap.add_argument("--sim", default=os.environ.get(
-        "SIXPHASE_SIM", os.path.join(ROOT, "build", "host", "host_sim", "sixphase-sim")))
-    ap.add_argument("--jobs", type=int, default=2)
+    ap = sim_doc_table.parser(__doc__.splitlines()[0], "docs/commissioning.md")
     ap.add_argument("--write-known", action="store_true",
                     help="with --write: record today's results outside the limits as the known ones")
     a = ap.parse_args()
     if a.write_known and not a.write:
         print("commission_grid: --write-known needs --write", file=sys.stderr)
         return 1
-    if not os.access(a.sim, os.X_OK):
-        print("commission_grid: no simulator at %s (build it, or --sim)" % a.sim, file=sys.stderr)
-        return 1
-    if a.jobs < 1:
-        print("commission_grid: --jobs must be at least 1", file=sys.stderr)
+    if not sim_doc_table.usable("commission_grid", a):
         return 1
     if len({name for name, _ in MACHINES}) != len(MACHINES):
         print("commission_grid: two machines share a name", file=sys.stderr)
         return 1
-    probe = subprocess.run([a.sim, "help"], capture_output=True, text=True)
-    mech = "--motor-j" in probe.stdout + probe.stderr
-    block, failures, runs = table(a.sim, a.jobs, mech)
-    with open(DOC, encoding="utf-8") as f:
-        doc = f.read()
-    if BEGIN not in doc or END not in doc:
-        print("commission_grid: %s has no grid markers" % DOC, file=sys.stderr)
-        return 1
-    new = replace_block(doc, block)
-    status = 0
-    if a.write and new != doc:
-        with open(DOC, "w", encoding="utf-8") as f:
-            f.write(new)
-    if a.check and new != doc:
-        print("commission_grid: the table in docs/commissioning.md is out of date; run "
-              "tools/commission_grid.py --write and commit the result", file=sys.stderr)
-        status = 1
+    block, failures, runs = table(a.sim, a.jobs)
+    status = sim_doc_table.update_block("commission_grid", DOC, BEGIN, END, block, a)
     failed = {key for key, _ in failures}
     known = known_outside()
     if a.write_known:

@@ -12,12 +12,13 @@ level (no other fault; the largest phase current below 15 A), the drive riding t
 the open phase's leg isolated); a commissioning sequence ends failed with reason open_phase,
 nothing applied. Exit status 1 when a row breaks its limit or (--check) the table differs.
 """
-import argparse
 import concurrent.futures
 import json
 import os
 import subprocess
 import sys
+
+import sim_doc_table
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
@@ -117,43 +118,12 @@ def table(sim, jobs):
     return "\n".join(lines) + "\n", failures
 
 
-def replace_block(doc, block):
-    start = doc.index(BEGIN) + len(BEGIN)
-    end = doc.index(END)
-    return doc[:start] + "\n" + block + doc[end:]
-
-
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    mode = ap.add_mutually_exclusive_group(required=True)
-    mode.add_argument("--write", action="store_true", help="rewrite the table in docs/faults.md")
-    mode.add_argument("--check", action="store_true", help="compare with the committed table")
-    ap.add_argument("--sim", default=os.environ.get(
-        "SIXPHASE_SIM", os.path.join(ROOT, "build", "host", "host_sim", "sixphase-sim")))
-    ap.add_argument("--jobs", type=int, default=2)
-    a = ap.parse_args()
-    if not os.access(a.sim, os.X_OK):
-        print("open_phase_envelope: no simulator at %s (build it, or --sim)" % a.sim,
-              file=sys.stderr)
-        return 1
-    if a.jobs < 1:
-        print("open_phase_envelope: --jobs must be at least 1", file=sys.stderr)
+    a = sim_doc_table.parser(__doc__.splitlines()[0], "docs/faults.md").parse_args()
+    if not sim_doc_table.usable("open_phase_envelope", a):
         return 1
     block, failures = table(a.sim, a.jobs)
-    with open(DOC, encoding="utf-8") as f:
-        doc = f.read()
-    if BEGIN not in doc or END not in doc:
-        print("open_phase_envelope: %s has no envelope markers" % DOC, file=sys.stderr)
-        return 1
-    new = replace_block(doc, block)
-    status = 0
-    if a.write and new != doc:
-        with open(DOC, "w", encoding="utf-8") as f:
-            f.write(new)
-    if a.check and new != doc:
-        print("open_phase_envelope: the table in docs/faults.md is out of date; run "
-              "tools/open_phase_envelope.py --write and commit the result", file=sys.stderr)
-        status = 1
+    status = sim_doc_table.update_block("open_phase_envelope", DOC, BEGIN, END, block, a)
     for line in failures:
         print("open_phase_envelope: outside the limits: " + line, file=sys.stderr)
     if failures:

@@ -1,0 +1,51 @@
+"""What the simulator-driven doc tables share (tools/open_phase_envelope.py,
+tools/commission_grid.py): the command line (--write | --check, --sim, --jobs) and the block
+between two markers of a doc, rewritten or compared."""
+import argparse
+import os
+import sys
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+
+def parser(description, doc_name):
+    """The tools' common options; add a tool's own before parse_args."""
+    ap = argparse.ArgumentParser(description=description)
+    mode = ap.add_mutually_exclusive_group(required=True)
+    mode.add_argument("--write", action="store_true", help="rewrite the table in " + doc_name)
+    mode.add_argument("--check", action="store_true", help="compare with the committed table")
+    ap.add_argument("--sim", default=os.environ.get(
+        "SIXPHASE_SIM", os.path.join(ROOT, "build", "host", "host_sim", "sixphase-sim")))
+    ap.add_argument("--jobs", type=int, default=2)
+    return ap
+
+
+def usable(tool, a):
+    """False (with a one-line error) when the simulator or --jobs cannot be used."""
+    if not os.access(a.sim, os.X_OK):
+        print("%s: no simulator at %s (build it, or --sim)" % (tool, a.sim), file=sys.stderr)
+        return False
+    if a.jobs < 1:
+        print("%s: --jobs must be at least 1" % tool, file=sys.stderr)
+        return False
+    return True
+
+
+def update_block(tool, doc_path, begin, end, block, a):
+    """Puts block between the markers (--write) or compares it with what is there (--check);
+    0, or 1 with a one-line error when the markers are missing or (--check) the doc differs."""
+    with open(doc_path, encoding="utf-8") as f:
+        doc = f.read()
+    if begin not in doc or end not in doc:
+        print("%s: %s has no markers for its table" % (tool, doc_path), file=sys.stderr)
+        return 1
+    start = doc.index(begin) + len(begin)
+    new = doc[:start] + "\n" + block + doc[doc.index(end):]
+    if a.write and new != doc:
+        with open(doc_path, "w", encoding="utf-8") as f:
+            f.write(new)
+    if a.check and new != doc:
+        print("%s: the table in %s is out of date; run tools/%s.py --write and commit the result"
+              % (tool, os.path.relpath(doc_path, ROOT), tool), file=sys.stderr)
+        return 1
+    return 0
