@@ -112,11 +112,69 @@ static double speed_of(const char *metrics)
     return s ? atof(s + strlen("\"speed_mean_rpm\": ")) : -1e9;
 }
 
+/* The file identify wrote: every entry, the plant's machine and the inertia (0.01 kg m^2) with
+ * the speed gains designed for it. */
+static void check_identified_file(const char *path)
+{
+    motor_params_t m;
+    char err[2048];
+    assert_int_equal(motor_params_read(path, &m, err, sizeof err), 0);
+    assert_true(m.have == (1u << MOTOR_PARAM_COUNT) - 1u);
+    assert_true(m.value[MOTOR_PARAM_R] > 2.6 * 0.97 && m.value[MOTOR_PARAM_R] < 2.6 * 1.03);
+    assert_true(m.value[MOTOR_PARAM_LQ] > 0.062 * 0.95 && m.value[MOTOR_PARAM_LQ] < 0.062 * 1.05);
+    assert_true(m.value[MOTOR_PARAM_PSI_F] > 0.2 * 0.97 && m.value[MOTOR_PARAM_PSI_F] < 0.2 * 1.03);
+    {
+        const double deg = m.value[MOTOR_PARAM_ENCODER_OFFSET] * 360.0 / 4294967296.0;
+        assert_true(deg > 75.0 && deg < 79.0);
+    }
+    assert_true(m.value[MOTOR_PARAM_INERTIA] > 0.01 * 0.95 &&
+                m.value[MOTOR_PARAM_INERTIA] < 0.01 * 1.05);
+    assert_true(m.value[MOTOR_PARAM_SPEED_KP] > 1.5 * 0.95 &&
+                m.value[MOTOR_PARAM_SPEED_KP] < 1.5 * 1.05);
+}
+
+/* The file on the same machine: the drive holds 1500 r/min at rated load, the reference
+ * machine's parameters do not. */
+static void check_file_holds_the_speed(char *path)
+{
+    char *const with[] = {(char *)SIXPHASE_SIM_EXE,
+                          (char *)"run",
+                          (char *)"--controller",
+                          (char *)"ddc",
+                          (char *)"--scenario",
+                          (char *)"steady",
+                          (char *)"--duration",
+                          (char *)"0.4",
+                          PLANT,
+                          (char *)"--ctl-params",
+                          path,
+                          NULL};
+    char *const without[] = {(char *)SIXPHASE_SIM_EXE,
+                             (char *)"run",
+                             (char *)"--controller",
+                             (char *)"ddc",
+                             (char *)"--scenario",
+                             (char *)"steady",
+                             (char *)"--duration",
+                             (char *)"0.4",
+                             PLANT,
+                             NULL};
+    char out[8192], err[2048];
+    double good, bad;
+    assert_int_equal(run_cmd(with, out, sizeof out, err, sizeof err), 0);
+    good = speed_of(out);
+    (void)run_cmd(without, out, sizeof out, err, sizeof err);
+    bad = speed_of(out);
+    print_message("speed with the file %.1f r/min, with the reference machine %.1f r/min\n", good,
+                  bad);
+    assert_true(good > 1485.0 && good < 1515.0);
+    assert_true(bad < 1485.0 || bad > 1515.0);
+}
+
 static void test_identify_apply_and_file(void **state)
 {
     char *plant[] = {PLANT, NULL};
     char pty[160], out[8192], err[2048], path[] = "/tmp/sixphase-identify-XXXXXX";
-    motor_params_t m;
     pid_t board;
     int fd;
     (void)state;
@@ -143,54 +201,8 @@ static void test_identify_apply_and_file(void **state)
     stop(board);
     assert_non_null(strstr(out, "commissioning done"));
     assert_non_null(strstr(out, "applied: quantities 0x01FC")); /* the machine and the inertia */
-    assert_int_equal(motor_params_read(path, &m, err, sizeof err), 0);
-    assert_true(m.have == (1u << MOTOR_PARAM_COUNT) - 1u);
-    assert_true(m.value[MOTOR_PARAM_R] > 2.6 * 0.97 && m.value[MOTOR_PARAM_R] < 2.6 * 1.03);
-    assert_true(m.value[MOTOR_PARAM_LQ] > 0.062 * 0.95 && m.value[MOTOR_PARAM_LQ] < 0.062 * 1.05);
-    assert_true(m.value[MOTOR_PARAM_PSI_F] > 0.2 * 0.97 && m.value[MOTOR_PARAM_PSI_F] < 0.2 * 1.03);
-    {
-        const double deg = m.value[MOTOR_PARAM_ENCODER_OFFSET] * 360.0 / 4294967296.0;
-        assert_true(deg > 75.0 && deg < 79.0);
-    }
-    /* the inertia (the plant's 0.01 kg m^2) and the speed gains designed for it */
-    assert_true(m.value[MOTOR_PARAM_INERTIA] > 0.01 * 0.95 &&
-                m.value[MOTOR_PARAM_INERTIA] < 0.01 * 1.05);
-    assert_true(m.value[MOTOR_PARAM_SPEED_KP] > 1.5 * 0.95 &&
-                m.value[MOTOR_PARAM_SPEED_KP] < 1.5 * 1.05);
-    /* the file on the same machine: the drive holds 1500 r/min at rated load */
-    {
-        char *const with[] = {(char *)SIXPHASE_SIM_EXE,
-                              (char *)"run",
-                              (char *)"--controller",
-                              (char *)"ddc",
-                              (char *)"--scenario",
-                              (char *)"steady",
-                              (char *)"--duration",
-                              (char *)"0.4",
-                              PLANT,
-                              (char *)"--ctl-params",
-                              path,
-                              NULL};
-        char *const without[] = {(char *)SIXPHASE_SIM_EXE,
-                                 (char *)"run",
-                                 (char *)"--controller",
-                                 (char *)"ddc",
-                                 (char *)"--scenario",
-                                 (char *)"steady",
-                                 (char *)"--duration",
-                                 (char *)"0.4",
-                                 PLANT,
-                                 NULL};
-        double good, bad;
-        assert_int_equal(run_cmd(with, out, sizeof out, err, sizeof err), 0);
-        good = speed_of(out);
-        (void)run_cmd(without, out, sizeof out, err, sizeof err);
-        bad = speed_of(out);
-        print_message("speed with the file %.1f r/min, with the reference machine %.1f r/min\n",
-                      good, bad);
-        assert_true(good > 1485.0 && good < 1515.0);
-        assert_true(bad < 1485.0 || bad > 1515.0);
-    }
+    check_identified_file(path);
+    check_file_holds_the_speed(path);
     (void)remove(path);
 }
 

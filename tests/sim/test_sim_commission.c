@@ -517,6 +517,14 @@ static void test_open_phase_checked_again_after_clear(void **state)
  * 29.6 s) likewise in its runs (while its speed loop holds a speed only the friction's few mA
  * flow, and an opening there is found at the runs, 0.4 s later). Before, only the first 45 ms
  * were watched: the sequence ended "done" with R, L_q and L_xy off, or failed on load_torque. */
+/* Quantity q ok, within the relative limit and within 3 of its sigmas. */
+static void check_within(const sim_result_t *r, int q, double limit)
+{
+    assert_int_equal(r->comm.quality[q], SXL_COMM_QUALITY_OK);
+    assert_true(rel_error(r, q) < limit);
+    assert_true(error_sigmas(r, q) < 3.0);
+}
+
 /* A weak magnet (psi_f 0.3 and 0.45 x the reference): the speed loop's gain and the test current's
  * torque come from the parameter set's flux, so the rotor reaches the flux step's speed late, and
  * its back-EMF is small against the same noise. The step waits for the speed and measures more
@@ -537,9 +545,7 @@ static void test_weak_magnet(void **state)
                       psi[k / 2], (k % 2) ? "float" : "fixed", r.comm.value[SXL_COMM_Q_PSI_F],
                       r.comm.sigma[SXL_COMM_Q_PSI_F], r.comm.quality[SXL_COMM_Q_PSI_F],
                       r.comm.reason_q[SXL_COMM_Q_PSI_F]);
-        assert_int_equal(r.comm.quality[SXL_COMM_Q_PSI_F], SXL_COMM_QUALITY_OK);
-        assert_true(rel_error(&r, SXL_COMM_Q_PSI_F) < 0.02);
-        assert_true(error_sigmas(&r, SXL_COMM_Q_PSI_F) < 3.0);
+        check_within(&r, SXL_COMM_Q_PSI_F, 0.02);
     }
 }
 
@@ -565,9 +571,7 @@ static void test_resistance_ripple_is_not_a_sign_change(void **state)
         print_message("%s (%s): R %.4f ohm, quality %d\n", (k < 2) ? "L 0.6 x" : "6 pole pairs",
                       (k % 2) ? "float" : "fixed", r.comm.value[SXL_COMM_Q_R],
                       r.comm.quality[SXL_COMM_Q_R]);
-        assert_int_equal(r.comm.quality[SXL_COMM_Q_R], SXL_COMM_QUALITY_OK);
-        assert_true(rel_error(&r, SXL_COMM_Q_R) < 0.02);
-        assert_true(error_sigmas(&r, SXL_COMM_Q_R) < 3.0);
+        check_within(&r, SXL_COMM_Q_R, 0.02);
     }
 }
 
