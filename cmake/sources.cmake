@@ -45,7 +45,8 @@ set(SIXPHASE_DRIVE_SOURCES
     firmware/app/ident_resistance.c
     firmware/app/ident_inductance.c
     firmware/app/ident_flux.c
-    firmware/app/ident_mech.c)
+    firmware/app/ident_mech.c
+    firmware/app/ident_xy_harmonics.c)
 
 # Serial protocol framing shared by the firmware and the host tool.
 set(SIXPHASE_SXLINK_SOURCES

@@ -6,6 +6,7 @@
 
 #include "sim_open_phase.h"
 #include "sim_rng.h"
+#include "commission.h"
 #include "sxlink_commission.h"
 
 #define SIM_FINE_RATE_HZ 100000.0
@@ -124,7 +125,8 @@ static void sim_plan_scenario(const sim_config_t *c, sim_plan_t *pl)
     case SIM_SCEN_COMMISSION: /* at standstill, no load; duration: a bound on the sequence */
         pl->speed = pl->speed0 = 0.0;
         pl->load0 = pl->load = load_set ? c->load_nm : 0.0;
-        pl->duration = 60.0;
+        /* every step may run to its time bound: the sequence ends, never the simulation */
+        pl->duration = (double)comm_time_bound_s((uint16_t)c->commission_steps) + 1.0;
         pl->t_event = 0.0;
         pl->window = 0.01;
         break;

@@ -38,6 +38,7 @@ UNITS = [
     ("commissioning", "firmware/app/ident_inductance.c", None, FLOOR),
     ("commissioning", "firmware/app/ident_flux.c", None, FLOOR),
     ("commissioning", "firmware/app/ident_mech.c", None, FLOOR),
+    ("commissioning", "firmware/app/ident_xy_harmonics.c", None, FLOOR),
     ("host tool replies", "firmware/tools/sixphase_link.c", "print_reply", None),
     ("host tool replies", "firmware/tools/sixphase_link.c", "print_profile_row", None),
     ("host tool replies", "firmware/tools/sixphase_link.c", "print_fault_record", None),

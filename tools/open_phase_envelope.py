@@ -28,6 +28,10 @@ END = "<!-- /open-phase-envelope -->"
 TRIP_A = 15.0
 PHASES = "ABCDEF"
 ARITHS = ("fixed", "float")
+# In the encoder step's spin (the current vector turning). During the alignment before it
+# (the first 1.0 .. 1.7 s, a standing vector) an open phase is found only when the spin starts:
+# docs/commissioning.md, section 1.
+COMMISSION_OPEN_S = 2.0
 
 # name, the point in words, sixphase-sim arguments (the phase and arithmetic added), limit ms
 CASES = (
@@ -47,8 +51,8 @@ CASES = (
     ("reversal", "800 -> -800 r/min, opens at 0.15 s (462 r/min, braking at -6.8 N m)",
      ["--scenario", "reversal", "--ride-through", "--fault-time", "0.15", "--duration", "0.6"],
      10.0),
-    ("commissioning", "the encoder step, opens at 1.0 s",
-     ["--scenario", "commission", "--fault-time", "1.0"], 100.0),
+    ("commissioning", "the encoder step's spin, opens at %.1f s" % COMMISSION_OPEN_S,
+     ["--scenario", "commission", "--fault-time", repr(COMMISSION_OPEN_S)], 100.0),
 )
 
 
@@ -67,7 +71,7 @@ def judge(case, phase, m):
     name, _, _, limit_ms = case
     if name == "commissioning":
         c = m["commission"]
-        ms = 1e3 * (c["duration_s"] - 1.0)
+        ms = 1e3 * (c["duration_s"] - COMMISSION_OPEN_S)
         outcome = "%s %s, applied 0x%x" % (c["state"], c["reason"], c["applied_mask"])
         ok = (c["state"] == "failed" and c["reason"] == "open_phase" and ms <= limit_ms and
               c["applied_mask"] == 0 and m["drive_fault"] == 0 and

@@ -25,6 +25,18 @@ static const float step_seconds[SXL_COMM_STEP_COUNT] = {
 static const int16_t quantity_step[COMM_Q_COUNT] = {SXL_COMM_QUANTITY_LIST(COMM_QUANTITY_STEP)};
 #undef COMM_QUANTITY_STEP
 
+float comm_time_bound_s(uint16_t mask)
+{
+    float total = 0.0f;
+    int16_t k;
+    for (k = 0; k < (int16_t)COMM_STEP_END; k++) {
+        if ((mask & (1u << k)) != 0u) {
+            total += COMM_TIMEOUT_FACTOR * step_seconds[k] + COMM_TIMEOUT_MARGIN_S;
+        }
+    }
+    return total;
+}
+
 uint16_t comm_step_quantities(int16_t step)
 {
     uint16_t mask = 0u;
@@ -126,6 +138,7 @@ static void comm_begin_step(comm_t *c)
     x->reason = COMM_REASON_NONE;
     comm_watch_restart(&c->watch);
     c->step_start = c->periods;
+    ident_xy_harmonics_reset(&x->xy_harm);
     switch (c->step) {
     case COMM_STEP_PHASES:
         ident_phase_begin(x, &c->s.phase);
@@ -144,9 +157,11 @@ static void comm_begin_step(comm_t *c)
         break;
     case COMM_STEP_FLUX:
         ident_flux_begin(x, &c->s.flux);
+        ident_xy_harmonics_start(&x->xy_harm);
         break;
     default:
         ident_mech_begin(x, &c->s.mech);
+        ident_xy_harmonics_start(&x->xy_harm);
         break;
     }
 }

@@ -91,4 +91,8 @@ uint16_t comm_progress_percent(const comm_t *c);
 /* The quantities each step identifies (bit per comm_quantity_t). */
 uint16_t comm_step_quantities(int16_t step);
 
+/* The longest the steps of mask can take before their time bounds end them, s (a caller that
+ * waits for the sequence waits at least this). */
+float comm_time_bound_s(uint16_t mask);
+
 #endif /* COMMISSION_H */

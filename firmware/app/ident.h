@@ -17,6 +17,7 @@
 
 #include "ident_excite.h"
 #include "ident_stats.h"
+#include "ident_xy_harmonics.h"
 #include "sxlink_commission.h"
 
 /* The lists of sxlink_commission.h as enums. */
@@ -85,6 +86,7 @@ typedef struct {
     ident_machine_t m;
     float i_test; /* A */
     ident_reg_t reg;
+    ident_xy_harmonics_t xy_harm; /* ROTOR frame, rotor turning: the 5th and 7th in x-y */
     ident_traj_t traj;
     ident_frame_t frame;
     float ref_dq[2], ref_xy[2]; /* current references, A: in the frame, in x-y */
@@ -108,6 +110,18 @@ typedef struct {
     int16_t reason; /* comm_reason_t of a failure */
     ident_result_t result[COMM_Q_COUNT];
 } ident_ctx_t;
+
+/* Whether the rotor stands still: the periods it has stayed within a few counts of one position
+ * (a swing's turning points, where it slows, last less than a few tens of ms). */
+typedef struct {
+    int32_t ref; /* the position it has stayed near */
+    uint32_t n;  /* periods it has */
+} ident_still_t;
+
+void ident_still_reset(ident_still_t *w, int32_t position);
+
+/* This period's position; the periods still so far (0: it just moved beyond `counts`). */
+uint32_t ident_still_step(ident_still_t *w, int32_t position, int32_t counts);
 
 /* Periods in s seconds (at least 1). */
 uint32_t ident_periods(const ident_ctx_t *x, float seconds);

@@ -1,11 +1,29 @@
 /* What the identification steps share, see ident.h. */
 #include "ident.h"
 
+#include "ctl_pu.h"
 #include "ctl_q.h"
 
 /* Electrical turns the output is applied after the sample, in periods: the command written in
  * period k is in force during period k + 1, on average 1.5 periods after the sample. */
 #define IDENT_OUTPUT_DELAY_PERIODS 1.5f
+
+void ident_still_reset(ident_still_t *w, int32_t position)
+{
+    w->ref = position;
+    w->n = 0u;
+}
+
+uint32_t ident_still_step(ident_still_t *w, int32_t position, int32_t counts)
+{
+    const int32_t d = position - w->ref;
+    if (d > counts || d < -counts) {
+        ident_still_reset(w, position);
+    } else {
+        w->n++;
+    }
+    return w->n;
+}
 
 uint32_t ident_periods(const ident_ctx_t *x, float seconds)
 {
@@ -133,6 +151,30 @@ static void ident_dead_time(ident_ctx_t *x, const float ref[2], float vdc, float
     ident_vsd(phase, comp);
 }
 
+/* The x-y harmonics' voltage added to the request (ident_xy_harmonics.h), with the machine's
+ * R and L_xy as identified (else the parameter set's). */
+static void ident_regulate_xy_harmonics(ident_ctx_t *x)
+{
+    const ident_result_t *r = &x->result[COMM_Q_R];
+    const ident_result_t *l = &x->result[COMM_Q_LXY];
+    const float err[2] = {x->ref_xy[0] - x->i_xy[0], x->ref_xy[1] - x->i_xy[1]};
+    ident_xy_harmonics_in_t in;
+    float u[2];
+    in.s_meas = x->frame_s;
+    in.c_meas = x->frame_c;
+    in.s_out = x->out_s;
+    in.c_out = x->out_c;
+    in.w_e = CTL_TWO_PI_F * x->speed_e;
+    in.r = (r->quality == COMM_QUALITY_OK) ? r->value : x->m.r;
+    in.l_xy = (l->quality == COMM_QUALITY_OK) ? l->value : x->m.lxy;
+    in.kp = x->reg.x.kp;
+    in.ki_ts = x->reg.x.ki_ts;
+    in.ts = x->m.ts;
+    ident_xy_harmonics_step(&x->xy_harm, &in, err, u);
+    x->reg.u[2] += u[0];
+    x->reg.u[3] += u[1];
+}
+
 void ident_regulate(ident_ctx_t *x, float vdc)
 {
     float ref[2], comp[4];
@@ -143,6 +185,9 @@ void ident_regulate(ident_ctx_t *x, float vdc)
         ref[1] -= x->damping * (x->speed_e - x->traj.speed);
     }
     ident_reg_step(&x->reg, x->out_s, x->out_c, ref, x->i_dq, x->ref_xy, x->i_xy);
+    if (x->frame == IDENT_FRAME_ROTOR && x->xy_harm.on) {
+        ident_regulate_xy_harmonics(x);
+    }
     ident_dead_time(x, ref, vdc, comp);
     for (k = 0; k < 4; k++) {
         x->reg.u[k] += comp[k];

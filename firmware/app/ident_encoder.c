@@ -5,8 +5,11 @@
 
 #define ENC_ALIGN_RAMP_S 0.3f
 #define ENC_ALIGN_HOLD_S 0.2f
-#define ENC_ALIGN_MOVE_S 0.2f /* then a quarter turn on: a rotor that sat opposite the field */
-#define ENC_ALIGN_SETTLE_S 0.3f
+#define ENC_ALIGN_MOVE_S 0.2f   /* then a quarter turn on: a rotor that sat opposite the field */
+#define ENC_ALIGN_SETTLE_S 0.3f /* at least */
+#define ENC_ALIGN_SETTLE_MAX_S 1.0f /* at most */
+#define ENC_STILL_S 0.1f            /* the rotor within ENC_STILL_COUNTS this long: still */
+#define ENC_STILL_COUNTS 4
 #define ENC_ALIGN_ANGLE (1.0f / 24.0f) /* 15 degrees: every phase carries a quarter or more */
 #define ENC_SOFT_KI_RAD_S 10.0f        /* alignment: integral gain (R + kp) times this */
 #define ENC_SPEED 1.0f                 /* electrical turns/s */
@@ -22,6 +25,10 @@
 
 #define ENC_CURRENT_RAMP_S 0.2f    /* test current to half and back, for the load check */
 #define ENC_LOAD_LAG_TURNS 0.0056f /* 2 electrical degrees of lag that a load torque causes */
+#define ENC_RATIO_SIGMAS 10.0f     /* friction's lag this far out of its scatter: r measured */
+#define ENC_RATIO_MIN 0.5f         /* a measured ratio outside these: the set's */
+#define ENC_RATIO_MAX 4.0f
+#define ENC_RATIO_FLAT 0.02f /* |r - 1| below this: the check cannot see a load */
 /* A dragged rotor (ident_encoder.h). Until the counts per electrical turn are measured: any
  * plant's rotor (Pn >= 1) follows the field from at most half a turn away, plus the
  * quarter-turn move, less than this many mechanical turns beyond the commanded travel (the
@@ -30,7 +37,20 @@
 #define ENC_DRAG_MECH_TURNS 1.0f
 #define ENC_SLIP_TURNS 0.5f
 
-enum { EN_ALIGN, EN_ALIGN2, EN_SPIN, EN_FWD, EN_TURN, EN_BWD, EN_STOP, EN_HALF, EN_FWD2, EN_STOP2 };
+enum {
+    EN_ALIGN,
+    EN_ALIGN2,
+    EN_SPIN,
+    EN_FWD,
+    EN_TURN,
+    EN_BWD,
+    EN_STOP,
+    EN_HALF,
+    EN_FWD2,
+    EN_TURN2,
+    EN_BWD2,
+    EN_STOP2
+};
 
 void ident_encoder_begin(ident_ctx_t *x, ident_encoder_t *s)
 {
@@ -106,7 +126,10 @@ static ident_status_t enc_judge_counts(ident_ctx_t *x, ident_encoder_t *s)
     if (reason != COMM_REASON_NONE) {
         return ident_fail(x, reason);
     }
-    x->cpe = cpe;
+    /* From here on the exact count the pole pairs just confirmed, not the measurement: a
+     * heavy rotor's swing about the field left it 3.4 % off (within the pole-pair check) and
+     * every later speed with it, psi_f and the inertia 3.6 % high (issue 25's grid). */
+    x->cpe = nominal;
     s->travel_start = x->traj.travel;
     ident_blocks_init(&s->fwd, (int32_t)ident_periods(x, 0.25f / ENC_SPEED));
     ident_goto(x, EN_FWD);
@@ -173,10 +196,10 @@ static float enc_offset_sample(ident_encoder_t *s, const ident_ctx_t *x, const i
 }
 
 /* How much more a constant torque lags the rotor at half the test current than at the test
- * current: the stiffness about the aligned position is 3 Pn I (psi_f + (L_d - L_q) I), so the
- * ratio is 2 (psi_f + (L_d - L_q) I) / (psi_f + (L_d - L_q) I / 2), 1.87 on the reference
- * machine (the parameter set's: the later steps measure them). */
-static float enc_lag_ratio(const ident_ctx_t *x)
+ * current, from the parameter set: the stiffness about the aligned position is
+ * 3 Pn I (psi_f + (L_d - L_q) I), so the ratio is 2 (psi_f + (L_d - L_q) I) /
+ * (psi_f + (L_d - L_q) I / 2), 1.87 on the reference machine. */
+static float enc_set_ratio(const ident_ctx_t *x)
 {
     const float dl = x->m.ld - x->m.lq;
     const float k1 = x->m.psi_f + dl * x->i_test;
@@ -185,38 +208,79 @@ static float enc_lag_ratio(const ident_ctx_t *x)
     return (r > 1.1f && r < 4.0f) ? r : 2.0f;
 }
 
-/* The offset from both directions, into the result and the context. */
+/* The load check's sweeps: forward and backward at the test current (mf, mb) and at half of it
+ * (m2f, m2b), each offset + a + b or offset + a - b with b friction's lag and a a load's,
+ * both times r at half the current. Friction's lag gives r itself, r = (m2f - m2b) / (mf - mb),
+ * when it stands out of the scatter (else the set's ratio): a weak magnet's stiffness at the
+ * test current is cut by the reluctance term until r is near 1 (1.03 for 0.3 x psi_f on two
+ * pole pairs against the set's 1.80, which read friction's lag as a 4.7 degree load: issue 25's
+ * grid). Then a = ((m2f + m2b) - (mf + mb)) / (2 (r - 1)). */
+typedef struct {
+    float mf, mb, m2f, m2b; /* turns */
+    float sf, sb, s2f, s2b;
+} enc_sweeps_t;
+
+typedef struct {
+    float r;         /* the ratio used */
+    bool measured;   /* r from friction's lag, else the set's */
+    float a, s_a;    /* the load's lag and its scatter, turns */
+    float ratio_err; /* a's uncertainty from r's, turns */
+} enc_load_t;
+
+static float enc_abs(float v) { return (v < 0.0f) ? -v : v; }
+
+static void enc_load_lag(const ident_ctx_t *x, const enc_sweeps_t *w, enc_load_t *l)
+{
+    const float d1 = w->mf - w->mb, d2 = w->m2f - w->m2b;
+    const float s_d1 = ctl_sqrtf(w->sf * w->sf + w->sb * w->sb);
+    const float s_d2 = ctl_sqrtf(w->s2f * w->s2f + w->s2b * w->s2b);
+    const float rm = (d1 != 0.0f) ? d2 / d1 : 0.0f;
+    const float sum = (w->m2f + w->m2b) - (w->mf + w->mb);
+    const float s_sum = ctl_sqrtf(s_d1 * s_d1 + s_d2 * s_d2);
+    float rm1;
+    l->measured = enc_abs(d1) > ENC_RATIO_SIGMAS * s_d1 && rm > ENC_RATIO_MIN && rm < ENC_RATIO_MAX;
+    l->r = l->measured ? rm : enc_set_ratio(x);
+    rm1 = l->r - 1.0f;
+    if (enc_abs(rm1) < ENC_RATIO_FLAT) { /* a load would lag both currents alike: unseen */
+        l->a = 0.0f;
+        l->s_a = 1.0f;
+        l->ratio_err = 0.0f;
+        return;
+    }
+    l->a = sum / (2.0f * rm1);
+    l->s_a = s_sum / (2.0f * enc_abs(rm1));
+    if (l->measured) { /* r's own scatter, through a = sum / (2 (r - 1)) */
+        const float s_r =
+            enc_abs(l->r) * ctl_sqrtf((s_d1 * s_d1) / (d1 * d1) +
+                                      ((d2 != 0.0f) ? (s_d2 * s_d2) / (d2 * d2) : 0.0f));
+        l->ratio_err = enc_abs(l->a) * s_r / enc_abs(rm1);
+    } else { /* the set's L_d, L_q and psi_f, not yet measured: the reluctance term's whole effect
+              */
+        l->ratio_err = enc_abs(l->a) * enc_abs(2.0f - l->r) / enc_abs(rm1);
+    }
+}
+
+/* The offset from the sweeps, into the result and the context. A load's lag that stands out of
+ * its scatter (3 sigma) is taken out of the offset and above ENC_LOAD_LAG_TURNS fails the step
+ * (the later steps would be dragged too); one that does not is left in. */
 static ident_status_t enc_finish(ident_ctx_t *x, ident_encoder_t *s)
 {
-    const float mf = ident_blocks_mean(&s->fwd);
-    const float mb = ident_blocks_mean(&s->bwd);
-    const float r = enc_lag_ratio(x);
-    /* forward at I: offset + a + b, backward: offset + a - b, forward at I / 2: offset +
-     * r (a + b), with b friction's lag and a a load's (a constant torque's lag goes as one over
-     * the stiffness, enc_lag_ratio). A load's lag that stands out of its scatter (3 sigma) is
-     * taken out of the offset, offset = (r mf - fwd2) / (r - 1), and above ENC_LOAD_LAG_TURNS
-     * fails the step (the later steps would be dragged too); one that does not is left in. */
-    const float lag = (ident_blocks_mean(&s->fwd2) - mf) / (r - 1.0f); /* a + b */
-    const float load_lag = lag - 0.5f * (mf - mb);
-    const float sf = ident_blocks_sigma(&s->fwd);
-    const float sb = ident_blocks_sigma(&s->bwd);
-    const float s2 = ident_blocks_sigma(&s->fwd2);
-    /* the load lag's own scatter: a heavy, undamped rotor swings about the half-current sweep */
-    const float s_lag = ctl_sqrtf(r * r * sf * sf + s2 * s2) / (r - 1.0f);
-    const bool significant = load_lag > 3.0f * s_lag || load_lag < -3.0f * s_lag;
-    const bool loaded =
-        significant && (load_lag > ENC_LOAD_LAG_TURNS || load_lag < -ENC_LOAD_LAG_TURNS);
-    float sigma;
-    float absolute;
+    const enc_sweeps_t w = {ident_blocks_mean(&s->fwd),   ident_blocks_mean(&s->bwd),
+                            ident_blocks_mean(&s->fwd2),  ident_blocks_mean(&s->bwd2),
+                            ident_blocks_sigma(&s->fwd),  ident_blocks_sigma(&s->bwd),
+                            ident_blocks_sigma(&s->fwd2), ident_blocks_sigma(&s->bwd2)};
+    enc_load_t l;
+    bool significant, loaded;
+    float sigma, absolute;
+    enc_load_lag(x, &w, &l);
+    significant = enc_abs(l.a) > 3.0f * l.s_a;
+    loaded = significant && enc_abs(l.a) > ENC_LOAD_LAG_TURNS;
     if (significant) {
-        /* (r mf - fwd2) / (r - 1)'s scatter, and the ratio's own uncertainty (the set's L_d, L_q
-         * and psi_f, not yet measured: taken as the reluctance term's whole effect) */
-        const float ratio_error = lag * (2.0f - r) / (r - 1.0f);
-        sigma = ctl_sqrtf(s_lag * s_lag + ratio_error * ratio_error);
-        x->offset_turns = 0.5f * (mf + mb) - load_lag;
-    } else { /* no load to be seen (one below 3 s_lag may hide: docs/commissioning.md 2.2) */
-        sigma = 0.5f * ctl_sqrtf(sf * sf + sb * sb);
-        x->offset_turns = 0.5f * (mf + mb);
+        sigma = ctl_sqrtf(l.s_a * l.s_a + l.ratio_err * l.ratio_err);
+        x->offset_turns = 0.5f * (w.mf + w.mb) - l.a;
+    } else { /* no load to be seen (one below 3 s_a may hide: docs/commissioning.md 2.2) */
+        sigma = 0.5f * ctl_sqrtf(w.sf * w.sf + w.sb * w.sb);
+        x->offset_turns = 0.5f * (w.mf + w.mb);
     }
     x->offset_known = true;
     x->offset_abs = x->m.hal_offset +
@@ -227,11 +291,12 @@ static ident_status_t enc_finish(ident_ctx_t *x, ident_encoder_t *s)
         absolute += 1.0f;
     }
     if (loaded) { /* the offset is off by the load's lag, and every later step with it */
-        ident_set_result(x, COMM_Q_OFFSET, 360.0f * absolute, 360.0f * sigma, 360.0f * load_lag,
+        ident_set_result(x, COMM_Q_OFFSET, 360.0f * absolute, 360.0f * sigma, 360.0f * l.a,
                          COMM_QUALITY_FAILED, COMM_REASON_LOAD_TORQUE);
         return ident_fail(x, COMM_REASON_LOAD_TORQUE);
     }
-    ident_set_result(x, COMM_Q_OFFSET, 360.0f * absolute, 360.0f * sigma, 360.0f * 0.5f * (mf - mb),
+    ident_set_result(x, COMM_Q_OFFSET, 360.0f * absolute, 360.0f * sigma,
+                     360.0f * 0.5f * (w.mf - w.mb),
                      (sigma > ENC_POOR_SIGMA_TURNS) ? COMM_QUALITY_POOR : COMM_QUALITY_OK,
                      (sigma > ENC_POOR_SIGMA_TURNS) ? COMM_REASON_SCATTER : COMM_REASON_NONE);
     return IDENT_DONE;
@@ -276,8 +341,9 @@ static ident_status_t enc_sweep(ident_ctx_t *x, ident_encoder_t *s, const ident_
     return IDENT_RUNNING;
 }
 
-/* The load check: forward again at half the current. A lag that does not change sign with
- * the direction (a load torque) doubles at half the current, as friction's does. */
+/* The load check: forward and backward again at half the current. A lag that does not change
+ * sign with the direction (a load torque) grows at half the current by the stiffness ratio r, as
+ * friction's does, which gives r (enc_load_lag). */
 static ident_status_t enc_half(ident_ctx_t *x, ident_encoder_t *s, const ident_input_t *in)
 {
     const uint32_t ramp = ident_periods(x, ENC_CURRENT_RAMP_S);
@@ -298,6 +364,22 @@ static ident_status_t enc_half(ident_ctx_t *x, ident_encoder_t *s, const ident_i
     case EN_FWD2:
         ident_blocks_add(&s->fwd2, enc_offset_sample(s, x, in));
         if (x->traj.travel >= s->travel_start + ENC_OFFSET_TURNS) {
+            x->traj.target = -ENC_SPEED;
+            ident_goto(x, EN_TURN2);
+        }
+        break;
+    case EN_TURN2:
+        if (x->traj.speed > -ENC_SPEED) {
+            s->travel_start = x->traj.travel;
+        } else if (x->traj.travel <= s->travel_start - ENC_SETTLE_TURNS) {
+            s->travel_start = x->traj.travel;
+            ident_blocks_init(&s->bwd2, s->fwd.length);
+            ident_goto(x, EN_BWD2);
+        }
+        break;
+    case EN_BWD2:
+        ident_blocks_add(&s->bwd2, enc_offset_sample(s, x, in));
+        if (x->traj.travel <= s->travel_start - ENC_OFFSET_TURNS) {
             x->traj.target = 0.0f;
             ident_goto(x, EN_STOP2);
         }
@@ -330,7 +412,16 @@ static void enc_align(ident_ctx_t *x, ident_encoder_t *s, const ident_input_t *i
         return;
     }
     ident_traj_reset(&x->traj, ENC_ALIGN_ANGLE + 0.25f * ident_ramp(x->t, move));
-    if (x->t >= move + ident_periods(x, ENC_ALIGN_SETTLE_S)) {
+    if (x->t == 0u) {
+        ident_still_reset(&s->still, in->position);
+    }
+    /* until the swing has died away: at a tenth of rated current a weak magnet's rotor still
+     * swung through whole turns after 0.3 s, and the spin then read its swing as a reversed
+     * encoder (issue 25). At most ENC_ALIGN_SETTLE_MAX_S: the spin's damping takes over. */
+    if (x->t >= move + ident_periods(x, ENC_ALIGN_SETTLE_S) &&
+        (ident_still_step(&s->still, in->position, ENC_STILL_COUNTS) >=
+             ident_periods(x, ENC_STILL_S) ||
+         x->t >= move + ident_periods(x, ENC_ALIGN_SETTLE_MAX_S))) {
         ident_reg_gains_nominal(&x->reg);
         s->p0 = in->position;
         x->traj.target = ENC_SPEED;

@@ -19,8 +19,11 @@
  * time averages out over whole turns. Every term is a mean over whole turns of per-period
  * values. The voltage is the regulator's request, the speed the encoder's count over the
  * turns. About 3.5 s. A run starts once the speed has stayed near its target for a while (at most
- * FLUX_SETTLE_MAX_S): the speed loop's gain and the test current's torque come from the
- * parameter set's flux, so a weak magnet reaches the speed late (issue 25).
+ * FLUX_SETTLE_MAX_S): the test current's torque comes from the machine's flux, so a weak magnet
+ * reaches the speed late (issue 25); the speed loop's gain comes from the inertia the ramp up
+ * showed. A run's turns must agree in speed within +-5 % (else POOR, NO_SPEED), at whatever
+ * speed friction lets the rotor hold. The step ends once the rotor stands again (at most 4 s
+ * after the ramp down). The x-y harmonic regulator runs throughout (ident_xy_harmonics.h).
  */
 #ifndef IDENT_FLUX_H
 #define IDENT_FLUX_H
@@ -28,18 +31,19 @@
 #include "ident.h"
 
 typedef struct {
-    int16_t run;                                          /* 0: +I, 1: -I */
-    float speed_ref;                                      /* rad/s electrical, ramped */
-    float speed_target;                                   /* rad/s electrical */
-    ident_pi_t speed_pi;                                  /* i_q from the speed error */
+    int16_t run;         /* 0: +I, 1: -I */
+    float speed_ref;     /* rad/s electrical, ramped */
+    float speed_target;  /* rad/s electrical */
+    ident_pi_t speed_pi; /* i_q from the speed error */
+    float iq_time; /* A s: i_q's integral over the ramp up (the inertia the loop is tuned for) */
     int32_t turn_start;                                   /* position at the open turn's start */
     float sum_ud, sum_uq, sum_id, sum_iq, sum_sd, sum_sq; /* over the open turn */
     int32_t n;                                            /* samples in it */
     float run_ud[2], run_uq[2], run_id[2], run_iq[2], run_w[2], run_sd[2], run_sq[2]; /* means */
-    int32_t run_n[2];      /* turns in each run */
-    ident_blocks_t psi[2]; /* per-turn raw estimates (without the dead-time q part) */
-    float max_speed_error; /* relative, over the measurements */
-    uint32_t in_band;      /* consecutive settling periods with the speed near its target */
+    int32_t run_n[2];                 /* turns in each run */
+    ident_blocks_t psi[2];            /* per-turn raw estimates (without the dead-time q part) */
+    float run_w_min[2], run_w_max[2]; /* each run's slowest and fastest turn, rad/s */
+    uint32_t in_band; /* consecutive settling periods with the speed near its target */
 } ident_flux_t;
 
 void ident_flux_begin(ident_ctx_t *x, ident_flux_t *s);

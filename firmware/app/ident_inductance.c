@@ -11,9 +11,10 @@
 #define IND_RIPPLE_D 0.5f       /* peak-to-peak ripple over the bias, d axis */
 #define IND_RIPPLE_OTHER 0.25f  /* q, x, y */
 #define IND_POOR_RELATIVE 0.02f /* 1-sigma above 2 %: POOR */
-#define IND_MOVED_TURNS 0.003f  /* electrical turns of rotor motion (about 1 degree): POOR */
-#define IND_ATANH_TERMS 24      /* terms of the series of atanh(y) / y */
-#define IND_SIZE_MIN 0.2f       /* the measured amplitude: within these of the set's */
+#define IND_MOTION_BIAS 0.01f   /* what the rotor's motion can have biased, relative: POOR */
+#define IND_TWO_PI 6.2831853f
+#define IND_ATANH_TERMS 24 /* terms of the series of atanh(y) / y */
+#define IND_SIZE_MIN 0.2f  /* the measured amplitude: within these of the set's */
 #define IND_SIZE_MAX 5.0f
 #define IND_DROOP_Y_MAX 0.9f /* R N T / (2 L_raw) beyond this: taken as this */
 
@@ -79,10 +80,14 @@ static void ind_start_axis(ident_ctx_t *x, ident_inductance_t *s, const ident_in
     s->n_pos = s->n_neg = 0;
     s->waves = 0;
     s->last_i = ind_current(x, s->axis);
+    s->p_last = in->position;
     if (s->axis != IDENT_AXIS_Y) { /* y adds to x's blocks and motion */
         ident_blocks_init(ind_store(s, s->axis), 1);
         s->p_start = in->position;
         s->moved = 0;
+        s->misalign = 0.0f;
+        s->sync_counts[0] = s->sync_counts[1] = 0;
+        s->sync_n[0] = s->sync_n[1] = 0;
     }
     /* the axis held at its mean output of the settling (the bias voltage, without the noise
      * of a single period's proportional part); the other axes keep regulating (and damping) */
@@ -195,32 +200,85 @@ static int16_t ind_next_sign(ident_inductance_t *s, uint32_t t)
     return (phase < IND_HALF_PERIODS) ? 1 : -1;
 }
 
-static void ind_track_motion(ident_inductance_t *s, const ident_input_t *in)
+/* An inductance the steps found ok, else the set's. */
+static float ind_known(const ident_ctx_t *x, comm_quantity_t q, float set)
+{
+    return (x->result[q].quality == COMM_QUALITY_OK) ? x->result[q].value : set;
+}
+
+/* The rotor's motion during the axis: its largest distance from the start (reported), its
+ * largest misalignment from the commanded angle (once the offset is known), and its counts
+ * moved under the + and under the - half periods (the voltage of two periods ago acted over the
+ * last one, as for the current's change). */
+static void ind_track_motion(ident_ctx_t *x, ident_inductance_t *s, const ident_input_t *in)
 {
     const int32_t d = in->position - s->p_start;
     const int32_t a = (d < 0) ? -d : d;
+    const int32_t step = in->position - s->p_last;
     s->moved = (a > s->moved) ? a : s->moved;
+    s->p_last = in->position;
+    if (x->offset_known) {
+        const float e = ident_wrap_half(ident_rotor_angle(x, in) - x->traj.angle);
+        const float m = (e < 0.0f) ? -e : e;
+        s->misalign = (m > s->misalign) ? m : s->misalign;
+    }
+    if (s->sign[1] > 0) {
+        s->sync_counts[0] += step;
+        s->sync_n[0]++;
+    } else if (s->sign[1] < 0) {
+        s->sync_counts[1] += step;
+        s->sync_n[1]++;
+    }
 }
 
-static void ind_result(ident_ctx_t *x, comm_quantity_t q, const ident_blocks_t *b, int32_t moved)
+/* What the rotor's motion can have done to an inductance l of the axis, relative: the larger of
+ * (1) the misalignment's mixing of the other axis in, (L_q - L_d) sin^2 e / l (d and q only;
+ * without a known offset, e is the motion from the start), and (2) the back-EMF of a motion in
+ * step with the square wave, psi_f (w+ - w-) / (2 U) with the set's psi_f (on d, psi_f sin e:
+ * the magnet's EMF lies along q; on x and y, psi_f bounds the harmonics'). A slow swing (a
+ * heavy rotor still settling, issue 25's grid) does neither: it drifts the same under + and -
+ * and stays well aligned, so the result is kept; a load that turns the rotor does both. */
+static float ind_motion_bias(const ident_ctx_t *x, const ident_inductance_t *s, float l)
+{
+    const float cpe = (x->cpe > 0.0f) ? x->cpe : -x->cpe;
+    const float e = (x->offset_known || cpe <= 0.0f) ? s->misalign : (float)s->moved / cpe;
+    float sn, cs, align = 0.0f, sync = 0.0f, k_emf = x->m.psi_f;
+    ident_sincos(e, &sn, &cs);
+    sn = (sn < 0.0f) ? -sn : sn;
+    if (s->axis < IDENT_AXIS_X) {
+        const float ld = ind_known(x, COMM_Q_LD, x->m.ld), lq = ind_known(x, COMM_Q_LQ, x->m.lq);
+        align = ((lq > ld) ? lq - ld : ld - lq) * sn * sn / l;
+    }
+    if (s->axis == IDENT_AXIS_D) {
+        k_emf *= sn; /* the magnet's EMF lies along q: on d only by the misalignment */
+    }
+    if (cpe > 0.0f && s->sync_n[0] > 0 && s->sync_n[1] > 0 && s->amplitude > 0.0f) {
+        const float dc = (float)s->sync_counts[0] / (float)s->sync_n[0] -
+                         (float)s->sync_counts[1] / (float)s->sync_n[1];
+        const float dw = IND_TWO_PI * dc / (cpe * x->m.ts); /* electrical rad/s */
+        sync = k_emf * ((dw < 0.0f) ? -dw : dw) / (2.0f * s->amplitude);
+    }
+    return (align > sync) ? align : sync;
+}
+
+static void ind_result(ident_ctx_t *x, const ident_inductance_t *s, comm_quantity_t q,
+                       const ident_blocks_t *b)
 {
     const float l = ident_blocks_mean(b);
     const float sigma = ident_blocks_sigma(b);
-    const float turns =
-        (x->cpe != 0.0f) ? (float)moved / ((x->cpe > 0.0f) ? x->cpe : -x->cpe) : 0.0f;
     int16_t quality = COMM_QUALITY_OK;
     int16_t reason = COMM_REASON_NONE;
     if (b->blocks < 2 || !(l > 1.0e-6f && l < 10.0f)) {
         quality = COMM_QUALITY_FAILED;
         reason = COMM_REASON_OUT_OF_RANGE;
-    } else if (turns > IND_MOVED_TURNS) {
+    } else if (ind_motion_bias(x, s, l) > IND_MOTION_BIAS) {
         quality = COMM_QUALITY_POOR;
         reason = COMM_REASON_ROTOR_MOVED;
     } else if (sigma > IND_POOR_RELATIVE * l) {
         quality = COMM_QUALITY_POOR;
         reason = COMM_REASON_SCATTER;
     }
-    ident_set_result(x, q, l, sigma, (float)moved, quality, reason);
+    ident_set_result(x, q, l, sigma, (float)s->moved, quality, reason);
 }
 
 /* The axis is done: back to regulation, the next axis or the results. */
@@ -229,11 +287,11 @@ static ident_status_t ind_end_axis(ident_ctx_t *x, ident_inductance_t *s)
     ind_inject(x, s->axis, 0.0f);
     x->reg.hold = 0u;
     if (s->axis == IDENT_AXIS_D) {
-        ind_result(x, COMM_Q_LD, ind_store(s, s->axis), s->moved);
+        ind_result(x, s, COMM_Q_LD, ind_store(s, s->axis));
     } else if (s->axis == IDENT_AXIS_Q) {
-        ind_result(x, COMM_Q_LQ, ind_store(s, s->axis), s->moved);
+        ind_result(x, s, COMM_Q_LQ, ind_store(s, s->axis));
     } else if (s->axis == IDENT_AXIS_Y) {
-        ind_result(x, COMM_Q_LXY, ind_store(s, s->axis), s->moved);
+        ind_result(x, s, COMM_Q_LXY, ind_store(s, s->axis));
     }
     if (s->axis >= s->last_axis) {
         return IDENT_DONE;
@@ -251,14 +309,12 @@ static ident_status_t ind_end_axis(ident_ctx_t *x, ident_inductance_t *s)
 static bool ind_settled(ident_ctx_t *x, ident_inductance_t *s, const ident_input_t *in)
 {
     const uint32_t n = ident_periods(x, IND_SETTLE_S);
-    const int32_t d = in->position - s->still_ref;
-    if (x->t == 0u || d > IND_STILL_COUNTS || d < -IND_STILL_COUNTS) {
-        s->still_ref = in->position;
-        s->still_n = 0;
+    if (x->t == 0u) {
+        ident_still_reset(&s->still, in->position);
     } else {
-        s->still_n++;
+        (void)ident_still_step(&s->still, in->position, IND_STILL_COUNTS);
     }
-    if (x->t <= n / 2u || s->still_n == 0) {
+    if (x->t <= n / 2u || s->still.n == 0u) {
         s->u_sum = 0.0f;
         s->u_n = 0;
     } else {
@@ -269,7 +325,7 @@ static bool ind_settled(ident_ctx_t *x, ident_inductance_t *s, const ident_input
         s->u_sum = ind_output(x, s->axis); /* swinging throughout: this period's output */
         s->u_n = 1;
     }
-    return (x->t >= n && s->still_n >= (int32_t)ident_periods(x, IND_STILL_S)) ||
+    return (x->t >= n && s->still.n >= ident_periods(x, IND_STILL_S)) ||
            x->t >= ident_periods(x, IND_SETTLE_MAX_S);
 }
 
@@ -281,7 +337,7 @@ ident_status_t ident_inductance_step(ident_ctx_t *x, ident_inductance_t *s, cons
         }
         return IDENT_RUNNING;
     }
-    ind_track_motion(s, in);
+    ind_track_motion(x, s, in);
     ind_accumulate(x, s);
     s->sign[1] = s->sign[0];
     if (s->waves >= IND_WAVES) {

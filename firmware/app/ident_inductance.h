@@ -49,11 +49,13 @@ typedef struct {
     int32_t waves; /* square waves started */
     float u_sum;   /* the axis' regulator output over the settling's second half */
     int32_t u_n;
-    ident_blocks_t l[3]; /* H: d, q, and x and y pooled */
-    int32_t still_ref;   /* settling: the position the rotor has stayed near */
-    int32_t still_n;     /* settling: periods it has stayed within IND_STILL_COUNTS of it */
-    int32_t p_start;     /* position at the axis' start */
-    int32_t moved;       /* largest |position - p_start| during the axis */
+    ident_blocks_t l[3];               /* H: d, q, and x and y pooled */
+    ident_still_t still;               /* settling: the rotor within IND_STILL_COUNTS */
+    int32_t p_start;                   /* position at the axis' start */
+    int32_t moved;                     /* largest |position - p_start| during the axis */
+    int32_t p_last;                    /* position one period ago */
+    float misalign;                    /* largest |rotor - commanded angle|, turns (offset known) */
+    int32_t sync_counts[2], sync_n[2]; /* counts moved, periods: under + and under - */
 } ident_inductance_t;
 
 /* first, last: the axes of the step (D..Q for step 4, X..Y for step 5). */

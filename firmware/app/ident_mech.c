@@ -45,7 +45,10 @@ static float mech_torque(const ident_ctx_t *x, const ident_mech_t *s)
 void ident_mech_begin(ident_ctx_t *x, ident_mech_t *s)
 {
     const ident_result_t *psi = &x->result[COMM_Q_PSI_F];
-    const bool identified = psi->quality == COMM_QUALITY_OK && psi->value > 0.0f;
+    /* a poor psi_f is still the machine's (the set's may be three times off: a weak magnet gave
+     * J and B +234 % "ok"); the results then say whose torque constant they rest on */
+    const bool identified =
+        (psi->quality == COMM_QUALITY_OK || psi->quality == COMM_QUALITY_POOR) && psi->value > 0.0f;
     const float psi_f = identified ? psi->value : x->m.psi_f;
     const float pn = (float)x->m.pole_pairs;
     const float a = 0.1f * x->m.vdc / psi_f; /* the flux step's test speed, electrical */
@@ -287,6 +290,17 @@ static float mech_inertia(const ident_mech_t *s, float *sigma)
 
 /* The results. The friction was fitted with the probe's inertia (its points' drift times J);
  * with the runs' inertia it is fitted again, and the inertia follows it once more. */
+/* J and B are torques over motion: no better than psi_f, the torque constant's. An ok result
+ * on a poor psi_f becomes poor with psi_f's reason. */
+static void mech_torque_quality(const ident_ctx_t *x, int16_t *quality, int16_t *reason)
+{
+    const ident_result_t *psi = &x->result[COMM_Q_PSI_F];
+    if (*quality == COMM_QUALITY_OK && psi->quality == COMM_QUALITY_POOR) {
+        *quality = COMM_QUALITY_POOR;
+        *reason = psi->reason;
+    }
+}
+
 static ident_status_t mech_finish(ident_ctx_t *x, ident_mech_t *s)
 {
     float j_sigma, j, b;
@@ -302,6 +316,7 @@ static ident_status_t mech_finish(ident_ctx_t *x, ident_mech_t *s)
         reason = COMM_REASON_SCATTER;
     }
     j_sigma = ctl_sqrtf(j_sigma * j_sigma + j * j * s->kt_rel_sigma * s->kt_rel_sigma);
+    mech_torque_quality(x, &quality, &reason);
     ident_set_result(x, COMM_Q_INERTIA, j, j_sigma, (float)s->runs, quality, reason);
     /* a viscous coefficient below zero is noise around a frictionless shaft */
     b = (s->b > 0.0f) ? s->b : 0.0f;
@@ -314,6 +329,7 @@ static ident_status_t mech_finish(ident_ctx_t *x, ident_mech_t *s)
         quality = COMM_QUALITY_POOR;
         reason = COMM_REASON_NO_SPEED;
     }
+    mech_torque_quality(x, &quality, &reason);
     ident_set_result(x, COMM_Q_FRICTION, b,
                      ctl_sqrtf(s->b_sigma * s->b_sigma + b * b * s->kt_rel_sigma * s->kt_rel_sigma),
                      s->tc, quality, reason);

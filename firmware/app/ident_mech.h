@@ -2,7 +2,8 @@
  * Identification step 7, the mechanics: viscous and Coulomb friction, then the inertia, with
  * the current regulated in the rotor's frame (i_d = 0) as in the flux step. The shaft torque
  * is the machine's, T = 3 Pn (psi_f i_q + (L_d - L_q) i_d i_q) from the measured currents
- * (psi_f the identified one if the flux step ran, else the parameter set's); the speed is the
+ * (psi_f the identified one if the flux step ran, ok or poor, else the parameter set's; on a poor
+ * one an ok J or B is reported poor with its reason); the speed is the
  * encoder's, mechanical rad/s. The model is J dw/dt = T - B w - Tc sign(w).
  *
  *  1. Probe: minus the test current along q from standstill until the rotor reaches -w_top

@@ -95,10 +95,10 @@ SEEDS = {
     + words(MID, 2765, 5) + frame(COMM_APPLY) + bytes([2, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0,
                                                           0, 0, 0]) + frame(COMM_APPLY),
     # the whole sequence, then its results read and applied
-    "seed-plant-commission-all": LONG_START + commission(0x3F) + plant(1000, homed=False) + results(),
+    "seed-plant-commission-all": LONG_START + commission(0x3F) + plant(1100, homed=False) + results(),
     # the mechanics' step after the phase check and the encoder (the probe, the friction points,
-    # the runs): 14.4 s + 7 s of plant
-    "seed-plant-commission-mech": LONG_START + commission(0x43) + plant(900, homed=False)
+    # the runs): 17.5 s + 7 s of plant
+    "seed-plant-commission-mech": LONG_START + commission(0x43) + plant(1050, homed=False)
     + results(),
     "seed-plant-commission-r": LONG_START + commission(0x07, 800) + plant(500, homed=False) + results(),
     "seed-plant-commission-ldq": LONG_START + commission(0x1B, 200) + plant(600, homed=False) + results(),
@@ -106,7 +106,7 @@ SEEDS = {
     + plant(2) + results(),
     # stopped in the psi_f step (L_d and L_q ok, psi_f without a number): APPLY refuses the mixed
     # set (docs/commissioning.md 3.1)
-    "seed-plant-commission-mixed": LONG_START + commission(0x3F) + plant(790, homed=False)
+    "seed-plant-commission-mixed": LONG_START + commission(0x3F) + plant(940, homed=False)
     + frame(STOP) + plant(2) + results(),
     "seed-plant-commission-open": LONG_START + commission(0x3F) + plant(20, phase_open=2, homed=False)
     + results(),

@@ -602,7 +602,7 @@ static void test_small_load_lag_taken_out(void **state)
 
 static void test_open_phase_in_each_step(void **state)
 {
-    static const double opens_s[SXL_COMM_STEP_COUNT] = {0.02, 1.0, 15.5, 17.7, 18.7, 20.5, 28.8};
+    static const double opens_s[SXL_COMM_STEP_COUNT] = {0.02, 2.0, 18.6, 20.8, 21.8, 23.6, 31.9};
     int step;
     (void)state;
     for (step = 0; step < (int)SXL_COMM_STEP_COUNT; step++) {
@@ -788,6 +788,56 @@ static void test_inertia_and_friction_over_the_range(void **state)
     }
 }
 
+/* Each quantity within its limit (issue 25: R 2 %, L 3 %, L_xy 5 %, psi_f 2 %, J 5 %, B 20 % or
+ * 2e-4 N m s/rad) and within 3 of its own sigma. */
+static void check_limits(const sim_result_t *r)
+{
+    static const struct {
+        int q;
+        double limit;
+    } lim[] = {{SXL_COMM_Q_R, 0.02},       {SXL_COMM_Q_LD, 0.03},    {SXL_COMM_Q_LQ, 0.03},
+               {SXL_COMM_Q_LXY, 0.05},     {SXL_COMM_Q_PSI_F, 0.02}, {SXL_COMM_Q_INERTIA, 0.05},
+               {SXL_COMM_Q_FRICTION, 0.20}};
+    size_t k;
+    assert_int_equal(r->comm.state, SXL_COMM_STATE_DONE);
+    for (k = 0; k < sizeof lim / sizeof lim[0]; k++) {
+        const int q = lim[k].q;
+        const double err = fabs(r->comm.value[q] - r->comm.truth[q]);
+        print_message("  %-9s %+.2f %% (%.2f sigma)\n", sxl_comm_quantity_name((uint16_t)q),
+                      100.0 * (r->comm.value[q] / r->comm.truth[q] - 1.0), error_sigmas(r, q));
+        assert_int_equal(r->comm.quality[q], SXL_COMM_QUALITY_OK);
+        assert_true(err <= lim[k].limit * r->comm.truth[q] ||
+                    (q == SXL_COMM_Q_FRICTION && err <= 2e-4));
+        assert_true(error_sigmas(r, q) < 3.0);
+    }
+}
+
+/* Issue 25's grid, the whole sequence in both arithmetics. A rotor ten times the set's inertia:
+ * before, L_d and L_q ended poor (rotor_moved: its slow swing about the held angle, which biased
+ * neither), and psi_f and J read 3.6 % high (the encoder step's measured counts per electrical
+ * turn, 3.4 % off on the swinging rotor, scaled every later speed). Ten times the reference
+ * friction: before, B read 5.4 % high at 1.5 % sigma (the x-y currents of the magnet's 5th and
+ * 7th harmonics made a drag the fundamental's torque leaves out). */
+static void test_heavy_rotor_and_harmonic_drag(void **state)
+{
+    int a;
+    (void)state;
+    for (a = 0; a < 2; a++) {
+        sim_config_t c;
+        sim_result_t r;
+        config(&c, NULL, a);
+        c.plant.j_kgm2 = 10.0 * REF_J;
+        run(&c, &r);
+        print_message("%s, J 10 x:\n", r.arith);
+        check_limits(&r);
+        config(&c, NULL, a);
+        c.plant.b_nms = 10.0 * REF_B;
+        run(&c, &r);
+        print_message("%s, friction 10 x:\n", r.arith);
+        check_limits(&r);
+    }
+}
+
 /* A speed step at 1000 r/min, no load, the product's DDC: overshoot (%) and the time until the
  * speed (2 ms means of the plant's: the light rotor's speed carries +-0.6 r/min of the torque's
  * ripple) stays within 5 % of the step. */
@@ -882,6 +932,7 @@ int main(void)
         cmocka_unit_test(test_open_phase_in_each_step),
         cmocka_unit_test(test_weak_magnet),
         cmocka_unit_test(test_small_load_lag_taken_out),
+        cmocka_unit_test(test_heavy_rotor_and_harmonic_drag),
         cmocka_unit_test(test_resistance_ripple_is_not_a_sign_change),
         cmocka_unit_test(test_inertia_and_friction_over_the_range),
         cmocka_unit_test(test_speed_step_with_designed_gains),
