@@ -6,7 +6,10 @@
  *     defaults (the reference machine; the true encoder offset, and offset 0), each over seeds
  *     1..3 (a single run's THD moves by about 1 % from seed to seed);
  *   - a parameter-mismatch sweep: the reference machine as the plant, one of R, L_d, L_q, L_xy,
- *     psi_f off by -50, -25, +25, +50 % in the controller alone.
+ *     psi_f off by -50, -25, +25, +50 % in the controller alone;
+ *   - the inertia's: a speed step on rotors of 0.2, 1 and 10 times the reference inertia with
+ *     the fixed speed gains and with gains designed from the true inertia, half and twice it
+ *     (issue 25).
  * Every run is a case of the reproduce batches (the identified set's run in the second batch,
  * after the identification); no output files.
  */
@@ -18,6 +21,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "ctl_machine.h"
 #include "sxlink.h"
 
 #define RC_PI 3.14159265358979323846
@@ -31,6 +35,17 @@ static const char *const rc_param_names[5] = {"R", "L_d", "L_q", "L_xy", "psi_f"
 static const char *const rc_param_keys[5] = {"r", "ld", "lq", "lxy", "psi"};
 static const double rc_factor[4] = {0.5, 0.75, 1.25, 1.5};
 static const char *const rc_factor_keys[4] = {"m50", "m25", "p25", "p50"};
+
+/* The inertia sweep: the plant's inertia, the gains' design (0: the fixed gains, else the
+ * factor on the plant's inertia the gains are designed from), a small speed step. */
+#define RC_J_PLANTS 3
+#define RC_J_DESIGNS 4
+#define RC_J_STEP_RPM 100.0
+#define RC_J_DURATION_S 2.0
+static const double rc_j_plant[RC_J_PLANTS] = {0.2, 1.0, 10.0};
+static const char *const rc_j_plant_keys[RC_J_PLANTS] = {"j02", "j1", "j10"};
+static const double rc_j_design[RC_J_DESIGNS] = {0.0, 1.0, 0.5, 2.0};
+static const char *const rc_j_design_keys[RC_J_DESIGNS] = {"fixed", "true", "half", "twice"};
 
 static void rc_set_plant(sim_config_t *c)
 {
@@ -93,6 +108,29 @@ static void rc_add_closed_loop(rep_case_t *cases, int *n, const char *name, cons
     }
 }
 
+/* The inertia sweep's cases, mmj_<plant>_<design>. */
+static void rc_add_inertia(rep_case_t *cases, int *n)
+{
+    int p, d;
+    for (p = 0; p < RC_J_PLANTS; p++) {
+        for (d = 0; d < RC_J_DESIGNS; d++) {
+            char name[64];
+            rep_case_t *c;
+            (void)snprintf(name, sizeof name, "mmj_%s_%s", rc_j_plant_keys[p], rc_j_design_keys[d]);
+            if ((c = rc_add(cases, n, name, SIM_SCEN_ACCEL, 1u)) == NULL) {
+                continue;
+            }
+            c->cfg.speed_rpm = RC_J_STEP_RPM;
+            c->cfg.duration_s = RC_J_DURATION_S;
+            c->cfg.plant.j_kgm2 = rc_j_plant[p] * CTL_MACHINE_INERTIA_KG_M2;
+            if (rc_j_design[d] > 0.0) {
+                c->cfg.ctl.j_kgm2 = rc_j_design[d] * c->cfg.plant.j_kgm2;
+                c->cfg.ctl.speed_gains_from_j = true;
+            }
+        }
+    }
+}
+
 void rep_cases_commission(rep_case_t *cases, int *n)
 {
     static const double reference[5] = {2.0, 0.035, 0.055, 0.010, 0.225};
@@ -117,6 +155,7 @@ void rep_cases_commission(rep_case_t *cases, int *n)
             }
         }
     }
+    rc_add_inertia(cases, n);
 }
 
 void rep_cases_commission_identified(rep_case_t *cases, int *n)
@@ -257,6 +296,34 @@ static void rc_mismatch(FILE *f, const rep_case_t *cases, int n)
     }
 }
 
+static void rc_inertia(FILE *f, const rep_case_t *cases, int n)
+{
+    int p, d;
+    fprintf(f, "| plant's inertia | speed gains | kp N m s/rad | ki N m/rad | settling ms | "
+               "speed r/min |\n|---|---|---|---|---|---|\n");
+    for (p = 0; p < RC_J_PLANTS; p++) {
+        for (d = 0; d < RC_J_DESIGNS; d++) {
+            char name[64], settle[24], gains[48];
+            const rep_case_t *c;
+            (void)snprintf(name, sizeof name, "mmj_%s_%s", rc_j_plant_keys[p], rc_j_design_keys[d]);
+            if ((c = rep_find(cases, n, name)) == NULL) {
+                continue;
+            }
+            if (rc_j_design[d] > 0.0) {
+                (void)snprintf(gains, sizeof gains, "designed from %g x the inertia",
+                               rc_j_design[d]);
+            } else {
+                (void)snprintf(gains, sizeof gains, "fixed (the firmware's)");
+            }
+            rc_num(settle, sizeof settle, c->res.transient_ms, 1);
+            fprintf(f, "| %g x (%.3g kg m^2) | %s | %.3g | %.3g | %s | %.1f |\n", rc_j_plant[p],
+                    rc_j_plant[p] * CTL_MACHINE_INERTIA_KG_M2, gains, c->res.p_speed_kp,
+                    c->res.p_speed_ki, (c->res.transient_ms >= 0.0) ? settle : "not settled",
+                    c->res.speed_mean_rpm);
+        }
+    }
+}
+
 void rep_write_commission_section(FILE *f, const rep_case_t *cases, int n)
 {
     const rep_case_t *id = rep_find(cases, n, "comm_identify");
@@ -284,4 +351,14 @@ void rep_write_commission_section(FILE *f, const rep_case_t *cases, int n)
             "controller alone (the product's DDC, 1500 r/min, rated load, lambda %.0f):\n\n",
             RC_LAMBDA);
     rc_mismatch(f, cases, n);
+    fprintf(f,
+            "\nInertia mismatch: the reference machine on rotors of 0.2, 1 and 10 times its "
+            "inertia, a speed step 0 -> %.0f r/min at no load (the product's DDC, lambda %.0f), "
+            "with the firmware's fixed speed gains and with gains designed from the inertia "
+            "(ctl_speed_gains_from_inertia, as the drive's APPLY of an identified inertia: "
+            "docs/commissioning.md), from the true one and from half and twice it. Settling: "
+            "from the step until the speed stays within 2 %% of it; speed: the mean over the "
+            "last %.2f s.\n\n",
+            RC_J_STEP_RPM, RC_LAMBDA, 0.25);
+    rc_inertia(f, cases, n);
 }

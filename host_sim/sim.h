@@ -33,6 +33,8 @@ typedef struct {
     double encoder_offset_rad; /* the HAL's index offset (FW_ENCODER_OFFSET), electrical */
     double j_kgm2;             /* <= 0: the reference machine's (not the plant's) */
     double speed_kp, speed_ki; /* the speed PI's gains; <= 0: the core's defaults */
+    bool speed_gains_from_j;   /* the gains designed from j_kgm2 (ctl_speed_gains_from_inertia),
+                                * as the drive's APPLY of an identified inertia does */
 } sim_ctl_machine_t;
 
 typedef struct {

@@ -49,6 +49,24 @@ static void bridge_protect_out_of_reach(ctl_protect_settings_t *s)
     s->open_phase_fast_min_a = big;
 }
 
+/* The speed loop's gains and torque limit: designed from the inertia, or given, or the core's. */
+static void bridge_speed_loop(const sim_ctl_config_t *cfg, ctl_params_t *p)
+{
+    if (cfg->speed_gains_from_j) {
+        ctl_speed_gains_from_inertia(p);
+    } else {
+        if (cfg->speed_kp > 0.0) {
+            p->speed_kp_nm_per_rad_s = (float)cfg->speed_kp;
+        }
+        if (cfg->speed_ki > 0.0) {
+            p->speed_ki_nm_per_rad = (float)cfg->speed_ki;
+        }
+    }
+    if (cfg->torque_limit_nm > 0.0) {
+        p->torque_limit_nm = (float)cfg->torque_limit_nm;
+    }
+}
+
 static int bridge_init(const sim_ctl_config_t *cfg)
 {
     ctl_params_t p;
@@ -92,15 +110,7 @@ static int bridge_init(const sim_ctl_config_t *cfg)
     if (cfg->flux_ref_wb > 0.0) {
         p.flux_ref_wb = (float)cfg->flux_ref_wb;
     }
-    if (cfg->speed_kp > 0.0) {
-        p.speed_kp_nm_per_rad_s = (float)cfg->speed_kp;
-    }
-    if (cfg->speed_ki > 0.0) {
-        p.speed_ki_nm_per_rad = (float)cfg->speed_ki;
-    }
-    if (cfg->torque_limit_nm > 0.0) {
-        p.torque_limit_nm = (float)cfg->torque_limit_nm;
-    }
+    bridge_speed_loop(cfg, &p);
     if (!cfg->protect) {
         bridge_protect_out_of_reach(&p.protect);
     }

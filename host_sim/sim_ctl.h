@@ -29,11 +29,12 @@ typedef struct {
     double j_kgm2;
     /* speed loop; <= 0: core default */
     double speed_kp, speed_ki, torque_limit_nm;
-    int protect;                /* 1: ctl_protect_default limits; 0: every threshold out of reach */
-    double current_full_span_a; /* the board's phase-current sensors, -span/2 .. +span/2 A */
-    int open_phase_action;      /* < 0: the drive's build default; 0 stop, 1 ride through */
-    int postfault_strategy;     /* < 0: core default (minimum loss); 1 maximum torque */
-    int torque_limited_action;  /* < 0: drive default (continue); 1 stop */
+    bool speed_gains_from_j; /* the speed gains designed from j_kgm2 (then speed_kp, ki unused) */
+    int protect;             /* 1: ctl_protect_default limits; 0: every threshold out of reach */
+    double current_full_span_a;   /* the board's phase-current sensors, -span/2 .. +span/2 A */
+    int open_phase_action;        /* < 0: the drive's build default; 0 stop, 1 ride through */
+    int postfault_strategy;       /* < 0: core default (minimum loss); 1 maximum torque */
+    int torque_limited_action;    /* < 0: drive default (continue); 1 stop */
     double torque_limited_stop_s; /* <= 0: drive default */
 } sim_ctl_config_t;
 

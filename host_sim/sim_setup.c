@@ -52,6 +52,7 @@ void sim_ctl_machine_resolve(const sim_config_t *c, sim_ctl_machine_t *m)
     m->j_kgm2 = setup_ctl_value(c->ctl.j_kgm2, CTL_MACHINE_INERTIA_KG_M2);
     m->speed_kp = c->ctl.speed_kp;
     m->speed_ki = c->ctl.speed_ki;
+    m->speed_gains_from_j = c->ctl.speed_gains_from_j;
 }
 
 /* The controller as the firmware's parameter set would configure it for this run: the
@@ -84,6 +85,7 @@ static void setup_controller_config(const sim_run_t *rs, sim_ctl_config_t *cc)
     cc->j_kgm2 = m.j_kgm2;
     cc->speed_kp = m.speed_kp;
     cc->speed_ki = m.speed_ki;
+    cc->speed_gains_from_j = m.speed_gains_from_j;
     cc->torque_limit_nm = rs->plan.torque_limit;
     cc->protect = c->protect ? 1 : 0;
     cc->current_full_span_a = 2.0 * p->current_sensor_span_a;
