@@ -227,6 +227,7 @@ void comm_start(comm_t *c, const ident_machine_t *m, uint16_t mask, uint16_t per
     x->cpe = 0.0f;
     x->offset_turns = 0.0f;
     x->comp_dq[0] = x->comp_dq[1] = 0.0f;
+    x->comp_xy[0] = x->comp_xy[1] = 0.0f;
     c->step = comm_next_step(c, 0);
     comm_begin_step(c);
 }

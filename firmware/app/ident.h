@@ -97,6 +97,7 @@ typedef struct {
     float frame_s, frame_c;          /* sine and cosine of the frame angle */
     float out_s, out_c;              /* of the angle the output is applied at (delay) */
     float comp_dq[2];                /* the dead-time feed-forward in the frame, V */
+    float comp_xy[2];                /* and in x-y */
     float speed_e;                   /* rotor, electrical turns/s (once the encoder is known) */
     /* the encoder as the encoder step found it */
     bool enc_known;      /* direction and counts per electrical turn measured */

@@ -193,6 +193,8 @@ void ident_regulate(ident_ctx_t *x, float vdc)
         x->reg.u[k] += comp[k];
     }
     ident_to_frame(comp[0], comp[1], x->out_s, x->out_c, x->comp_dq);
+    x->comp_xy[0] = comp[2];
+    x->comp_xy[1] = comp[3];
 }
 
 float ident_u_frame(const ident_ctx_t *x, int16_t axis)

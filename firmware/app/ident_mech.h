@@ -11,11 +11,15 @@
  *     reached (friction makes it high, which only slows the loops below). Nothing assumes the
  *     parameter set's inertia, so any machine from 0.2 to 10 times it (and beyond) is safe.
  *  2. Friction: a speed loop of a fixed 20 rad/s bandwidth, its gains from the probe's
- *     inertia, holds -w_top, -w_top/2, +w_top/2, +w_top. At each, over whole electrical turns
- *     (the harmonics' and sensor offsets' torque averages out), the mean torque is
+ *     inertia, holds -w_top, -w_top/2, +w_top/2, +w_top. At each, once the speed has stayed
+ *     within 0.2 % of the point's for 0.1 s (at least 0.4 s, at most 2 s: a heavy rotor's loop
+ *     still settling put its transient into every turn), over 16 whole electrical turns (the
+ *     harmonics' and sensor offsets' torque averages out), the mean torque is
  *     B w + Tc sign(w) + J dw/dt, the last from the speed's drift between the first and the
  *     last turn (the encoder's counts per turn). Least squares over the four points gives B and
- *     Tc, the turns' scatter their uncertainty. Between the directions the rotor stops and
+ *     Tc. Their uncertainty: the scatter of blocks of two turns (neighbouring turns correlate
+ *     through the loop), the x-y plane's torque that its power bounds, and the fit's residuals,
+ *     propagated. Between the directions the rotor stops and
  *     stands for 0.25 s: a rotor turned back under current dwells near one angle, where the
  *     protection's open-phase window would see a phase carry little and call it open.
  *  3. Inertia, by acceleration-deceleration runs (the run-up / retardation method, e.g. IEEE
@@ -38,8 +42,8 @@
  * the friction points is found at the runs, and the sequence fails with open_phase as before.
  *
  * Both results' uncertainty adds the torque constant's: psi_f's relative sigma and the current
- * channels' scale (ident_ctx.c). About 7 s on the reference machine; a rotor with ten times its
- * inertia takes 18 s (the runs at the test current), within the step's time bound (32 s).
+ * channels' scale (ident_ctx.c). About 11.5 s on the reference machine; a rotor with ten times
+ * its inertia takes 23 s (the runs at the test current), within the step's time bound (36.5 s).
  */
 #ifndef IDENT_MECH_H
 #define IDENT_MECH_H
@@ -62,13 +66,17 @@ typedef struct {
     float j_probe;      /* kg m^2, from the probe */
     float torque_sum;   /* probe: sum of T over its periods */
     ident_pi_t speed_pi;
-    float speed_ref; /* mechanical rad/s, ramped */
-    float accel_max; /* rad/s^2 the ramps ask for */
-    int16_t point;   /* friction point measured */
+    float speed_ref;  /* mechanical rad/s, ramped */
+    float accel_max;  /* rad/s^2 the ramps ask for */
+    int16_t point;    /* friction point measured */
+    uint32_t in_band; /* settling: periods the speed has stayed near the point's */
     int32_t turn_start;
     float turn_torque; /* sum over the open turn */
     int32_t turn_n;
-    ident_blocks_t point_torque;            /* per-turn means of T */
+    ident_blocks_t point_torque; /* per-turn means of T, in blocks of turns */
+    int32_t point_turns;         /* whole turns of the point so far */
+    float xy_power;              /* the point's x-y power, summed (mech_xy_power) */
+    int32_t xy_n;
     int32_t point_counts, point_periods;    /* over the point's whole turns */
     float first_w, first_t, last_w, last_t; /* the first and the last turn's speed, centre (s) */
     /* each point's speed, mean torque, its standard error and the speed's drift (rad/s^2):
@@ -90,6 +98,6 @@ typedef struct {
 void ident_mech_begin(ident_ctx_t *x, ident_mech_t *s);
 ident_status_t ident_mech_step(ident_ctx_t *x, ident_mech_t *s, const ident_input_t *in);
 
-#define IDENT_MECH_SECONDS 10.0f
+#define IDENT_MECH_SECONDS 11.5f
 
 #endif /* IDENT_MECH_H */

@@ -97,8 +97,8 @@ SEEDS = {
     # the whole sequence, then its results read and applied
     "seed-plant-commission-all": LONG_START + commission(0x3F) + plant(1100, homed=False) + results(),
     # the mechanics' step after the phase check and the encoder (the probe, the friction points,
-    # the runs): 17.5 s + 7 s of plant
-    "seed-plant-commission-mech": LONG_START + commission(0x43) + plant(1050, homed=False)
+    # the runs): 17.5 s + 11.5 s of plant
+    "seed-plant-commission-mech": LONG_START + commission(0x43) + plant(1200, homed=False)
     + results(),
     "seed-plant-commission-r": LONG_START + commission(0x07, 800) + plant(500, homed=False) + results(),
     "seed-plant-commission-ldq": LONG_START + commission(0x1B, 200) + plant(600, homed=False) + results(),

@@ -602,7 +602,10 @@ static void test_small_load_lag_taken_out(void **state)
 
 static void test_open_phase_in_each_step(void **state)
 {
-    static const double opens_s[SXL_COMM_STEP_COUNT] = {0.02, 2.0, 18.6, 20.8, 21.8, 23.6, 31.9};
+    /* in each step where the watch can judge: the encoder's spin (not its alignment) and the
+     * mechanics' runs (not its friction points, where the phases carry a few mA):
+     * docs/commissioning.md section 1 */
+    static const double opens_s[SXL_COMM_STEP_COUNT] = {0.02, 2.0, 18.6, 20.8, 21.8, 23.6, 36.6};
     int step;
     (void)state;
     for (step = 0; step < (int)SXL_COMM_STEP_COUNT; step++) {
