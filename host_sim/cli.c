@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "ctl_param_ranges.h"
 #include "decimal_arg.h"
 #include "motor_params_file.h"
 #include "scenario.h"
@@ -234,16 +235,20 @@ static const opt_t options[] = {
     {"--paper-ddc", OPT_PAPER, OPT_RUN, 0u, G_GUARD, 0.0, 0.0, 0, NULL},
     CHOICE("--delay-angle", cfg.mid_period_angle, G_DELAY_ANGLE, delay_angles),
     CHOICE("--pulse-pattern", cfg.pulse_pattern, G_PULSE_PATTERN, pulse_patterns),
-    NUM("--flux-tie-band", cfg.flux_tie_band, G_TIE_BAND, 0.0, 1.0),
-    NUM("--lambda", cfg.lambda, G_LAMBDA, 0.0, 10000.0),
+    NUM("--flux-tie-band", cfg.flux_tie_band, G_TIE_BAND, CTL_FLUX_TIE_BAND_MIN,
+        CTL_FLUX_TIE_BAND_MAX),
+    NUM("--lambda", cfg.lambda, G_LAMBDA, CTL_LAMBDA_MIN, CTL_LAMBDA_MAX),
     NUM("--fs", cfg.fs_hz, G_FS, 1000.0, 100000.0),
     NUM("--speed", cfg.speed_rpm, G_SPEED, -6000.0, 6000.0),
     NUM("--load", cfg.load_nm, G_LOAD, -50.0, 50.0),
     NUM("--duration", cfg.duration_s, G_DURATION, 0.01, SIM_MAX_DURATION_S),
     {"--seed", OPT_SEED, OPT_RUN, F(cfg.seed), G_SEED, 0.0, 0.0, 0, NULL},
-    {"--duty-levels", OPT_INTEGER, OPT_RUN, F(cfg.duty_levels), G_LEVELS, 2.0, 11.0, 0, NULL},
-    NUM("--torque-limit", cfg.torque_limit_nm, G_TORQUE_LIMIT, 0.1, 50.0),
-    NUM("--light-load-current", cfg.light_load_current_a, G_LIGHT_LOAD_CURRENT, 0.0, 20.0),
+    {"--duty-levels", OPT_INTEGER, OPT_RUN, F(cfg.duty_levels), G_LEVELS, CTL_DUTY_LEVELS_MIN,
+     CTL_DUTY_LEVELS_MAX, 0, NULL},
+    NUM("--torque-limit", cfg.torque_limit_nm, G_TORQUE_LIMIT, CTL_TORQUE_LIMIT_MIN,
+        CTL_TORQUE_LIMIT_MAX),
+    NUM("--light-load-current", cfg.light_load_current_a, G_LIGHT_LOAD_CURRENT,
+        CTL_LIGHT_LOAD_CURRENT_MIN, CTL_LIGHT_LOAD_CURRENT_MAX),
     NUM("--fault-time", cfg.fault_time_s, G_FAULT_TIME, 0.001, SIM_MAX_DURATION_S),
     NUM("--trip-current", cfg.trip_current_a, G_TRIP, 0.1, 1000.0),
     NUM("--fine-rate", cfg.fine_rate_hz, G_FINE_RATE, 10000.0, 10e6),
@@ -260,13 +265,13 @@ static const opt_t options[] = {
     NUM("--encoder-offset-deg", encoder_offset_deg, G_ENC_OFFSET, -360.0, 360.0),
     FLAG("--encoder-reversed", OPT_SET_BOOL, cfg.plant.encoder_reversed, G_ENC_REVERSED, 1),
     FLAG("--encoder-stuck", OPT_SET_BOOL, cfg.plant.encoder_stuck, G_ENC_STUCK, 1),
-    NUM("--ctl-r", cfg.ctl.r_ohm, G_CTL_R, 0.0, 999.0),
-    NUM("--ctl-ld", cfg.ctl.ld_h, G_CTL_LD, 1e-5, 9.0),
-    NUM("--ctl-lq", cfg.ctl.lq_h, G_CTL_LQ, 1e-5, 9.0),
-    NUM("--ctl-lxy", cfg.ctl.lxy_h, G_CTL_LXY, 1e-5, 9.0),
-    NUM("--ctl-psi-f", cfg.ctl.psi_f_wb, G_CTL_PSI_F, 1e-3, 5.0),
-    {"--ctl-pole-pairs", OPT_INTEGER, OPT_RUN, F(cfg.ctl.pole_pairs), G_CTL_POLES, 1.0, 64.0, 0,
-     NULL},
+    NUM("--ctl-r", cfg.ctl.r_ohm, G_CTL_R, CTL_RESISTANCE_MIN, CTL_RESISTANCE_MAX),
+    NUM("--ctl-ld", cfg.ctl.ld_h, G_CTL_LD, CTL_INDUCTANCE_MIN, CTL_INDUCTANCE_MAX),
+    NUM("--ctl-lq", cfg.ctl.lq_h, G_CTL_LQ, CTL_INDUCTANCE_MIN, CTL_INDUCTANCE_MAX),
+    NUM("--ctl-lxy", cfg.ctl.lxy_h, G_CTL_LXY, CTL_INDUCTANCE_MIN, CTL_INDUCTANCE_MAX),
+    NUM("--ctl-psi-f", cfg.ctl.psi_f_wb, G_CTL_PSI_F, CTL_PM_FLUX_MIN, CTL_PM_FLUX_MAX),
+    {"--ctl-pole-pairs", OPT_INTEGER, OPT_RUN, F(cfg.ctl.pole_pairs), G_CTL_POLES,
+     CTL_POLE_PAIRS_MIN, CTL_POLE_PAIRS_MAX, 0, NULL},
     NUM("--ctl-encoder-offset-deg", ctl_encoder_offset_deg, G_CTL_ENC_OFFSET, -360.0, 360.0),
     {"--ctl-params", OPT_FILE, OPT_RUN, F(ctl_params_path), G_CTL_PARAMS, 0.0, 0.0, 0, NULL},
     {"--commission-steps", OPT_INTEGER, OPT_RUN, F(cfg.commission_steps), G_COMM_STEPS, 1.0, 127.0,
@@ -311,6 +316,14 @@ static const opt_t options[] = {
 static int cli_fail(char *err, size_t len, const char *fmt, const char *a, const char *b)
 {
     (void)snprintf(err, len, fmt, a, b ? b : "(missing)");
+    return -1;
+}
+
+/* A number or integer option's value outside its range: the range in the message. */
+static int cli_fail_range(char *err, size_t len, const opt_t *opt, const char *v, int integer)
+{
+    (void)snprintf(err, len, "bad value for %s: '%s' (%s in %g..%g)", opt->name,
+                   v ? v : "(missing)", integer ? "an integer" : "a number", opt->lo, opt->hi);
     return -1;
 }
 
@@ -397,12 +410,12 @@ static int apply_option(const opt_t *opt, const char *v, sim_cli_t *o, char *err
         return 1;
     case OPT_NUMBER:
         if (parse_number(v, opt->lo, opt->hi, (double *)(void *)(base + opt->field)) != 0) {
-            return cli_fail(err, len, "bad value for %s: '%s'", opt->name, v);
+            return cli_fail_range(err, len, opt, v, 0);
         }
         return 2;
     case OPT_INTEGER:
         if (decimal_parse(v, 1, opt->lo, opt->hi, &x) != 0) {
-            return cli_fail(err, len, "bad value for %s: '%s'", opt->name, v);
+            return cli_fail_range(err, len, opt, v, 1);
         }
         *(int *)(void *)(base + opt->field) = (int)x;
         return 2;

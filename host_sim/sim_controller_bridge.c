@@ -67,9 +67,10 @@ static void bridge_speed_loop(const sim_ctl_config_t *cfg, ctl_params_t *p)
     }
 }
 
-static int bridge_init(const sim_ctl_config_t *cfg)
+static int bridge_init(const sim_ctl_config_t *cfg, const char **why)
 {
     ctl_params_t p;
+    ctl_param_error_t e;
     ctl_params_default(&p);
     p.resistance_ohm = (float)cfg->r_ohm;
     p.ld_h = (float)cfg->ld_h;
@@ -117,9 +118,12 @@ static int bridge_init(const sim_ctl_config_t *cfg)
     if (cfg->postfault_strategy >= 0) {
         p.postfault_strategy = (int16_t)cfg->postfault_strategy;
     }
-    if (!ctl_params_valid(&p)) {
+    e = ctl_params_check(&p);
+    if (e != CTL_PARAM_OK) {
+        *why = ctl_param_error_text(e);
         return 1;
     }
+    *why = "the drive refused a setting (open-phase or torque-limited action, current span)";
     drive_init(&bridge_drive, &p);
     if (cfg->open_phase_action >= 0 &&
         !drive_set_open_phase_action(&bridge_drive, (int16_t)cfg->open_phase_action,

@@ -95,8 +95,9 @@ typedef struct {
 
 typedef struct {
     const char *arith; /* "fixed" or "float" */
-    /* 0 on success; non-zero when the core refused the parameters */
-    int (*init)(const sim_ctl_config_t *cfg);
+    /* 0 on success; non-zero when the core refused the parameters, with why (the core's reason
+     * text, or the drive setting it could not take) */
+    int (*init)(const sim_ctl_config_t *cfg, const char **why);
     void (*isr)(void);
     void (*request_run)(void);
     void (*set_speed_rpm)(double rpm);

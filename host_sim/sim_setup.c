@@ -133,6 +133,7 @@ static int setup_drive(sim_run_t *rs, char *err, size_t err_len)
     const uint32_t offset =
         (uint32_t)(int64_t)llround((offset_turns - floor(offset_turns)) * 4294967296.0);
     sim_ctl_config_t cc;
+    const char *why = "";
     hal_sim_reset();
     if (!hal_pwm_init((uint32_t)lround(rs->cfg->fs_hz),
                       (uint32_t)lround((p->dead_time_on ? p->dead_time_s : 0.0) * 1e9)) ||
@@ -142,8 +143,9 @@ static int setup_drive(sim_run_t *rs, char *err, size_t err_len)
     }
     hal_cycles_init();
     setup_controller_config(rs, &cc);
-    if (rs->ops->init(&cc) != 0) {
-        return setup_fail(err, err_len, "control core rejected the parameters");
+    if (rs->ops->init(&cc, &why) != 0) {
+        (void)snprintf(err, err_len, "control core rejected the parameters: %s", why);
+        return -1;
     }
     return 0;
 }

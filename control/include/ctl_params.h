@@ -14,10 +14,9 @@
 #include <stdint.h>
 
 #include "ctl_flux_ref.h"
+#include "ctl_param_ranges.h"
 #include "ctl_postfault_config.h"
 #include "ctl_protect.h"
-
-#define CTL_DUTY_LEVELS_MAX 11 /* = CTL_DDC_LEVELS_MAX */
 
 typedef enum {
     CTL_CONTROLLER_DDC = 0,    /* the paper's discrete-duty MPTC */
@@ -90,28 +89,42 @@ typedef struct {
 } ctl_params_t;
 
 /* Why a parameter set was refused: X(code, text), one list. */
-#define CTL_PARAM_ERRORS(X)                                                                        \
-    X(CTL_PARAM_OK, "accepted")                                                                    \
-    X(CTL_PARAM_BUSY, "the previous set has not reached the control step yet")                     \
-    X(CTL_PARAM_CONTROLLER, "unknown controller")                                                  \
-    X(CTL_PARAM_DDC_DIRECTION, "unknown DDC direction reading")                                    \
-    X(CTL_PARAM_DUTY_LEVELS, "duty levels outside 2..11")                                          \
-    X(CTL_PARAM_LAMBDA, "flux weight outside 0..2000 N*m/Wb")                                      \
-    X(CTL_PARAM_RESISTANCE, "stator resistance outside 0..1000 ohm")                               \
-    X(CTL_PARAM_INDUCTANCE, "an inductance outside 1 uH..10 H")                                    \
-    X(CTL_PARAM_PM_FLUX, "magnet flux outside 0.1 mWb..10 Wb")                                     \
-    X(CTL_PARAM_POLE_PAIRS, "pole pairs outside 1..64")                                            \
-    X(CTL_PARAM_INERTIA, "inertia outside 1e-6..1000 kg*m^2")                                      \
-    X(CTL_PARAM_SAMPLE_TIME, "sample time outside 1 us..10 ms")                                    \
-    X(CTL_PARAM_MODEL, "the discrete model does not fit: sample time too long for L/R")            \
-    X(CTL_PARAM_FLUX_REF, "flux reference mode unknown or constant flux outside 1 mWb..10 Wb")     \
-    X(CTL_PARAM_SPEED_GAINS, "speed gains negative or too large for the number format")            \
-    X(CTL_PARAM_TORQUE_LIMIT, "torque limit outside 1 mN*m..500 N*m")                              \
-    X(CTL_PARAM_PROTECTION, "a protection threshold is out of range")                              \
-    X(CTL_PARAM_FLUX_TIE_BAND, "DDC flux tie band outside 0..1 duty level")                        \
-    X(CTL_PARAM_PULSE_PATTERN, "unknown pulse pattern")                                            \
-    X(CTL_PARAM_OPEN_PHASE, "open phase outside -1..5 or unknown post-fault strategy")             \
-    X(CTL_PARAM_LIGHT_LOAD_CURRENT, "light-load current outside 0..1000 A")
+#define CTL_PARAM_ERRORS(X)                                                                                                         \
+    X(CTL_PARAM_OK, "accepted")                                                                                                     \
+    X(CTL_PARAM_BUSY, "the previous set has not reached the control step yet")                                                      \
+    X(CTL_PARAM_CONTROLLER, "unknown controller")                                                                                   \
+    X(CTL_PARAM_DDC_DIRECTION, "unknown DDC direction reading")                                                                     \
+    X(CTL_PARAM_DUTY_LEVELS,                                                                                                        \
+      CTL_RANGE_TEXT("duty levels", CTL_DUTY_LEVELS_MIN, CTL_DUTY_LEVELS_MAX, ""))                                                  \
+    X(CTL_PARAM_LAMBDA, CTL_RANGE_TEXT("flux weight", CTL_LAMBDA_MIN, CTL_LAMBDA_MAX, " N*m/Wb"))                                   \
+    X(CTL_PARAM_RESISTANCE,                                                                                                         \
+      CTL_RANGE_TEXT("stator resistance", CTL_RESISTANCE_MIN, CTL_RESISTANCE_MAX, " ohm"))                                          \
+    X(CTL_PARAM_INDUCTANCE,                                                                                                         \
+      CTL_RANGE_TEXT("an inductance", CTL_INDUCTANCE_MIN, CTL_INDUCTANCE_MAX, " H"))                                                \
+    X(CTL_PARAM_PM_FLUX, CTL_RANGE_TEXT("magnet flux", CTL_PM_FLUX_MIN, CTL_PM_FLUX_MAX, " Wb"))                                    \
+    X(CTL_PARAM_POLE_PAIRS,                                                                                                         \
+      CTL_RANGE_TEXT("pole pairs", CTL_POLE_PAIRS_MIN, CTL_POLE_PAIRS_MAX, ""))                                                     \
+    X(CTL_PARAM_INERTIA, CTL_RANGE_TEXT("inertia", CTL_INERTIA_MIN, CTL_INERTIA_MAX, " kg*m^2"))                                    \
+    X(CTL_PARAM_SAMPLE_TIME,                                                                                                        \
+      CTL_RANGE_TEXT("sample time", CTL_SAMPLE_TIME_MIN, CTL_SAMPLE_TIME_MAX, " s"))                                                \
+    X(CTL_PARAM_MODEL, "the discrete model does not fit: sample time too long for L/R")                                             \
+    X(CTL_PARAM_FLUX_REF, "flux reference mode unknown or " CTL_RANGE_TEXT(                                                         \
+                              "constant flux", CTL_FLUX_REF_MIN, CTL_FLUX_REF_MAX, " Wb"))                                          \
+    X(CTL_PARAM_SPEED_GAINS,                                                                                                        \
+      CTL_RANGE_TEXT(                                                                                                               \
+          "speed gains", CTL_SPEED_KP_MIN, CTL_SPEED_KP_MAX,                                                                        \
+          " N*m*s/rad") " and " CTL_RANGE_STR(CTL_SPEED_KI_MIN) ".." CTL_RANGE_STR(CTL_SPEED_KI_MAX) " N*m/rad, or too "            \
+                                                                                                     "large for the number format") \
+    X(CTL_PARAM_TORQUE_LIMIT,                                                                                                       \
+      CTL_RANGE_TEXT("torque limit", CTL_TORQUE_LIMIT_MIN, CTL_TORQUE_LIMIT_MAX, " N*m"))                                           \
+    X(CTL_PARAM_PROTECTION, "a protection threshold is out of range")                                                               \
+    X(CTL_PARAM_FLUX_TIE_BAND, CTL_RANGE_TEXT("DDC flux tie band", CTL_FLUX_TIE_BAND_MIN,                                           \
+                                              CTL_FLUX_TIE_BAND_MAX, " duty level"))                                                \
+    X(CTL_PARAM_PULSE_PATTERN, "unknown pulse pattern")                                                                             \
+    X(CTL_PARAM_OPEN_PHASE, "open phase outside -1..5 or unknown post-fault strategy")                                              \
+    X(CTL_PARAM_LIGHT_LOAD_CURRENT,                                                                                                 \
+      CTL_RANGE_TEXT("light-load current", CTL_LIGHT_LOAD_CURRENT_MIN, CTL_LIGHT_LOAD_CURRENT_MAX,                                  \
+                     " A"))
 
 #define CTL_PARAM_ERROR_ENUM(code, text) code,
 typedef enum { CTL_PARAM_ERRORS(CTL_PARAM_ERROR_ENUM) CTL_PARAM_ERROR_COUNT } ctl_param_error_t;
@@ -122,6 +135,9 @@ void ctl_params_default(ctl_params_t *p);
 
 /* CTL_PARAM_OK when every field is usable, else the first reason found. */
 ctl_param_error_t ctl_params_check(const ctl_params_t *p);
+
+/* A reason's text (the list above; the ranges as ctl_param_ranges.h writes them). */
+const char *ctl_param_error_text(ctl_param_error_t e);
 
 static inline bool ctl_params_valid(const ctl_params_t *p)
 {

@@ -50,27 +50,45 @@ void ctl_speed_gains_from_inertia(ctl_params_t *p)
     p->speed_ki_nm_per_rad = p->speed_kp_nm_per_rad_s * wc / CTL_SPEED_DESIGN_RATIO;
 }
 
+static bool params_inductance_ok(float l)
+{
+    return ctl_float_in_range(l, CTL_RANGE_F(CTL_INDUCTANCE_MIN), CTL_RANGE_F(CTL_INDUCTANCE_MAX));
+}
+
+#define CTL_PARAM_ERROR_TEXT(code, text) text,
+static const char *const param_error_text[CTL_PARAM_ERROR_COUNT] = {
+    CTL_PARAM_ERRORS(CTL_PARAM_ERROR_TEXT)};
+#undef CTL_PARAM_ERROR_TEXT
+
+const char *ctl_param_error_text(ctl_param_error_t e)
+{
+    return ((int16_t)e >= 0 && e < CTL_PARAM_ERROR_COUNT) ? param_error_text[e] : "unknown reason";
+}
+
 static ctl_param_error_t check_machine(const ctl_params_t *p)
 {
     ctl_model_t model;
-    if (!ctl_float_in_range(p->resistance_ohm, 0.0f, 1000.0f)) {
+    if (!ctl_float_in_range(p->resistance_ohm, CTL_RANGE_F(CTL_RESISTANCE_MIN),
+                            CTL_RANGE_F(CTL_RESISTANCE_MAX))) {
         return CTL_PARAM_RESISTANCE;
     }
-    if (!ctl_float_in_range(p->ld_h, 1.0e-6f, 10.0f) ||
-        !ctl_float_in_range(p->lq_h, 1.0e-6f, 10.0f) ||
-        !ctl_float_in_range(p->l_xy_h, 1.0e-6f, 10.0f)) {
+    if (!params_inductance_ok(p->ld_h) || !params_inductance_ok(p->lq_h) ||
+        !params_inductance_ok(p->l_xy_h)) {
         return CTL_PARAM_INDUCTANCE;
     }
-    if (!ctl_float_in_range(p->pm_flux_wb, 1.0e-4f, 10.0f)) {
+    if (!ctl_float_in_range(p->pm_flux_wb, CTL_RANGE_F(CTL_PM_FLUX_MIN),
+                            CTL_RANGE_F(CTL_PM_FLUX_MAX))) {
         return CTL_PARAM_PM_FLUX;
     }
-    if (p->pole_pairs < 1 || p->pole_pairs > 64) {
+    if (p->pole_pairs < CTL_POLE_PAIRS_MIN || p->pole_pairs > CTL_POLE_PAIRS_MAX) {
         return CTL_PARAM_POLE_PAIRS;
     }
-    if (!ctl_float_in_range(p->inertia_kg_m2, 1.0e-6f, 1000.0f)) {
+    if (!ctl_float_in_range(p->inertia_kg_m2, CTL_RANGE_F(CTL_INERTIA_MIN),
+                            CTL_RANGE_F(CTL_INERTIA_MAX))) {
         return CTL_PARAM_INERTIA;
     }
-    if (!ctl_float_in_range(p->sample_time_s, 1.0e-6f, 1.0e-2f)) {
+    if (!ctl_float_in_range(p->sample_time_s, CTL_RANGE_F(CTL_SAMPLE_TIME_MIN),
+                            CTL_RANGE_F(CTL_SAMPLE_TIME_MAX))) {
         return CTL_PARAM_SAMPLE_TIME;
     }
     if (!ctl_model_init(&model, p->resistance_ohm, p->ld_h, p->lq_h, p->l_xy_h, p->pm_flux_wb,
@@ -92,13 +110,15 @@ static ctl_param_error_t check_control(const ctl_params_t *p)
           p->ddc_direction == CTL_DDC_DIRECTION_XY_TABLE)) {
         return CTL_PARAM_DDC_DIRECTION;
     }
-    if (p->duty_levels < 2 || p->duty_levels > CTL_DUTY_LEVELS_MAX) {
+    if (p->duty_levels < CTL_DUTY_LEVELS_MIN || p->duty_levels > CTL_DUTY_LEVELS_MAX) {
         return CTL_PARAM_DUTY_LEVELS;
     }
-    if (!ctl_float_in_range(p->lambda_nm_per_wb, 0.0f, 2000.0f)) {
+    if (!ctl_float_in_range(p->lambda_nm_per_wb, CTL_RANGE_F(CTL_LAMBDA_MIN),
+                            CTL_RANGE_F(CTL_LAMBDA_MAX))) {
         return CTL_PARAM_LAMBDA;
     }
-    if (!ctl_float_in_range(p->ddc_flux_tie_band, 0.0f, 1.0f)) {
+    if (!ctl_float_in_range(p->ddc_flux_tie_band, CTL_RANGE_F(CTL_FLUX_TIE_BAND_MIN),
+                            CTL_RANGE_F(CTL_FLUX_TIE_BAND_MAX))) {
         return CTL_PARAM_FLUX_TIE_BAND;
     }
     if (!(p->pulse_pattern == CTL_PULSE_BY_ONES ||
@@ -108,18 +128,23 @@ static ctl_param_error_t check_control(const ctl_params_t *p)
     }
     if (!(p->flux_ref_mode == CTL_FLUX_REF_MTPA ||
           (p->flux_ref_mode == CTL_FLUX_REF_CONSTANT &&
-           ctl_float_in_range(p->flux_ref_wb, 1.0e-3f, 10.0f)))) {
+           ctl_float_in_range(p->flux_ref_wb, CTL_RANGE_F(CTL_FLUX_REF_MIN),
+                              CTL_RANGE_F(CTL_FLUX_REF_MAX))))) {
         return CTL_PARAM_FLUX_REF;
     }
-    if (!ctl_float_in_range(p->torque_limit_nm, 1.0e-3f, 500.0f)) {
+    if (!ctl_float_in_range(p->torque_limit_nm, CTL_RANGE_F(CTL_TORQUE_LIMIT_MIN),
+                            CTL_RANGE_F(CTL_TORQUE_LIMIT_MAX))) {
         return CTL_PARAM_TORQUE_LIMIT;
     }
     /* the table takes at most the current of its top (ctl_flux_ref_init) */
-    if (!ctl_float_in_range(p->light_load_current_a, 0.0f, 1000.0f)) {
+    if (!ctl_float_in_range(p->light_load_current_a, CTL_RANGE_F(CTL_LIGHT_LOAD_CURRENT_MIN),
+                            CTL_RANGE_F(CTL_LIGHT_LOAD_CURRENT_MAX))) {
         return CTL_PARAM_LIGHT_LOAD_CURRENT;
     }
-    if (!ctl_float_in_range(p->speed_kp_nm_per_rad_s, 0.0f, 1.0e4f) ||
-        !ctl_float_in_range(p->speed_ki_nm_per_rad, 0.0f, 1.0e6f)) {
+    if (!ctl_float_in_range(p->speed_kp_nm_per_rad_s, CTL_RANGE_F(CTL_SPEED_KP_MIN),
+                            CTL_RANGE_F(CTL_SPEED_KP_MAX)) ||
+        !ctl_float_in_range(p->speed_ki_nm_per_rad, CTL_RANGE_F(CTL_SPEED_KI_MIN),
+                            CTL_RANGE_F(CTL_SPEED_KI_MAX))) {
         return CTL_PARAM_SPEED_GAINS;
     }
     /* per-unit gains must stay well inside the Q24 range (|x| < 128) */

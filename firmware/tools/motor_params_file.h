@@ -20,25 +20,33 @@
 #include <stdint.h>
 #include <stdio.h>
 
-/* X(id, NAME suffix, description, unit, lo, hi, is_integer); ranges as ctl_params_check's */
+#include "ctl_param_ranges.h"
+
+/* X(id, NAME suffix, description, unit, lo, hi, is_integer); the controller's ranges are the
+ * core's (ctl_param_ranges.h), the encoder offset's and the friction's the file's own */
 #define MOTOR_PARAM_LIST(X)                                                                        \
-    X(MOTOR_PARAM_R, "R_OHM", "stator resistance", "ohm", 0.0, 1000.0, 0)                          \
-    X(MOTOR_PARAM_LD, "LD_H", "d-axis inductance", "H", 1e-6, 10.0, 0)                             \
-    X(MOTOR_PARAM_LQ, "LQ_H", "q-axis inductance", "H", 1e-6, 10.0, 0)                             \
-    X(MOTOR_PARAM_LXY, "LXY_H", "x-y (leakage) inductance", "H", 1e-6, 10.0, 0)                    \
-    X(MOTOR_PARAM_PSI_F, "PSI_F_WB", "magnet flux linkage", "Wb", 1e-4, 10.0, 0)                   \
-    X(MOTOR_PARAM_POLE_PAIRS, "POLE_PAIRS", "pole pairs (checked)", "", 1.0, 64.0, 1)              \
+    X(MOTOR_PARAM_R, "R_OHM", "stator resistance", "ohm", CTL_RESISTANCE_MIN, CTL_RESISTANCE_MAX,  \
+      0)                                                                                           \
+    X(MOTOR_PARAM_LD, "LD_H", "d-axis inductance", "H", CTL_INDUCTANCE_MIN, CTL_INDUCTANCE_MAX, 0) \
+    X(MOTOR_PARAM_LQ, "LQ_H", "q-axis inductance", "H", CTL_INDUCTANCE_MIN, CTL_INDUCTANCE_MAX, 0) \
+    X(MOTOR_PARAM_LXY, "LXY_H", "x-y (leakage) inductance", "H", CTL_INDUCTANCE_MIN,               \
+      CTL_INDUCTANCE_MAX, 0)                                                                       \
+    X(MOTOR_PARAM_PSI_F, "PSI_F_WB", "magnet flux linkage", "Wb", CTL_PM_FLUX_MIN,                 \
+      CTL_PM_FLUX_MAX, 0)                                                                          \
+    X(MOTOR_PARAM_POLE_PAIRS, "POLE_PAIRS", "pole pairs (checked)", "", CTL_POLE_PAIRS_MIN,        \
+      CTL_POLE_PAIRS_MAX, 1)                                                                       \
     X(MOTOR_PARAM_ENCODER_OFFSET, "ENCODER_OFFSET",                                                \
       "electrical angle of the encoder index to the d axis, 2^32 = one turn", "", 0.0,             \
       4294967295.0, 1)                                                                             \
-    X(MOTOR_PARAM_INERTIA, "INERTIA_KG_M2", "rotor and load inertia", "kg m^2", 1e-6, 1000.0, 0)   \
+    X(MOTOR_PARAM_INERTIA, "INERTIA_KG_M2", "rotor and load inertia", "kg m^2", CTL_INERTIA_MIN,   \
+      CTL_INERTIA_MAX, 0)                                                                          \
     X(MOTOR_PARAM_FRICTION, "FRICTION_NMS",                                                        \
       "viscous friction (reported; the controller has no term for it)", "N m s/rad", 0.0, 1000.0,  \
       0)                                                                                           \
     X(MOTOR_PARAM_SPEED_KP, "SPEED_KP_NMS", "speed PI gain, per mechanical rad/s", "N m s/rad",    \
-      0.0, 1e4, 0)                                                                                 \
+      CTL_SPEED_KP_MIN, CTL_SPEED_KP_MAX, 0)                                                       \
     X(MOTOR_PARAM_SPEED_KI, "SPEED_KI_NM", "speed PI integral gain, per mechanical rad",           \
-      "N m/rad", 0.0, 1e6, 0)
+      "N m/rad", CTL_SPEED_KI_MIN, CTL_SPEED_KI_MAX, 0)
 
 #define MOTOR_PARAM_ENUM(id, name, text, unit, lo, hi, integer) id,
 typedef enum { MOTOR_PARAM_LIST(MOTOR_PARAM_ENUM) MOTOR_PARAM_COUNT } motor_param_t;

@@ -33,6 +33,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "ctl_param_ranges.h"
 #include "decimal_arg.h"
 #include "link_tool.h"
 #include "sxlink.h"
@@ -618,8 +619,10 @@ static int build_request(int argc, char **argv, uint16_t *cmd, uint16_t *payload
         if (id == 3u) {
             return usage("controller must be ddc, mptc49 or mptc13");
         }
-        if (!parse_double(argv[2], 0.0, 2000.0, &lambda)) {
-            return bad_number("lambda", argv[2], "0..2000 N*m/Wb");
+        if (!parse_double(argv[2], CTL_LAMBDA_MIN, CTL_LAMBDA_MAX, &lambda)) {
+            return bad_number(
+                "lambda", argv[2],
+                CTL_RANGE_STR(CTL_LAMBDA_MIN) ".." CTL_RANGE_STR(CTL_LAMBDA_MAX) " N*m/Wb");
         }
         *cmd = SXL_CMD_SET_CONTROLLER;
         payload[0] = id;

@@ -267,6 +267,11 @@ static const bad_case_t bad_cases[] = {
     {{"--controller", "ddc", "--scenario", "steady", "--lambda", "abc"}, 6, "'abc'"},
     {{"--controller", "ddc", "--scenario", "steady", "--lambda", "-1"}, 6, "'-1'"},
     {{"--controller", "ddc", "--scenario", "steady", "--lambda", "nan"}, 6, "'nan'"},
+    /* the controller's options take the core's ranges (ctl_param_ranges.h): 5000 passed the
+     * option's own 0..10000 and the core refused it without saying why (issue 26) */
+    {{"--controller", "ddc", "--scenario", "steady", "--lambda", "5000"}, 6, "0..2000"},
+    {{"--controller", "ddc", "--scenario", "steady", "--duty-levels", "12"}, 6, "2..11"},
+    {{"--controller", "ddc", "--scenario", "steady", "--ctl-r", "1001"}, 6, "0..1000"},
     {{"--controller", "ddc", "--scenario", "steady", "--fs", "10"}, 6, "'10'"},
     {{"--controller", "ddc", "--scenario", "steady", "--fs", "10k"}, 6, "'10k'"},
     {{"--controller", "ddc", "--scenario", "steady", "--arith", "double"}, 6, "'double'"},
@@ -301,6 +306,11 @@ static const bad_case_t bad_cases[] = {
     {{"--controller", "ddc", "--scenario", "steady", "--lambda", "010"}, 6, "'010'"},
     {{"--controller", "ddc", "--scenario", "steady", "--seed", "007"}, 6, "'007'"},
     {{"--controller", "ddc", "--scenario", "steady", "--lambda", "nan"}, 6, "'nan'"},
+    /* the controller's options take the core's ranges (ctl_param_ranges.h): 5000 passed the
+     * option's own 0..10000 and the core refused it without saying why (issue 26) */
+    {{"--controller", "ddc", "--scenario", "steady", "--lambda", "5000"}, 6, "0..2000"},
+    {{"--controller", "ddc", "--scenario", "steady", "--duty-levels", "12"}, 6, "2..11"},
+    {{"--controller", "ddc", "--scenario", "steady", "--ctl-r", "1001"}, 6, "0..1000"},
     {{"--controller", "ddc", "--scenario", "steady", "--duty-levels", "6.0"}, 6, "'6.0'"},
     {{"--controller", "ddc", "--scenario", "steady", "--lambda", "20", "--lambda", "30"},
      8,
@@ -540,6 +550,15 @@ static void test_executable_writes_nothing_on_bad_argument(void **state)
         assert_non_null(strchr(err, '\n'));
         assert_true(strchr(err, '\n')[1] == '\0'); /* exactly one line */
         assert_int_not_equal(stat(out, &st), 0);   /* nothing written */
+    }
+    {
+        /* a set the options allow but the core refuses: its reason, in one line (issue 26) */
+        const char *const a[] = {SIXPHASE_SIM_EXE, "run",     "--controller", "ddc", "--scenario",
+                                 "steady",         "--ctl-r", "1000",         NULL};
+        assert_int_equal(run_exe(a, err, sizeof err), 1);
+        print_message("stderr: %s", err);
+        assert_non_null(strstr(err, "control core rejected the parameters: the discrete model"));
+        assert_true(strchr(err, '\n')[1] == '\0');
     }
     {
         /* an output directory that cannot be written is found before the simulation */
