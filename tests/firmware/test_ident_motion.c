@@ -69,7 +69,7 @@ static void model_input(const model_t *m, ident_input_t *in)
         in->i_phase[k] = ident_vsd_phase(v, k);
     }
     in->vdc = 540.0f;
-    in->elec_angle = (uint32_t)(turns * 4294967296.0);
+    in->elec_angle = (uint32_t)((uint64_t)floor(turns * 4294967296.0) & 0xFFFFFFFFu);
     in->position = (int32_t)floor(m->angle * CPE);
     in->index_seen = true;
     in->mech_rev_s = 0.0f;
