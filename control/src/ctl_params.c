@@ -62,7 +62,7 @@ static const char *const param_error_text[CTL_PARAM_ERROR_COUNT] = {
 
 const char *ctl_param_error_text(ctl_param_error_t e)
 {
-    return ((int16_t)e >= 0 && e < CTL_PARAM_ERROR_COUNT) ? param_error_text[e] : "unknown reason";
+    return ((uint32_t)e < (uint32_t)CTL_PARAM_ERROR_COUNT) ? param_error_text[e] : "unknown reason";
 }
 
 static ctl_param_error_t check_machine(const ctl_params_t *p)
