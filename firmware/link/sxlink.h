@@ -80,14 +80,20 @@
 #define SXL_REPLY 0x80u
 
 /* Result byte of every reply. */
-#define SXL_OK 0u
-#define SXL_ERR_LENGTH 1u    /* payload length wrong for the command */
-#define SXL_ERR_VALUE 2u     /* value out of range or parameters rejected */
-#define SXL_ERR_UNKNOWN 3u   /* unknown command */
-#define SXL_ERR_REFUSED 4u   /* not allowed in the present state */
-#define SXL_ERR_BUSY 5u      /* the previous parameter set is still being applied: retry */
-#define SXL_ERR_NO_ROOM 6u   /* capture: length x channels above the buffer */
-#define SXL_ERR_NOT_ARMED 7u /* a command that moves the motor without the armed token */
+/* A reply's result byte, one list: X(id, number, text); the host tool prints the text. */
+#define SXL_RESULT_LIST(X)                                                                         \
+    X(SXL_OK, 0, "ok")                                                                             \
+    X(SXL_ERR_LENGTH, 1, "bad length") /* payload length wrong for the command */                  \
+    X(SXL_ERR_VALUE, 2, "bad value")   /* out of range or parameters rejected */                   \
+    X(SXL_ERR_UNKNOWN, 3, "unknown command")                                                       \
+    X(SXL_ERR_REFUSED, 4, "refused")  /* not allowed in the present state */                       \
+    X(SXL_ERR_BUSY, 5, "busy, retry") /* the previous parameter set is still applied */            \
+    X(SXL_ERR_NO_ROOM, 6, "no room in the capture buffer") /* length x channels above it */        \
+    X(SXL_ERR_NOT_ARMED, 7, "not armed (the session's token is missing)") /* moves the motor */
+
+#define SXL_RESULT_ENUM(id, number, text) id = number##u,
+enum { SXL_RESULT_LIST(SXL_RESULT_ENUM) SXL_RESULT_COUNT };
+#undef SXL_RESULT_ENUM
 
 /* Commands that move the motor: accepted only with the armed session's token in front of their
  * own payload (SXL_TOKEN_BYTES, uint32 little-endian). */
@@ -293,6 +299,7 @@ int16_t sxl_get_i16(const uint16_t *p);
 const char *sxl_run_refusal_name(uint16_t reason);
 const char *sxl_state_name(uint16_t state);
 const char *sxl_fault_name(uint16_t code);
+const char *sxl_result_name(uint16_t result);
 /* One line on what a drive fault code means (the fault list's description; "" for NONE). */
 const char *sxl_fault_description(uint16_t code);
 /* Commissioning's lists (sxlink_commission.h): names as the tool prints them; "?" out of range. */

@@ -123,6 +123,16 @@ const char *sxl_state_name(uint16_t state)
     return (state < SXL_STATE_NAME_COUNT) ? state_names[state] : "?";
 }
 
+#define SXL_RESULT_TEXT(id, number, text) [number] = text,
+static const char *const result_names[SXL_RESULT_COUNT] = {SXL_RESULT_LIST(SXL_RESULT_TEXT)};
+#undef SXL_RESULT_TEXT
+
+const char *sxl_result_name(uint16_t result)
+{
+    return (result < SXL_RESULT_COUNT && result_names[result]) ? result_names[result]
+                                                               : "unknown result";
+}
+
 const char *sxl_fault_name(uint16_t code)
 {
     return (code < SXL_FAULT_CODE_COUNT && fault_names[code]) ? fault_names[code] : "?";

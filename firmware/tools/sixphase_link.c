@@ -42,20 +42,7 @@
  * (the drive's log holds 8). */
 #define FAULTS_MAX_RECORDS 256
 static const char *const controller_names[] = {"ddc", "mptc49", "mptc13"};
-static const char *const result_names[] = {"ok",
-                                           "bad length",
-                                           "bad value",
-                                           "unknown command",
-                                           "refused",
-                                           "busy, retry",
-                                           "no room in the capture buffer",
-                                           "not armed (the session's token is missing)"};
-
-const char *result_name(uint16_t result)
-{
-    return (result < sizeof result_names / sizeof result_names[0]) ? result_names[result]
-                                                                   : "unknown result";
-}
+const char *result_name(uint16_t result) { return sxl_result_name(result); }
 
 int fail(int code, const char *fmt, ...)
 {
@@ -272,8 +259,7 @@ int print_reply(const sxl_frame_t *r)
                              "board, sixphase-sim serve)");
     }
     if (result != SXL_OK) {
-        return fail(EXIT_IO, "drive answered: %s",
-                    name_of(result_names, sizeof result_names / sizeof result_names[0], result));
+        return fail(EXIT_IO, "drive answered: %s", sxl_result_name(result));
     }
     switch (r->cmd & 0x7Fu) {
     case SXL_CMD_GET_PROFILE:
@@ -348,9 +334,7 @@ int print_profile_row(const sxl_frame_t *r, int first)
     const uint16_t *pf = &r->payload[1];
     double cpu;
     if (r->payload[0] != SXL_OK) {
-        return fail(
-            EXIT_IO, "drive answered: %s",
-            name_of(result_names, sizeof result_names / sizeof result_names[0], r->payload[0]));
+        return fail(EXIT_IO, "drive answered: %s", sxl_result_name(r->payload[0]));
     }
     if (r->len < 1u + SXL_PF_SIZE || pf[SXL_PF_STAGE] >= SXL_PF_STAGES) {
         return fail(EXIT_IO, "short or malformed profile reply (%u bytes)", (unsigned)r->len);
@@ -385,9 +369,7 @@ int print_fault_record(const sxl_frame_t *r, int *present)
     char mask[256];
     uint16_t k;
     if (r->payload[0] != SXL_OK) {
-        return fail(
-            EXIT_IO, "drive answered: %s",
-            name_of(result_names, sizeof result_names / sizeof result_names[0], r->payload[0]));
+        return fail(EXIT_IO, "drive answered: %s", sxl_result_name(r->payload[0]));
     }
     if (r->len < 1u + SXL_FR_HEADER_SIZE || fr[SXL_FR_PRESENT] > 1u ||
         (fr[SXL_FR_PRESENT] == 1u && r->len < 1u + SXL_FR_SIZE)) {

@@ -296,6 +296,22 @@ static void test_i16_fields(void **state)
 }
 
 /* Names follow drive_state_t, drive_fault_t and the ctl_fault_t bit order; "?" past the end. */
+/* The result byte's texts come from the one list of results (issue 26: the host tool kept its
+ * own array beside the codes, never checked against them): every code has its text. */
+static void test_result_names(void **state)
+{
+    uint16_t k;
+    (void)state;
+    for (k = 0; k < (uint16_t)SXL_RESULT_COUNT; k++) {
+        assert_string_not_equal(sxl_result_name(k), "unknown result");
+    }
+    assert_string_equal(sxl_result_name(SXL_OK), "ok");
+    assert_string_equal(sxl_result_name(SXL_ERR_BUSY), "busy, retry");
+    assert_string_equal(sxl_result_name(SXL_ERR_NOT_ARMED),
+                        "not armed (the session's token is missing)");
+    assert_string_equal(sxl_result_name((uint16_t)SXL_RESULT_COUNT), "unknown result");
+}
+
 static void test_names(void **state)
 {
     (void)state;
@@ -370,6 +386,7 @@ int main(void)
         cmocka_unit_test(test_fields),
         cmocka_unit_test(test_i16_fields),
         cmocka_unit_test(test_names),
+        cmocka_unit_test(test_result_names),
         cmocka_unit_test(test_fault_mask_str),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -499,7 +499,7 @@ static void test_capture_matches_the_trace(void **state)
     FILE *f;
     long row = -1;
     int matched_refs = 0, matched_cmds = 0;
-    const double step_t = 17.188733853924696 / 8192.0, step_f = 0.57295779513082321 / 16384.0;
+    const double step_t = CTL_BASE_TORQUE_NM / 8192.0, step_f = CTL_BASE_FLUX_WB / 16384.0;
     const double step_d = 1.0 / 32768.0;
     (void)state;
     assert_true(cap_count > 0);

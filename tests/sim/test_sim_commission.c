@@ -25,6 +25,8 @@
 
 #include <cmocka.h>
 
+#include "ctl_params.h"
+#include "ctl_pu.h"
 #include "hal_sim.h"
 #include "sim.h"
 #include "sxlink.h"
@@ -745,7 +747,8 @@ static void run_mech(double j, double b, int arith, sim_result_t *r)
  * ki = kp w_c / 4, w_c = 150 rad/s unless kp would pass 90 per unit (3 pole pairs). */
 static void designed_gains(double j, double *kp, double *ki, double *wc)
 {
-    const double kp_max = 90.0 * 3.0 * 17.188733853924696 / 942.47779607693797;
+    const double kp_max =
+        (double)CTL_SPEED_DESIGN_KP_PU_MAX * 3.0 * CTL_BASE_TORQUE_NM / CTL_BASE_OMEGA_RAD_S;
     *wc = (j * 150.0 > kp_max) ? kp_max / j : 150.0;
     *kp = j * *wc;
     *ki = *kp * *wc / 4.0;
