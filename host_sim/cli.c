@@ -9,7 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "ctl_param_ranges.h"
+#include "ctl_params.h"
 #include "decimal_arg.h"
 #include "motor_params_file.h"
 #include "scenario.h"
@@ -112,7 +112,9 @@ typedef struct {
     const char *const *choices;
 } opt_t;
 
-static const char *const controllers[] = {"ddc", "mptc49", "mptc13", NULL};
+#define CLI_CONTROLLER_NAME(id, number, name, what) name,
+static const char *const controllers[] = {CTL_CONTROLLER_LIST(CLI_CONTROLLER_NAME) NULL};
+#undef CLI_CONTROLLER_NAME
 static const char *const ariths[] = {"fixed", "float", NULL};
 static const char *const directions[] = {"flux-error", "xy-table", NULL};
 static const char *const flux_refs[] = {"constant", "mtpa", NULL};

@@ -7,23 +7,12 @@
 #include "sim_open_phase.h"
 #include "sim_rng.h"
 #include "commission.h"
+#include "ctl_params.h"
 #include "sxlink_commission.h"
 
 #define SIM_FINE_RATE_HZ 100000.0
 
-const char *sim_controller_name(int controller)
-{
-    switch (controller) {
-    case 0:
-        return "ddc";
-    case 1:
-        return "mptc49";
-    case 2:
-        return "mptc13";
-    default:
-        return "?";
-    }
-}
+const char *sim_controller_name(int controller) { return ctl_controller_name(controller); }
 
 const char *sim_scenario_name(sim_scenario_t s)
 {

@@ -18,11 +18,19 @@
 #include "ctl_postfault_config.h"
 #include "ctl_protect.h"
 
-typedef enum {
-    CTL_CONTROLLER_DDC = 0,    /* the paper's discrete-duty MPTC */
-    CTL_CONTROLLER_MPTC49 = 1, /* conventional MPTC, 48 vectors + zero */
-    CTL_CONTROLLER_MPTC13 = 2  /* conventional MPTC, 12 largest + zero */
-} ctl_controller_t;
+/* The controllers, one list (issue 26): X(id, number, name, what). The names are the tools'
+ * (sixphase-sim --controller, sixphase-link controller, the reports). */
+#define CTL_CONTROLLER_LIST(X)                                                                     \
+    X(CTL_CONTROLLER_DDC, 0, "ddc", "the paper's discrete-duty MPTC")                              \
+    X(CTL_CONTROLLER_MPTC49, 1, "mptc49", "conventional MPTC, 48 vectors + zero")                  \
+    X(CTL_CONTROLLER_MPTC13, 2, "mptc13", "conventional MPTC, 12 largest + zero")
+
+#define CTL_CONTROLLER_ENUM(id, number, name, what) id = number,
+typedef enum { CTL_CONTROLLER_LIST(CTL_CONTROLLER_ENUM) CTL_CONTROLLER_COUNT } ctl_controller_t;
+#undef CTL_CONTROLLER_ENUM
+
+/* The controller's name ("?" for none of the list). */
+const char *ctl_controller_name(int controller);
 
 /* How the discrete-duty method picks between the two alpha-beta directions
  * of a sector (see docs/design.md). */

@@ -60,6 +60,18 @@ static const char *const param_error_text[CTL_PARAM_ERROR_COUNT] = {
     CTL_PARAM_ERRORS(CTL_PARAM_ERROR_TEXT)};
 #undef CTL_PARAM_ERROR_TEXT
 
+#define CTL_CONTROLLER_NAME(id, number, name, what) name,
+static const char *const controller_names[CTL_CONTROLLER_COUNT] = {
+    CTL_CONTROLLER_LIST(CTL_CONTROLLER_NAME)};
+#undef CTL_CONTROLLER_NAME
+
+const char *ctl_controller_name(int controller)
+{
+    return (controller >= 0 && controller < (int)CTL_CONTROLLER_COUNT)
+               ? controller_names[controller]
+               : "?";
+}
+
 const char *ctl_param_error_text(ctl_param_error_t e)
 {
     return ((uint32_t)e < (uint32_t)CTL_PARAM_ERROR_COUNT) ? param_error_text[e] : "unknown reason";

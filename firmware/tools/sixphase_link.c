@@ -33,15 +33,17 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "ctl_param_ranges.h"
+#include "ctl_params.h"
 #include "decimal_arg.h"
 #include "link_tool.h"
 #include "sxlink.h"
 
+#define LINK_CONTROLLER_NAME(id, number, name, what) " " name
+#define LINK_CONTROLLER_NAMES CTL_CONTROLLER_LIST(LINK_CONTROLLER_NAME)
+
 /* Bound on the records "faults" reads, so a misbehaving device cannot loop it forever
  * (the drive's log holds 8). */
 #define FAULTS_MAX_RECORDS 256
-static const char *const controller_names[] = {"ddc", "mptc49", "mptc13"};
 const char *result_name(uint16_t result) { return sxl_result_name(result); }
 
 int fail(int code, const char *fmt, ...)
@@ -234,11 +236,6 @@ static int read_reply(int fd, uint16_t cmd, long timeout_ms, sxl_frame_t *reply)
     }
 }
 
-static const char *name_of(const char *const *names, size_t n, uint16_t v)
-{
-    return (v < n) ? names[v] : "?";
-}
-
 /* The status's second line (protocol 6): the stack's high-water mark against its size. */
 static void print_stack(uint16_t used, uint16_t words)
 {
@@ -283,7 +280,7 @@ int print_reply(const sxl_frame_t *r)
                "torque_ref=%.3fNm lambda=%.3f encoder=%s pwm=%s params_pending=%s isr_count=%lu "
                "isr_max_cycles=%lu rx_errors=%u",
                sxl_state_name(st[SXL_ST_STATE]), sxl_fault_name(st[SXL_ST_FAULT]),
-               name_of(controller_names, 3u, st[SXL_ST_CONTROLLER]),
+               ctl_controller_name(st[SXL_ST_CONTROLLER]),
                (double)sxl_get_i32(&st[SXL_ST_SPEED]) / 10.0,
                (double)sxl_get_i32(&st[SXL_ST_SPEED_REF]) / 10.0,
                (double)sxl_get_i32(&st[SXL_ST_TORQUE]) / 1000.0,
@@ -593,13 +590,13 @@ static int build_request(int argc, char **argv, uint16_t *cmd, uint16_t *payload
         if (argc != 3) {
             return usage("controller needs a name and lambda");
         }
-        for (id = 0u; id < 3u; id++) {
-            if (strcmp(argv[1], controller_names[id]) == 0) {
+        for (id = 0u; id < (uint16_t)CTL_CONTROLLER_COUNT; id++) {
+            if (strcmp(argv[1], ctl_controller_name(id)) == 0) {
                 break;
             }
         }
-        if (id == 3u) {
-            return usage("controller must be ddc, mptc49 or mptc13");
+        if (id == (uint16_t)CTL_CONTROLLER_COUNT) {
+            return usage("controller must be one of:" LINK_CONTROLLER_NAMES);
         }
         if (!parse_double(argv[2], CTL_LAMBDA_MIN, CTL_LAMBDA_MAX, &lambda)) {
             return bad_number(
