@@ -5,18 +5,24 @@ doc's copy and its source disagree (a stale number) or the source no longer says
 
   tools/doc_claims.py [--registry FILE] [--root DIR]
 
-Registry lines (# comments, blank lines ignored), four fields separated by " || ":
-  doc || text with {} where the number stands || source file || regex, group 1 the number
-The source's number, put into the text, must occur in the doc verbatim. Exit 0 when every claim
-holds, 1 (one line per failed claim) otherwise, 2 on a malformed registry.
+Registry lines (# comments, blank lines ignored), fields separated by " || ":
+  doc || text with a placeholder per number || source file || regex || regex ...
+one regex per placeholder, in order, each with group 1 the number. A placeholder is {} (the
+number as the source writes it) or {:.Nf} (rounded to N decimals, halves away from zero, as a
+reader rounds). The text with the source's numbers put in must occur in the doc verbatim. Exit 0
+when every claim holds, 1 (one line per failed claim) otherwise, 2 on a malformed registry.
 """
 import argparse
+import decimal
 import os
 import re
 import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
+
+
+PLACEHOLDER = re.compile(r"\{(:\.([0-9])f)?\}")
 
 
 def load(path):
@@ -27,12 +33,33 @@ def load(path):
             if not line.strip() or line.lstrip().startswith("#"):
                 continue
             parts = [p.strip() for p in line.split(" || ")]
-            if len(parts) != 4 or parts[1].count("{}") != 1:
-                raise ValueError("%s:%d: want 'doc || text with one {} || source || regex'" %
-                                 (path, n))
-            re.compile(parts[3])
-            claims.append((n, parts[0], parts[1], parts[2], parts[3]))
+            if len(parts) < 4 or len(PLACEHOLDER.findall(parts[1])) != len(parts) - 3:
+                raise ValueError("%s:%d: want 'doc || text with n placeholders || source || "
+                                 "n regexes'" % (path, n))
+            for r in parts[3:]:
+                re.compile(r)
+            claims.append((n, parts[0], parts[1], parts[2], parts[3:]))
     return claims
+
+
+def formatted(value, digits):
+    """The source's number as the placeholder asks: as written, or rounded half up."""
+    if digits is None:
+        return value
+    q = decimal.Decimal(1).scaleb(-int(digits))
+    return str(decimal.Decimal(value).quantize(q, rounding=decimal.ROUND_HALF_UP))
+
+
+def fill(text, values):
+    """text with its placeholders replaced by values, and a pattern matching any number there."""
+    out, pattern, pos = [], [], 0
+    for m, v in zip(PLACEHOLDER.finditer(text), values):
+        out.append(text[pos:m.start()] + formatted(v, m.group(2)))
+        pattern.append(re.escape(text[pos:m.start()]) + r"(\S+?)")
+        pos = m.end()
+    out.append(text[pos:])
+    pattern.append(re.escape(text[pos:]))
+    return "".join(out), "".join(pattern)
 
 
 def read(root, rel):
@@ -43,23 +70,27 @@ def read(root, rel):
 def check(root, claims):
     """The failures, one line each."""
     failures = []
-    for n, doc, text, source, regex in claims:
+    for n, doc, text, source, regexes in claims:
         try:
             src = read(root, source)
             body = read(root, doc)
         except OSError as e:
             failures.append("claim %d: %s" % (n, e))
             continue
-        m = re.search(regex, src, re.MULTILINE)
-        if not m:
-            failures.append("claim %d: %s no longer matches /%s/ (the claim in %s needs a new "
-                            "source)" % (n, source, regex, doc))
+        values = []
+        for r in regexes:
+            m = re.search(r, src, re.MULTILINE)
+            if not m:
+                failures.append("claim %d: %s no longer matches /%s/ (the claim in %s needs a "
+                                "new source)" % (n, source, r, doc))
+                break
+            values.append(m.group(1))
+        if len(values) != len(regexes):
             continue
-        expected = text.replace("{}", m.group(1))
+        expected, pattern = fill(text, values)
         if expected not in body:
-            prefix, suffix = text.split("{}")
-            found = re.search(re.escape(prefix) + r"(\S+?)" + re.escape(suffix), body)
-            was = (" (it says %s)" % found.group(1)) if found else ""
+            found = re.search(pattern, body)
+            was = (" (it says '%s')" % found.group(0)) if found else ""
             failures.append("claim %d: %s should say '%s' as %s does%s" %
                             (n, doc, expected, source, was))
     return failures

@@ -46,7 +46,7 @@ class DocClaims(unittest.TestCase):
         r = self.check()
         self.assertEqual(r.returncode, 1)
         self.assertIn("should say 'ratio is 0.239 in fixed'", r.stderr)
-        self.assertIn("(it says 0.182)", r.stderr)
+        self.assertIn("(it says 'ratio is 0.182 in fixed')", r.stderr)
 
     def test_changed_source_fails(self):
         self.write("gen.md", "| DDC | fixed | 1800 | 0.231 |\n")
