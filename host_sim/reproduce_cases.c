@@ -66,7 +66,7 @@ static void rep_apply_variant(sim_config_t *c, rep_variant_t v)
 {
     const double board_span = c->plant.current_sensor_span_a; /* before the baseline's */
     plant_params_t *p = &c->plant;
-    if (c->controller != 0) {
+    if (c->controller == 1) { /* MPTC-49 only: MPTC-13 and the DDC stay within the board's */
         p->current_sensor_span_a = REP_BASELINE_SENSOR_SPAN_A;
     }
     switch (v) {

@@ -2,10 +2,12 @@
  * The runs of `sixphase-sim reproduce` (brief §8): one table of cases, each a sim_config_t
  * with a name the report looks it up by.
  *
- * Sensor span: MPTC-49 and MPTC-13 reach 26-37 A, beyond the board's +-20 A current sensors,
- * so on the board they would decide on clipped measurements. The comparison runs them with
+ * Sensor span: MPTC-49 reaches 26-38 A, beyond the board's +-20 A current sensors, so on the
+ * board it would decide on clipped measurements. The comparison runs it with
  * REP_BASELINE_SENSOR_SPAN_A sensors (the drive told the same span); the rows named board_*,
- * trip20_* and protect_* keep the board's +-20 A (what the board itself would do).
+ * trip20_* and protect_* keep the board's +-20 A (what the board itself would do). MPTC-13
+ * (peaks up to 10 A) and the DDC run on the board's sensors, each on the finest sensors that do
+ * not clip it (issue 27: MPTC-13 had read 2.5 times coarser currents than it needed).
  */
 #ifndef SIM_REPRODUCE_CASES_H
 #define SIM_REPRODUCE_CASES_H

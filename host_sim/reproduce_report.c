@@ -93,10 +93,12 @@ static void rep_intro(FILE *f, const rep_case_t *cases, int n)
                "plant's electromagnetic torque over the same periods at the same resolution; x-y "
                "rms over the same periods; f_sw = leg transitions / 2 / window / 6.\n\n");
     fprintf(f,
-            "Sensors: the board's phase-current sensors span +-20 A. MPTC-49 and MPTC-13 reach "
-            "26-37 A, so on the board they would decide on clipped measurements; the comparison "
-            "runs them with +-%g A sensors (the drive told the same span, `--sensor-span %g`), "
-            "and the variants table keeps a row as the board's sensors would see it.\n\n",
+            "Sensors: the board's phase-current sensors span +-20 A. MPTC-49 reaches 26-38 A, so "
+            "on the board it would decide on clipped measurements; the comparison runs it with "
+            "+-%g A sensors (the drive told the same span, `--sensor-span %g`), and the variants "
+            "table keeps a row as the board's sensors would see it. MPTC-13 (peaks up to 10 A) "
+            "and the DDC run on the board's sensors: each controller on the finest sensors that "
+            "do not clip it.\n\n",
             REP_BASELINE_SENSOR_SPAN_A, REP_BASELINE_SENSOR_SPAN_A);
 }
 
