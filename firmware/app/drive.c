@@ -10,11 +10,11 @@
 #include "profile.h"
 #include "sixphase_placement.h"
 
-/* The control core's fault bits are the fault list's (firmware/link/sxlink_faults.h). */
+/* The control core's fault bits are the fault list's (drive_faults.h). */
 #define DRIVE_FAULT_BIT_CHECK(name, code, bit_name, bit, text)                                     \
     typedef char                                                                                   \
         drive_fault_bit_check_##name[(CTL_FAULT_##bit_name == (uint16_t)(1u << (bit))) ? 1 : -1];
-SXL_FAULT_LIST(DRIVE_FAULT_BIT_CHECK)
+DRIVE_FAULT_LIST(DRIVE_FAULT_BIT_CHECK)
 #undef DRIVE_FAULT_BIT_CHECK
 
 /* Severity order, the list's: the first bit present names the drive fault. */
@@ -23,7 +23,7 @@ SXL_FAULT_LIST(DRIVE_FAULT_BIT_CHECK)
 SIXPHASE_RAMCONST static const struct {
     uint16_t bit;
     drive_fault_t code;
-} drive_fault_map[] = {SXL_FAULT_LIST(DRIVE_FAULT_MAP_ENTRY)};
+} drive_fault_map[] = {DRIVE_FAULT_LIST(DRIVE_FAULT_MAP_ENTRY)};
 #undef DRIVE_FAULT_MAP_ENTRY
 
 #define DRIVE_FAULT_MAP_LEN ((int16_t)(sizeof drive_fault_map / sizeof drive_fault_map[0]))

@@ -39,7 +39,7 @@
 #include "ctl_protect.h"
 #include "hal_adc.h"
 #include "hal_encoder.h"
-#include "sxlink_faults.h"
+#include "drive_faults.h"
 
 #define DRIVE_CALIBRATION_SAMPLES 1024
 /* Offsets further than this from mid scale mean a broken sensor or front end. */
@@ -54,12 +54,12 @@ typedef enum {
     DRIVE_STATE_COMMISSION = 5 /* the motor identification and encoder alignment */
 } drive_state_t;
 
-/* Drive fault codes, from the one fault list (firmware/link/sxlink_faults.h). */
+/* Drive fault codes, from the one fault list (drive_faults.h). */
 #define DRIVE_FAULT_ENUM(name, code, bit_name, bit, text) DRIVE_FAULT_##name = code,
-typedef enum { DRIVE_FAULT_NONE = 0, SXL_FAULT_LIST(DRIVE_FAULT_ENUM) } drive_fault_t;
+typedef enum { DRIVE_FAULT_NONE = 0, DRIVE_FAULT_LIST(DRIVE_FAULT_ENUM) } drive_fault_t;
 #undef DRIVE_FAULT_ENUM
 
-#define DRIVE_FAULT_COUNT ((int16_t)SXL_FAULT_CODE_COUNT)
+#define DRIVE_FAULT_COUNT ((int16_t)DRIVE_FAULT_CODE_COUNT)
 
 /* Why a run request was refused (the last reason is kept and reported over the link). */
 typedef enum {

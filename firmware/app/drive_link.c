@@ -11,7 +11,7 @@
 /* The protocol's state and refusal name tables (sxlink_names.c) are numbered like the
  * firmware's enums, and sxlink stays free of drive.h: check them here, where both are visible
  * (C99 has no static_assert; a false condition gives an array of size -1). The fault names
- * and codes come from one list (sxlink_faults.h). */
+ * and codes come from one list (drive_faults.h, which the link maps: sxlink_faults.h). */
 #define DRIVE_LINK_ASSERT(name, cond) typedef char drive_link_assert_##name[(cond) ? 1 : -1]
 DRIVE_LINK_ASSERT(state_names,
                   (int32_t)SXL_STATE_NAME_COUNT == (int32_t)DRIVE_STATE_COMMISSION + 1);
