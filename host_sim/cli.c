@@ -453,6 +453,13 @@ static int apply_option(const opt_t *opt, const char *v, sim_cli_t *o, char *err
     }
 }
 
+int sim_cli_option_count(void) { return (int)(sizeof options / sizeof options[0]); }
+
+const char *sim_cli_option_name(int k)
+{
+    return (k >= 0 && k < sim_cli_option_count()) ? options[k].name : NULL;
+}
+
 static const opt_t *find_option(const char *a, unsigned where)
 {
     int k;

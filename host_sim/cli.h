@@ -38,4 +38,8 @@ int sim_cli_parse_serve(int argc, char **argv, sim_cli_t *out, char *err, size_t
 
 void sim_cli_usage(FILE *f);
 
+/* The option table's entries (test_sim_cli: each is in the usage text). */
+int sim_cli_option_count(void);
+const char *sim_cli_option_name(int k); /* NULL out of range */
+
 #endif /* SIM_CLI_H */
