@@ -28,7 +28,7 @@ static int parse(const char *const *args, int n, sim_cli_t *o, char *err, size_t
 }
 
 /* Every option of the table is in the usage text (issue 26: the usage was written beside the
- * table by hand; docs/simulator.md's copy is generated from it, tools/sim_usage_doc.py). */
+ * table by hand; docs/simulator.md's copy is generated from it, tools/usage_doc.py). */
 static void test_usage_names_every_option(void **state)
 {
     char text[16384];
