@@ -4,6 +4,7 @@
 #include "sweep_grid.h"
 
 #include <math.h>
+#include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -11,6 +12,7 @@
 #include <unistd.h>
 
 #include "cli.h"
+#include "decimal_arg.h"
 
 static int grid_fail(char *err, size_t len, const char *fmt, const char *a, const char *b)
 {
@@ -84,15 +86,26 @@ static int grid_option(sweep_grid_t *g, const char *opt, const char *val, char *
     return 0;
 }
 
+/* The sweep's own flags, by name (issue 26: they were told apart by a character's index). */
+static const struct {
+    const char *name;
+    size_t field; /* an int of sweep_grid_t set to 1 */
+} grid_flags[] = {{"--force", offsetof(sweep_grid_t, force)},
+                  {"--no-plots", offsetof(sweep_grid_t, no_plots)},
+                  {"--quiet", offsetof(sweep_grid_t, quiet)}};
+
 /* The sweep's own options, consumed here; 1 when argv[i] was one (value in *used). */
 static int grid_own(sweep_grid_t *g, int argc, char **argv, int i, int *used, char *err, size_t len)
 {
     const char *a = argv[i];
-    char *end = NULL;
+    double jobs;
+    size_t k;
     *used = 1;
-    if (strcmp(a, "--force") == 0 || strcmp(a, "--no-plots") == 0 || strcmp(a, "--quiet") == 0) {
-        *(a[2] == 'f' ? &g->force : (a[5] == 'p' ? &g->no_plots : &g->quiet)) = 1;
-        return 1;
+    for (k = 0; k < sizeof grid_flags / sizeof grid_flags[0]; k++) {
+        if (strcmp(a, grid_flags[k].name) == 0) {
+            *(int *)(void *)((char *)g + grid_flags[k].field) = 1;
+            return 1;
+        }
     }
     if (strcmp(a, "--plot") == 0) {
         (void)grid_fail(err, len,
@@ -109,14 +122,14 @@ static int grid_own(sweep_grid_t *g, int argc, char **argv, int i, int *used, ch
         return -1;
     }
     *used = 2;
-    if (a[2] == 'o') {
+    if (strcmp(a, "--out") == 0) {
         g->out = argv[i + 1];
+    } else if (decimal_parse(argv[i + 1], 1, 1.0, 64.0, &jobs) != 0) {
+        (void)grid_fail(err, len, "bad value for --jobs: '%s' (an integer in 1..64)%s", argv[i + 1],
+                        "");
+        return -1;
     } else {
-        g->jobs = (int)strtol(argv[i + 1], &end, 10);
-        if (*end != '\0' || g->jobs < 1 || g->jobs > 64) {
-            (void)grid_fail(err, len, "bad value for --jobs: '%s' (1..64)%s", argv[i + 1], "");
-            return -1;
-        }
+        g->jobs = (int)jobs;
     }
     return 1;
 }

@@ -496,9 +496,10 @@ static void test_unwritable_points_folder_reported(void **state)
 static void test_bad_grids_refused(void **state)
 {
     static const char *const bad[] = {
-        "--lambda 10:5:1",       "--lambda 10:20:0",       "--lambda ,",
-        "--bogus 1,2",           "--lambda 20,abc",        "--lambda 1:250:1 --fs 5000,10000",
-        "--lambda 20,30 --plot", "--lambda 20,30 --jobs 0"};
+        "--lambda 10:5:1", "--lambda 10:20:0", "--lambda ,", "--bogus 1,2", "--lambda 20,abc",
+        "--lambda 1:250:1 --fs 5000,10000", "--lambda 20,30 --plot", "--lambda 20,30 --jobs 0",
+        /* plain decimals, as every other number (strtol took these) */
+        "--lambda 20,30 --jobs 010", "--lambda 20,30 --jobs 2x"};
     size_t k;
     (void)state;
     for (k = 0; k < sizeof bad / sizeof bad[0]; k++) {
