@@ -13,6 +13,8 @@
 
 #include <cmocka.h>
 
+#include "hal_board.h"
+
 #include "ctl_pu.h"
 #include "drive.h"
 #include "drive_commission.h"
@@ -38,7 +40,8 @@ static void set_currents(const float amps[6])
 {
     int k;
     for (k = 0; k < 6; k++) {
-        const float counts = 2048.0f + amps[k] / (40.0f / 4096.0f) + (float)(period & 1u);
+        const float counts = (float)HAL_BOARD_CURRENT_ZERO_COUNTS +
+                             amps[k] / (float)HAL_BOARD_CURRENT_A_PER_COUNT + (float)(period & 1u);
         mock_adc.phase[k] = (uint16_t)(counts + 0.5f);
     }
 }

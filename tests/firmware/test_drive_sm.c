@@ -6,6 +6,8 @@
 
 #include <cmocka.h>
 
+#include "hal_board.h"
+
 #include "ctl_pu.h"
 #include "drive.h"
 #include "drive_open_phase.h"
@@ -612,7 +614,9 @@ static void run_rotating(int n, unsigned open)
             }
         }
         for (k = 0; k < 6; k++) {
-            mock_adc.phase[k] = (uint16_t)(2048.5 + amps[k] / (40.0 / 4096.0) + (double)(i & 1));
+            mock_adc.phase[k] =
+                (uint16_t)(HAL_BOARD_CURRENT_ZERO_COUNTS + 0.5 +
+                           amps[k] / HAL_BOARD_CURRENT_A_PER_COUNT + (double)(i & 1));
         }
         mock_encoder.elec_angle = (uint32_t)(fmod(op_theta / (2.0 * TEST_PI), 1.0) * 4294967296.0);
         will_return(hal_adc_read, true);
