@@ -15,14 +15,14 @@
 #define COMM_WATCH_SECONDS 0.02f
 #define COMM_WATCH_MIN_SHARE 0.1f
 
-static const float step_seconds[SXL_COMM_STEP_COUNT] = {
+static const float step_seconds[COMM_STEP_COUNT] = {
     IDENT_PHASE_SECONDS,      IDENT_ENCODER_SECONDS,    IDENT_RESISTANCE_SECONDS,
     IDENT_INDUCTANCE_SECONDS, IDENT_INDUCTANCE_SECONDS, IDENT_FLUX_SECONDS,
     IDENT_MECH_SECONDS};
 
-/* Each quantity's step, from the quantity list (sxlink_commission.h). */
+/* Each quantity's step, from the quantity list (commission_lists.h). */
 #define COMM_QUANTITY_STEP(id, number, name, step, ...) COMM_STEP_##step,
-static const int16_t quantity_step[COMM_Q_COUNT] = {SXL_COMM_QUANTITY_LIST(COMM_QUANTITY_STEP)};
+static const int16_t quantity_step[COMM_Q_COUNT] = {COMM_QUANTITY_LIST(COMM_QUANTITY_STEP)};
 #undef COMM_QUANTITY_STEP
 
 float comm_time_bound_s(uint16_t mask)
@@ -68,11 +68,11 @@ void comm_init(comm_t *c)
     }
 }
 
-bool comm_mask_valid(uint16_t mask) { return SXL_COMM_STEPS_VALID((uint16_t)mask); }
+bool comm_mask_valid(uint16_t mask) { return COMM_STEPS_VALID((uint16_t)mask); }
 
 bool comm_current_valid(uint16_t permille)
 {
-    return permille >= SXL_COMM_CURRENT_MIN_PERMILLE && permille <= SXL_COMM_CURRENT_MAX_PERMILLE;
+    return permille >= COMM_CURRENT_MIN_PERMILLE && permille <= COMM_CURRENT_MAX_PERMILLE;
 }
 
 void comm_request(comm_t *c, uint16_t mask, uint16_t permille)

@@ -1,7 +1,7 @@
 /*
  * The commissioning sequence (docs/commissioning.md): the drive identifies its motor and
  * aligns its encoder in the state COMMISSION, one call per control period from the ISR. The
- * steps run in order (sxlink_commission.h): phase check, encoder, resistance, L_d and L_q,
+ * steps run in order (commission_lists.h): phase check, encoder, resistance, L_d and L_q,
  * L_xy, magnet flux, inertia and friction; each leaves the machine as the next expects it, each has
  * its own result checks and a time bound (three times its nominal duration plus 2 s: TIMEOUT). A
  * failed step ends the sequence (the later ones are SKIPPED); the results so far stay readable. The
@@ -69,7 +69,7 @@ void comm_init(comm_t *c);
 /* A step mask with the phase check, known bits only, and the encoder step before any step
  * that needs the rotor aligned and its angle. */
 bool comm_mask_valid(uint16_t mask);
-/* A test current in SXL_COMM_CURRENT_MIN_PERMILLE .. MAX_PERMILLE of rated. */
+/* A test current in COMM_CURRENT_MIN_PERMILLE .. MAX_PERMILLE of rated. */
 bool comm_current_valid(uint16_t permille);
 
 /* Background: ask for a start (mask and current valid; the caller checked the state). */

@@ -242,7 +242,7 @@ static uint16_t drive_comm_take(const comm_t *c, ctl_params_t *p)
     return got;
 }
 
-/* The rule of sxlink_commission.h (SXL_COMM_KEPT_CONTRADICTS, SXL_COMM_FLUX_GROUP;
+/* The rule of commission_lists.h (COMM_KEPT_CONTRADICTS, COMM_FLUX_GROUP;
  * docs/commissioning.md section 3.1): true when taking the quantities got into the set p would
  * keep a value its measurement contradicts, or take part of the flux group while another
  * member was selected and has no number. */
@@ -257,7 +257,7 @@ static bool drive_comm_mixed(const comm_t *c, const ctl_params_t *p, uint16_t go
         selected =
             (uint16_t)(selected | (((c->mask & (1u << k)) != 0u) ? comm_step_quantities(k) : 0u));
     }
-    selected &= (uint16_t)(SXL_COMM_MODEL_QUANTITIES & ~got);
+    selected &= (uint16_t)(COMM_MODEL_QUANTITIES & ~got);
     for (k = 0; k < 5; k++) {
         const int16_t q = (int16_t)(COMM_Q_R + k);
         if ((selected & (1u << q)) == 0u) {
@@ -265,11 +265,11 @@ static bool drive_comm_mixed(const comm_t *c, const ctl_params_t *p, uint16_t go
         }
         if (r[q].quality != COMM_QUALITY_POOR) {
             unconfirmed = (uint16_t)(unconfirmed | (1u << q)); /* failed or skipped: no number */
-        } else if (SXL_COMM_KEPT_CONTRADICTS(r[q].value, r[q].sigma, kept[k])) {
+        } else if (COMM_KEPT_CONTRADICTS(r[q].value, r[q].sigma, kept[k])) {
             return true;
         }
     }
-    return (got & SXL_COMM_FLUX_GROUP) != 0u && (unconfirmed & SXL_COMM_FLUX_GROUP) != 0u;
+    return (got & COMM_FLUX_GROUP) != 0u && (unconfirmed & COMM_FLUX_GROUP) != 0u;
 }
 
 drive_comm_result_t drive_commission_apply(drive_t *d, uint16_t *applied)

@@ -23,7 +23,7 @@ typedef enum {
 /* Test current of the phase check before RUN after an OPEN_PHASE clear, per mille of rated. */
 #define DRIVE_PHASE_VERIFY_PERMILLE 300u
 
-/* Background: ask for the sequence with these steps (sxlink_commission.h) and test current.
+/* Background: ask for the sequence with these steps (commission_lists.h) and test current.
  * Refused outside READY, with the DC link below the under-voltage limit, or with an encoder
  * error (an index seen, then the interface unhealthy); the encoder's index need not have been
  * seen. The ISR starts it in its next period (READY -> COMMISSION). */

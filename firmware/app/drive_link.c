@@ -391,7 +391,8 @@ static uint16_t on_capture_stop(drive_t *d, const sxl_frame_t *req, sxl_frame_t 
     return SXL_OK;
 }
 
-/* Commissioning (sxlink_commission.h): each quantity's scales on the wire. */
+/* Commissioning (commission_lists.h, on the wire as sxlink_commission.h maps it): each quantity's
+ * scales. */
 #define LINK_COMM_SCALE(id, number, name, step, unit, scale, xscale, extra)                        \
     CTL_FLOAT_LITERAL(scale),
 #define LINK_COMM_XSCALE(id, number, name, step, unit, scale, xscale, extra)                       \

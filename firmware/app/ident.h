@@ -18,20 +18,20 @@
 #include "ident_excite.h"
 #include "ident_stats.h"
 #include "ident_xy_harmonics.h"
-#include "sxlink_commission.h"
+#include "commission_lists.h"
 
-/* The lists of sxlink_commission.h as enums. */
+/* The lists of commission_lists.h as enums. */
 #define IDENT_ENUM_STEP(id, number, name, text) COMM_STEP_##id = number,
 #define IDENT_ENUM_QUANTITY(id, number, name, step, unit, scale, xscale, extra)                    \
     COMM_Q_##id = number,
 #define IDENT_ENUM_QUALITY(id, number, name, text) COMM_QUALITY_##id = number,
 #define IDENT_ENUM_REASON(id, number, name, text) COMM_REASON_##id = number,
 #define IDENT_ENUM_STATE(id, number, name, text) COMM_STATE_##id = number,
-typedef enum { SXL_COMM_STEP_LIST(IDENT_ENUM_STEP) COMM_STEP_END } comm_step_t;
-typedef enum { SXL_COMM_QUANTITY_LIST(IDENT_ENUM_QUANTITY) COMM_Q_COUNT } comm_quantity_t;
-typedef enum { SXL_COMM_QUALITY_LIST(IDENT_ENUM_QUALITY) COMM_QUALITY_END } comm_quality_t;
-typedef enum { SXL_COMM_REASON_LIST(IDENT_ENUM_REASON) COMM_REASON_END } comm_reason_t;
-typedef enum { SXL_COMM_STATE_LIST(IDENT_ENUM_STATE) COMM_STATE_END } comm_state_t;
+typedef enum { COMM_STEP_LIST(IDENT_ENUM_STEP) COMM_STEP_END } comm_step_t;
+typedef enum { COMM_QUANTITY_LIST(IDENT_ENUM_QUANTITY) COMM_Q_COUNT } comm_quantity_t;
+typedef enum { COMM_QUALITY_LIST(IDENT_ENUM_QUALITY) COMM_QUALITY_END } comm_quality_t;
+typedef enum { COMM_REASON_LIST(IDENT_ENUM_REASON) COMM_REASON_END } comm_reason_t;
+typedef enum { COMM_STATE_LIST(IDENT_ENUM_STATE) COMM_STATE_END } comm_state_t;
 #undef IDENT_ENUM_STEP
 #undef IDENT_ENUM_QUANTITY
 #undef IDENT_ENUM_QUALITY
@@ -68,7 +68,7 @@ typedef struct {
 
 /* One identified quantity. */
 typedef struct {
-    float value, sigma, extra; /* SI (sxlink_commission.h says the extra's unit) */
+    float value, sigma, extra; /* SI (commission_lists.h says the extra's unit) */
     int16_t quality;           /* comm_quality_t */
     int16_t reason;            /* comm_reason_t */
 } ident_result_t;

@@ -82,7 +82,7 @@ static void test_requests_checked_and_refused_outside_ready(void **state)
 {
     (void)state;
     /* calibrating */
-    assert_int_equal(drive_request_commission(&d, SXL_COMM_STEPS_ALL, 400u), DRIVE_COMM_REFUSED);
+    assert_int_equal(drive_request_commission(&d, COMM_STEPS_ALL, 400u), DRIVE_COMM_REFUSED);
     assert_int_equal(d.comm.reason, COMM_REASON_NOT_READY);
     calibrate();
     /* bad masks and currents */
