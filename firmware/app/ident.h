@@ -124,6 +124,9 @@ void ident_still_reset(ident_still_t *w, int32_t position);
 /* This period's position; the periods still so far (0: it just moved beyond `counts`). */
 uint32_t ident_still_step(ident_still_t *w, int32_t position, int32_t counts);
 
+/* A quantity as the steps take it: its result when ok, else the parameter set's value `set`. */
+float ident_known(const ident_ctx_t *x, comm_quantity_t q, float set);
+
 /* Periods in s seconds (at least 1). */
 uint32_t ident_periods(const ident_ctx_t *x, float seconds);
 

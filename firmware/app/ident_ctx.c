@@ -8,6 +8,11 @@
  * period k is in force during period k + 1, on average 1.5 periods after the sample. */
 #define IDENT_OUTPUT_DELAY_PERIODS 1.5f
 
+float ident_known(const ident_ctx_t *x, comm_quantity_t q, float set)
+{
+    return (x->result[q].quality == COMM_QUALITY_OK) ? x->result[q].value : set;
+}
+
 void ident_still_reset(ident_still_t *w, int32_t position)
 {
     w->ref = position;
@@ -155,8 +160,6 @@ static void ident_dead_time(ident_ctx_t *x, const float ref[2], float vdc, float
  * R and L_xy as identified (else the parameter set's). */
 static void ident_regulate_xy_harmonics(ident_ctx_t *x)
 {
-    const ident_result_t *r = &x->result[COMM_Q_R];
-    const ident_result_t *l = &x->result[COMM_Q_LXY];
     const float err[2] = {x->ref_xy[0] - x->i_xy[0], x->ref_xy[1] - x->i_xy[1]};
     ident_xy_harmonics_in_t in;
     float u[2];
@@ -165,8 +168,8 @@ static void ident_regulate_xy_harmonics(ident_ctx_t *x)
     in.s_out = x->out_s;
     in.c_out = x->out_c;
     in.w_e = CTL_TWO_PI_F * x->speed_e;
-    in.r = (r->quality == COMM_QUALITY_OK) ? r->value : x->m.r;
-    in.l_xy = (l->quality == COMM_QUALITY_OK) ? l->value : x->m.lxy;
+    in.r = ident_known(x, COMM_Q_R, x->m.r);
+    in.l_xy = ident_known(x, COMM_Q_LXY, x->m.lxy);
     in.kp = x->reg.x.kp;
     in.ki_ts = x->reg.x.ki_ts;
     in.ts = x->m.ts;

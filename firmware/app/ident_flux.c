@@ -81,10 +81,8 @@ static void flux_close_turn(ident_ctx_t *x, ident_flux_t *s, const ident_input_t
     const float turns = (float)(in->position - s->turn_start) / x->cpe;
     const float w = FLUX_TWO_PI * turns / (n * x->m.ts);
     const float ud = s->sum_ud / n, uq = s->sum_uq / n, id = s->sum_id / n, iq = s->sum_iq / n;
-    const float ld =
-        (x->result[COMM_Q_LD].quality == COMM_QUALITY_OK) ? x->result[COMM_Q_LD].value : x->m.ld;
-    const float r =
-        (x->result[COMM_Q_R].quality == COMM_QUALITY_OK) ? x->result[COMM_Q_R].value : x->m.r;
+    const float ld = ident_known(x, COMM_Q_LD, x->m.ld);
+    const float r = ident_known(x, COMM_Q_R, x->m.r);
     const int16_t k = s->run;
     const float c = (float)s->run_n[k];
     ident_blocks_add_block(&s->psi[k], (uq - r * iq - w * ld * id) / w);
@@ -158,10 +156,8 @@ static float flux_speed_spread(const ident_flux_t *s)
 /* psi_f from the two runs: the dead-time voltage's size from u_d, its q part out of u_q. */
 static ident_status_t flux_finish(ident_ctx_t *x, ident_flux_t *s)
 {
-    const float r =
-        (x->result[COMM_Q_R].quality == COMM_QUALITY_OK) ? x->result[COMM_Q_R].value : x->m.r;
-    const float lq =
-        (x->result[COMM_Q_LQ].quality == COMM_QUALITY_OK) ? x->result[COMM_Q_LQ].value : x->m.lq;
+    const float r = ident_known(x, COMM_Q_R, x->m.r);
+    const float lq = ident_known(x, COMM_Q_LQ, x->m.lq);
     /* u_d = R i_d - w L_q i_q + Vd s_d in each run */
     const float vd = ((s->run_ud[0] - r * s->run_id[0] + s->run_w[0] * lq * s->run_iq[0]) -
                       (s->run_ud[1] - r * s->run_id[1] + s->run_w[1] * lq * s->run_iq[1])) /

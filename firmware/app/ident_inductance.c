@@ -101,7 +101,7 @@ void ident_inductance_begin(ident_ctx_t *x, ident_inductance_t *s, ident_axis_t 
     s->axis = (int16_t)first;
     s->last_axis = (int16_t)last;
     /* the droop's resistance: the resistance step's when it is ok, else the set's */
-    s->r = (x->result[COMM_Q_R].quality == COMM_QUALITY_OK) ? x->result[COMM_Q_R].value : x->m.r;
+    s->r = ident_known(x, COMM_Q_R, x->m.r);
     x->frame = IDENT_FRAME_COMMAND;
     x->traj.target = 0.0f;
     ident_goto(x, IN_SETTLE);
@@ -200,12 +200,6 @@ static int16_t ind_next_sign(ident_inductance_t *s, uint32_t t)
     return (phase < IND_HALF_PERIODS) ? 1 : -1;
 }
 
-/* An inductance the steps found ok, else the set's. */
-static float ind_known(const ident_ctx_t *x, comm_quantity_t q, float set)
-{
-    return (x->result[q].quality == COMM_QUALITY_OK) ? x->result[q].value : set;
-}
-
 /* The rotor's motion during the axis: its largest distance from the start (reported), its
  * largest misalignment from the commanded angle (once the offset is known), and its counts
  * moved under the + and under the - half periods (the voltage of two periods ago acted over the
@@ -246,7 +240,8 @@ static float ind_motion_bias(const ident_ctx_t *x, const ident_inductance_t *s, 
     ident_sincos(e, &sn, &cs);
     sn = (sn < 0.0f) ? -sn : sn;
     if (s->axis < IDENT_AXIS_X) {
-        const float ld = ind_known(x, COMM_Q_LD, x->m.ld), lq = ind_known(x, COMM_Q_LQ, x->m.lq);
+        const float ld = ident_known(x, COMM_Q_LD, x->m.ld),
+                    lq = ident_known(x, COMM_Q_LQ, x->m.lq);
         align = ((lq > ld) ? lq - ld : ld - lq) * sn * sn / l;
     }
     if (s->axis == IDENT_AXIS_D) {

@@ -39,8 +39,7 @@ static float mech_speed(const ident_ctx_t *x)
  * dead time's feed-forward) less the resistive drop, times the currents. */
 static float mech_xy_power(const ident_ctx_t *x)
 {
-    const float r =
-        (x->result[COMM_Q_R].quality == COMM_QUALITY_OK) ? x->result[COMM_Q_R].value : x->m.r;
+    const float r = ident_known(x, COMM_Q_R, x->m.r);
     const float ux = x->reg.u[2] - x->comp_xy[0] - r * x->i_xy[0];
     const float uy = x->reg.u[3] - x->comp_xy[1] - r * x->i_xy[1];
     return ux * x->i_xy[0] + uy * x->i_xy[1];
@@ -49,10 +48,8 @@ static float mech_xy_power(const ident_ctx_t *x)
 /* The shaft torque of this period's measured currents (the reluctance term for any i_d). */
 static float mech_torque(const ident_ctx_t *x, const ident_mech_t *s)
 {
-    const float ld =
-        (x->result[COMM_Q_LD].quality == COMM_QUALITY_OK) ? x->result[COMM_Q_LD].value : x->m.ld;
-    const float lq =
-        (x->result[COMM_Q_LQ].quality == COMM_QUALITY_OK) ? x->result[COMM_Q_LQ].value : x->m.lq;
+    const float ld = ident_known(x, COMM_Q_LD, x->m.ld);
+    const float lq = ident_known(x, COMM_Q_LQ, x->m.lq);
     const float kr = 3.0f * (float)x->m.pole_pairs * (ld - lq);
     return (s->kt + kr * x->i_dq[0]) * x->i_dq[1];
 }
