@@ -135,6 +135,21 @@ static void check_identified_file(const char *path)
 
 /* The file on the same machine: the drive holds 1500 r/min at rated load, the reference
  * machine's parameters do not. */
+/* One identify on the board: argv after "identify"; the exit status, stdout and stderr. */
+static int identify(char *pty, char *const *args, char *out, size_t out_n, char *err, size_t err_n)
+{
+    char *argv[16] = {(char *)SIXPHASE_LINK_EXE, (char *)"-d", pty, (char *)"-t", (char *)"2000",
+                      (char *)"identify"};
+    int rc, k = 6;
+    while (*args != NULL && k < 15) {
+        argv[k++] = *args++;
+    }
+    argv[k] = NULL;
+    rc = run_cmd(argv, out, out_n, err, err_n);
+    print_message("%s%s", out, err);
+    return rc;
+}
+
 static void check_file_holds_the_speed(char *path)
 {
     char *const with[] = {(char *)SIXPHASE_SIM_EXE,
@@ -184,19 +199,8 @@ static void test_identify_apply_and_file(void **state)
     board = serve(plant, pty, sizeof pty);
     sleep(1); /* the board calibrates its offsets first (0.1 s simulated) */
     {
-        char *const argv[] = {(char *)SIXPHASE_LINK_EXE,
-                              (char *)"-d",
-                              pty,
-                              (char *)"-t",
-                              (char *)"2000",
-                              (char *)"identify",
-                              (char *)"--apply",
-                              (char *)"--out",
-                              path,
-                              NULL};
-        const int rc = run_cmd(argv, out, sizeof out, err, sizeof err);
-        print_message("%s%s", out, err);
-        assert_int_equal(rc, 0);
+        char *args[] = {(char *)"--apply", (char *)"--out", path, NULL};
+        assert_int_equal(identify(pty, args, out, sizeof out, err, sizeof err), 0);
     }
     stop(board);
     assert_non_null(strstr(out, "commissioning done"));
@@ -215,11 +219,9 @@ static void test_identify_refused_with_the_dc_link_low(void **state)
     (void)state;
     board = serve(low, pty, sizeof pty);
     {
-        char *const argv[] = {
-            (char *)SIXPHASE_LINK_EXE, (char *)"-d", pty, (char *)"-t", (char *)"2000",
-            (char *)"identify",        NULL};
+        char *args[] = {NULL};
         sleep(1);
-        rc = run_cmd(argv, out, sizeof out, err, sizeof err);
+        rc = identify(pty, args, out, sizeof out, err, sizeof err);
     }
     stop(board);
     print_message("exit %d: %s", rc, err);
@@ -250,11 +252,9 @@ static void test_identify_failure_keeps_the_file(void **state)
     (void)close(fd);
     board = serve(reversed, pty, sizeof pty);
     {
-        char *const argv[] = {
-            (char *)SIXPHASE_LINK_EXE, (char *)"-d",    pty,  (char *)"-t", (char *)"2000",
-            (char *)"identify",        (char *)"--out", path, NULL};
+        char *args[] = {(char *)"--out", path, NULL};
         sleep(1);
-        rc = run_cmd(argv, out, sizeof out, err, sizeof err);
+        rc = identify(pty, args, out, sizeof out, err, sizeof err);
     }
     stop(board);
     print_message("exit %d: %s", rc, err);
@@ -269,21 +269,6 @@ static void test_identify_failure_keeps_the_file(void **state)
     back[n] = '\0';
     assert_string_equal(back, earlier);
     (void)remove(path);
-}
-
-/* One identify on the board: argv after "identify"; the exit status, stdout and stderr. */
-static int identify(char *pty, char *const *args, char *out, size_t out_n, char *err, size_t err_n)
-{
-    char *argv[16] = {(char *)SIXPHASE_LINK_EXE, (char *)"-d", pty, (char *)"-t", (char *)"2000",
-                      (char *)"identify"};
-    int rc, k = 6;
-    while (*args != NULL && k < 15) {
-        argv[k++] = *args++;
-    }
-    argv[k] = NULL;
-    rc = run_cmd(argv, out, out_n, err, err_n);
-    print_message("%s%s", out, err);
-    return rc;
 }
 
 /* Issue 25's reproducer: a weak magnet (psi_f 0.0675 Wb, 0.3 x the reference). Before,
