@@ -17,7 +17,9 @@ Indirect calls (function pointers) are resolved from notes in the sources of the
 kept next to the table or the hook they call through:
     /* indirect-call: CALLER[, CALLER...] -> TARGET[, TARGET...] */
 where a TARGET is a function, `table NAME` (every function named in the initializer of the
-array NAME in the same file) or `external NAME` (a routine outside the compiled sources, not
+array NAME in the same file), `prefix P` (every function of the call graph whose name starts
+with P and that the same file defines: a table built from a list, whose rows name their
+handlers by token pasting) or `external NAME` (a routine outside the compiled sources, not
 measured); `nothing` alone says the image never sets the pointer (a hook only a host build
 uses). CALLER is the function that makes the call as gcc reports it (list the function
 that holds the call and the one it may be inlined into). The tool fails on an indirect call
@@ -94,6 +96,15 @@ def table_functions(text, table, functions, where):
     return found
 
 
+def prefix_functions(text, prefix, functions, where):
+    """Functions of the call graph named prefix... that this file defines."""
+    found = sorted(f for f in functions if f.startswith(prefix) and
+                   re.search(r"^\w[\w \t\*]*\b%s\s*\(" % re.escape(f), text, flags=re.M))
+    if not found:
+        fail("%s: no function of the call graph starts with %s in that file" % (where, prefix))
+    return found
+
+
 def read_notes(sources, functions):
     """[(where, callers, targets, externals)] from the `indirect-call:` notes."""
     notes = []
@@ -113,13 +124,15 @@ def read_notes(sources, functions):
                 words = item.split()
                 if len(words) == 2 and words[0] == "table":
                     targets.update(table_functions(text, words[1], functions, where))
+                elif len(words) == 2 and words[0] == "prefix":
+                    targets.update(prefix_functions(text, words[1], functions, where))
                 elif len(words) == 2 and words[0] == "external":
                     externals.add(words[1])
                 elif len(words) == 1 and words[0] in functions:
                     targets.add(words[0])
                 else:
-                    fail("%s: '%s' is not a function of the call graph, a `table NAME` or an "
-                         "`external NAME`" % (where, item))
+                    fail("%s: '%s' is not a function of the call graph, a `table NAME`, a "
+                         "`prefix P` or an `external NAME`" % (where, item))
             notes.append((where, callers, targets, externals))
     return notes
 

@@ -40,19 +40,17 @@
 #include "hal_adc.h"
 #include "hal_encoder.h"
 #include "drive_faults.h"
+#include "drive_states.h"
 
 #define DRIVE_CALIBRATION_SAMPLES 1024
 /* Offsets further than this from mid scale mean a broken sensor or front end. */
 #define DRIVE_OFFSET_TOLERANCE_COUNTS 200
 
-typedef enum {
-    DRIVE_STATE_INIT = 0,
-    DRIVE_STATE_CALIBRATE = 1,
-    DRIVE_STATE_READY = 2,
-    DRIVE_STATE_RUN = 3,
-    DRIVE_STATE_FAULT = 4,
-    DRIVE_STATE_COMMISSION = 5 /* the motor identification and encoder alignment */
-} drive_state_t;
+/* The states and the run refusals, from their lists (drive_states.h). */
+#define DRIVE_LIST_ENUM_(id, number, name) id = number,
+typedef enum { DRIVE_STATE_LIST(DRIVE_LIST_ENUM_) } drive_state_t;
+typedef enum { DRIVE_RUN_REFUSAL_LIST(DRIVE_LIST_ENUM_) } drive_run_refusal_t;
+#undef DRIVE_LIST_ENUM_
 
 /* Drive fault codes, from the one fault list (drive_faults.h). */
 #define DRIVE_FAULT_ENUM(name, code, bit_name, bit, text) DRIVE_FAULT_##name = code,
@@ -60,16 +58,6 @@ typedef enum { DRIVE_FAULT_NONE = 0, DRIVE_FAULT_LIST(DRIVE_FAULT_ENUM) } drive_
 #undef DRIVE_FAULT_ENUM
 
 #define DRIVE_FAULT_COUNT ((int16_t)DRIVE_FAULT_CODE_COUNT)
-
-/* Why a run request was refused (the last reason is kept and reported over the link). */
-typedef enum {
-    DRIVE_RUN_ACCEPTED = 0,
-    DRIVE_RUN_REFUSED_STATE = 1,       /* not in READY: calibrating, faulted or running */
-    DRIVE_RUN_REFUSED_ENCODER = 2,     /* encoder not healthy: index not seen yet */
-    DRIVE_RUN_REFUSED_UNDERVOLTAGE = 3 /* DC link below the under-voltage limit (or off) */
-} drive_run_refusal_t;
-
-#define DRIVE_RUN_REFUSAL_COUNT 4
 
 /* What the drive does on OPEN_PHASE (drive_open_phase.h); DRIVE_OPEN_PHASE_DEFAULT is the
  * build default, drive_set_open_phase_action changes it at run time. */

@@ -8,16 +8,11 @@
 #include "profile.h"
 #include "stack_watch.h"
 
-/* The protocol's state and refusal name tables (sxlink_names.c) are numbered like the
- * firmware's enums, and sxlink stays free of drive.h: check them here, where both are visible
- * (C99 has no static_assert; a false condition gives an array of size -1). The fault names
- * and codes come from one list (drive_faults.h, which the link maps: sxlink_faults.h). */
+/* The link's numbers that are the drive's own, checked where both are visible (C99 has no
+ * static_assert; a false condition gives an array of size -1). States, refusals and faults
+ * come from the application's lists (drive_states.h, drive_faults.h), which the link maps. */
 #define DRIVE_LINK_ASSERT(name, cond) typedef char drive_link_assert_##name[(cond) ? 1 : -1]
-DRIVE_LINK_ASSERT(state_names,
-                  (int32_t)SXL_STATE_NAME_COUNT == (int32_t)DRIVE_STATE_COMMISSION + 1);
 DRIVE_LINK_ASSERT(stack_not_measured, SXL_STACK_NOT_MEASURED == 0u); /* stack_watch.h's size 0 */
-DRIVE_LINK_ASSERT(run_refusal_names,
-                  (int32_t)SXL_RUN_REFUSAL_NAME_COUNT == (int32_t)DRIVE_RUN_REFUSAL_COUNT);
 /* the torque-limited action goes over the link as the drive's own number */
 DRIVE_LINK_ASSERT(tl_continue, (int32_t)SXL_TL_CONTINUE == (int32_t)DRIVE_TORQUE_LIMITED_CONTINUE);
 DRIVE_LINK_ASSERT(tl_stop, (int32_t)SXL_TL_STOP == (int32_t)DRIVE_TORQUE_LIMITED_STOP);
@@ -169,16 +164,13 @@ void drive_link_profile(uint16_t stage, uint16_t *out)
 static uint16_t handle_set_controller(drive_t *d, const sxl_frame_t *req)
 {
     ctl_params_t *p = &d->params_req; /* the drive's staging set, off the stack (drive.h) */
-    uint32_t lambda_milli;
-    if (req->len != 5u) {
-        return SXL_ERR_LENGTH;
-    }
-    lambda_milli = sxl_get_u32(&req->payload[1]);
-    if (req->payload[0] > SXL_CONTROLLER_MPTC13 || lambda_milli > DRIVE_LINK_MAX_LAMBDA_MILLI) {
+    const uint32_t lambda_milli = sxl_get_u32(&req->payload[SXL_SC_LAMBDA]);
+    if (req->payload[SXL_SC_CONTROLLER] > SXL_CONTROLLER_MPTC13 ||
+        lambda_milli > DRIVE_LINK_MAX_LAMBDA_MILLI) {
         return SXL_ERR_VALUE;
     }
     *p = d->params_bg;
-    p->controller = (ctl_controller_t)req->payload[0];
+    p->controller = (ctl_controller_t)req->payload[SXL_SC_CONTROLLER];
     p->lambda_nm_per_wb = (float)lambda_milli * 0.001f;
     switch (drive_request_params(d, p)) {
     case CTL_PARAM_OK:
@@ -200,8 +192,8 @@ static uint16_t on_ping(drive_t *d, const sxl_frame_t *req, sxl_frame_t *reply, 
     (void)d;
     (void)req;
     (void)rx_errors;
-    reply->payload[1] = SXL_VERSION;
-    reply->len = 2u;
+    reply->payload[1u + SXL_PG_VERSION] = SXL_VERSION;
+    reply->len = (uint16_t)(1u + SXL_PG_SIZE);
     return SXL_OK;
 }
 
@@ -219,10 +211,10 @@ static uint16_t on_get_profile(drive_t *d, const sxl_frame_t *req, sxl_frame_t *
 {
     (void)d;
     (void)rx_errors;
-    if (req->payload[0] >= (uint16_t)PROF_STAGES) {
+    if (req->payload[SXL_PQ_STAGE] >= (uint16_t)PROF_STAGES) {
         return SXL_ERR_VALUE;
     }
-    drive_link_profile(req->payload[0], &reply->payload[1]);
+    drive_link_profile(req->payload[SXL_PQ_STAGE], &reply->payload[1]);
     reply->len = (uint16_t)(1u + SXL_PF_SIZE);
     return SXL_OK;
 }
@@ -239,7 +231,7 @@ static uint16_t on_get_fault_record(drive_t *d, const sxl_frame_t *req, sxl_fram
 static uint16_t on_set_speed(drive_t *d, const sxl_frame_t *req, sxl_frame_t *reply,
                              uint16_t rx_errors)
 {
-    const int32_t v = sxl_get_i32(req->payload);
+    const int32_t v = sxl_get_i32(&req->payload[SXL_SPEED_REF]);
     (void)reply;
     (void)rx_errors;
     if (v > DRIVE_LINK_MAX_SPEED_01RPM || v < -DRIVE_LINK_MAX_SPEED_01RPM) {
@@ -252,7 +244,7 @@ static uint16_t on_set_speed(drive_t *d, const sxl_frame_t *req, sxl_frame_t *re
 static uint16_t on_set_torque(drive_t *d, const sxl_frame_t *req, sxl_frame_t *reply,
                               uint16_t rx_errors)
 {
-    const int32_t v = sxl_get_i32(req->payload);
+    const int32_t v = sxl_get_i32(&req->payload[SXL_TORQUE_REF]);
     (void)reply;
     (void)rx_errors;
     if (v > DRIVE_LINK_MAX_TORQUE_MNM || v < -DRIVE_LINK_MAX_TORQUE_MNM) {
@@ -364,8 +356,8 @@ static uint16_t on_capture_status(drive_t *d, const sxl_frame_t *req, sxl_frame_
 static uint16_t on_capture_read(drive_t *d, const sxl_frame_t *req, sxl_frame_t *reply,
                                 uint16_t rx_errors)
 {
-    const int16_t ch = (int16_t)req->payload[0];
-    const uint16_t first = sxl_get_u16(&req->payload[1]);
+    const int16_t ch = (int16_t)req->payload[SXL_CQ_CHANNEL];
+    const uint16_t first = sxl_get_u16(&req->payload[SXL_CQ_FIRST]);
     uint16_t n = 0u;
     (void)rx_errors;
     if (ch >= d->capture.setup.n_channels) {
@@ -439,7 +431,7 @@ static uint16_t on_commission_status(drive_t *d, const sxl_frame_t *req, sxl_fra
 static uint16_t on_commission_result(drive_t *d, const sxl_frame_t *req, sxl_frame_t *reply,
                                      uint16_t rx_errors)
 {
-    const uint16_t q = req->payload[0];
+    const uint16_t q = req->payload[SXL_CQ2_QUANTITY];
     uint16_t *out = &reply->payload[1];
     const ident_result_t *r;
     (void)rx_errors;
@@ -492,7 +484,8 @@ static uint16_t on_set_open_phase_action(drive_t *d, const sxl_frame_t *req, sxl
 {
     (void)reply;
     (void)rx_errors;
-    return drive_set_open_phase_action(d, (int16_t)req->payload[0], (int16_t)req->payload[1])
+    return drive_set_open_phase_action(d, (int16_t)req->payload[SXL_OA_ACTION],
+                                       (int16_t)req->payload[SXL_OA_STRATEGY])
                ? SXL_OK
                : SXL_ERR_VALUE;
 }
@@ -531,10 +524,11 @@ static uint16_t on_isolate_leg(drive_t *d, const sxl_frame_t *req, sxl_frame_t *
 {
     (void)reply;
     (void)rx_errors;
-    if (req->payload[0] > 5u) {
+    if (req->payload[SXL_IL_LEG] > 5u) {
         return SXL_ERR_VALUE;
     }
-    return drive_request_isolate_leg(d, (int16_t)req->payload[0]) ? SXL_OK : SXL_ERR_REFUSED;
+    return drive_request_isolate_leg(d, (int16_t)req->payload[SXL_IL_LEG]) ? SXL_OK
+                                                                           : SXL_ERR_REFUSED;
 }
 
 static uint16_t on_restore_legs(drive_t *d, const sxl_frame_t *req, sxl_frame_t *reply,
@@ -565,8 +559,8 @@ static uint16_t on_arm(drive_t *d, const sxl_frame_t *req, sxl_frame_t *reply, u
     (void)rx_errors;
     d->link_sessions++;
     d->link_token = session_token(d);
-    sxl_put_u32(&reply->payload[1], d->link_token);
-    reply->len = 1u + SXL_TOKEN_BYTES;
+    sxl_put_u32(&reply->payload[1u + SXL_AR_TOKEN], d->link_token);
+    reply->len = (uint16_t)(1u + SXL_AR_SIZE);
     return SXL_OK;
 }
 
@@ -596,41 +590,18 @@ static bool take_token(const drive_t *d, sxl_frame_t *req)
     return true;
 }
 
-#define LINK_ANY_LENGTH 0xFFFFu /* the handler checks the length */
+/* indirect-call: drive_link_handle -> prefix on_ (the handlers of link_commands;
+ * tools/stack_depth.py) */
 
-/* indirect-call: drive_link_handle -> table link_commands (tools/stack_depth.py) */
-
+/* The command list (sxlink_commands.h): code, request length, token, handler. */
+#define LINK_COMMAND_ROW(name, code, handler, armed, request, reply, notes)                        \
+    {SXL_CMD_##name, (uint16_t)request##_SIZE, (armed) != 0, on_##handler},
 static const struct {
     uint16_t cmd, len;
+    bool armed;
     link_handler_t handler;
-} link_commands[] = {
-    {SXL_CMD_PING, 0u, on_ping},
-    {SXL_CMD_GET_STATUS, 0u, on_get_status},
-    {SXL_CMD_GET_PROFILE, 1u, on_get_profile},
-    {SXL_CMD_GET_FAULT_RECORD, 0u, on_get_fault_record},
-    {SXL_CMD_SET_SPEED, 4u, on_set_speed},
-    {SXL_CMD_SET_TORQUE, 4u, on_set_torque},
-    {SXL_CMD_RUN, 0u, on_run},
-    {SXL_CMD_STOP, 0u, on_stop},
-    {SXL_CMD_CLEAR_FAULT, 0u, on_clear_fault},
-    {SXL_CMD_SET_CONTROLLER, LINK_ANY_LENGTH, on_set_controller},
-    {SXL_CMD_ARM, 0u, on_arm},
-    {SXL_CMD_DISARM, 0u, on_disarm},
-    {SXL_CMD_SET_TORQUE_LIMITED_ACTION, SXL_TL_SET_SIZE, on_set_torque_limited_action},
-    {SXL_CMD_GET_TORQUE_LIMITED, 0u, on_get_torque_limited},
-    {SXL_CMD_CAPTURE_ARM, SXL_CA_SIZE, on_capture_arm},
-    {SXL_CMD_CAPTURE_STATUS, 0u, on_capture_status},
-    {SXL_CMD_CAPTURE_READ, 3u, on_capture_read},
-    {SXL_CMD_CAPTURE_STOP, 0u, on_capture_stop},
-    {SXL_CMD_COMMISSION_START, SXL_CC_SIZE, on_commission_start},
-    {SXL_CMD_COMMISSION_STATUS, 0u, on_commission_status},
-    {SXL_CMD_COMMISSION_RESULT, 1u, on_commission_result},
-    {SXL_CMD_COMMISSION_APPLY, 0u, on_commission_apply},
-    {SXL_CMD_GET_OPEN_PHASE, 0u, on_get_open_phase},
-    {SXL_CMD_SET_OPEN_PHASE_ACTION, 2u, on_set_open_phase_action},
-    {SXL_CMD_ISOLATE_LEG, 1u, on_isolate_leg},
-    {SXL_CMD_RESTORE_LEGS, 0u, on_restore_legs},
-};
+} link_commands[SXL_COMMAND_COUNT] = {SXL_COMMAND_LIST(LINK_COMMAND_ROW)};
+#undef LINK_COMMAND_ROW
 
 void drive_link_handle(drive_t *d, sxl_frame_t *req, sxl_frame_t *reply, uint16_t rx_errors)
 {
@@ -639,13 +610,12 @@ void drive_link_handle(drive_t *d, sxl_frame_t *req, sxl_frame_t *reply, uint16_
     reply->cmd = (uint16_t)((req->cmd | SXL_REPLY) & 0xFFu);
     reply->len = 1u;
     for (k = 0u; k < (uint16_t)(sizeof link_commands / sizeof link_commands[0]); k++) {
-        if (link_commands[k].cmd == req->cmd && SXL_ARMED_COMMAND(req->cmd) &&
-            !take_token(d, req)) {
+        if (link_commands[k].cmd == req->cmd && link_commands[k].armed && !take_token(d, req)) {
             result = SXL_ERR_NOT_ARMED;
             break;
         }
         if (link_commands[k].cmd == req->cmd) {
-            result = (link_commands[k].len != LINK_ANY_LENGTH && req->len != link_commands[k].len)
+            result = (req->len != link_commands[k].len)
                          ? SXL_ERR_LENGTH
                          : link_commands[k].handler(d, req, reply, rx_errors);
             break;

@@ -12,8 +12,8 @@
 #include "drive.h"
 #include "sxlink.h"
 
-#define DRIVE_LINK_MAX_SPEED_01RPM ((int32_t)200000) /* |speed reference|, 0.1 r/min */
-#define DRIVE_LINK_MAX_TORQUE_MNM ((int32_t)1000000) /* |torque reference|, mN*m */
+#define DRIVE_LINK_MAX_SPEED_01RPM ((int32_t)SXL_SPEED_REF_MAX) /* |speed reference|, 0.1 r/min */
+#define DRIVE_LINK_MAX_TORQUE_MNM ((int32_t)SXL_TORQUE_REF_MAX) /* |torque reference|, mN*m */
 #define DRIVE_LINK_MAX_LAMBDA_MILLI ((uint32_t)CTL_LAMBDA_MAX * 1000u) /* lambda, 0.001 N*m/Wb */
 
 /* Handle req and fill reply (always a reply for a well-formed frame).

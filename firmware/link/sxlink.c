@@ -1,5 +1,19 @@
 #include "sxlink.h"
 
+/* Every payload of the lists (sxlink_payloads.h) fits a frame after the result byte, and
+ * every request after the token where the command takes one (C99 has no static_assert: a
+ * false condition gives an array of size -1). */
+#define SXL_PAYLOAD_FITS(prefix)                                                                   \
+    typedef char prefix##_fits_a_frame[((uint32_t)prefix##_SIZE + 1u <= SXL_MAX_PAYLOAD) ? 1 : -1];
+SXL_PAYLOAD_LIST(SXL_PAYLOAD_FITS)
+#undef SXL_PAYLOAD_FITS
+#define SXL_REQUEST_FITS(name, code, handler, armed, request, reply, notes)                        \
+    typedef char sxl_request_fits_##name                                                           \
+        [((uint32_t)request##_SIZE + ((armed) ? SXL_TOKEN_BYTES : 0u) <= SXL_MAX_PAYLOAD) ? 1      \
+                                                                                          : -1];
+SXL_COMMAND_LIST(SXL_REQUEST_FITS)
+#undef SXL_REQUEST_FITS
+
 /* CRC-32C (Castagnoli), reflected, bit by bit: no table (512 words on the C28x) for at most
  * SXL_MAX_FRAME bytes, in the background. */
 uint32_t sxl_crc32_byte(uint32_t crc, uint16_t byte)

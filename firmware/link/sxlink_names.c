@@ -1,10 +1,13 @@
 /* Names of the drive states, drive fault codes and protection fault bits carried by the
- * protocol. The fault names come from the one fault list (sxlink_faults.h); drive_link.c
- * checks the other tables' counts against the firmware's enums at compile time. */
+ * protocol, from the application's lists (sxlink_faults.h, sxlink_states.h). */
 #include "sxlink.h"
 
-static const char *const state_names[SXL_STATE_NAME_COUNT] = {"INIT", "CALIBRATE", "READY",
-                                                              "RUN",  "FAULT",     "COMMISSION"};
+/* From the application's lists (sxlink_states.h), by number. */
+#define NAME_BY_NUMBER(id, number, name) [number] = name,
+static const char *const state_names[SXL_STATE_NAME_COUNT] = {SXL_STATE_LIST(NAME_BY_NUMBER)};
+static const char *const run_refusal_names[SXL_RUN_REFUSAL_NAME_COUNT] = {
+    SXL_RUN_REFUSAL_LIST(NAME_BY_NUMBER)};
+#undef NAME_BY_NUMBER
 
 /* From the one fault list (sxlink_faults.h), by code and by bit number. */
 #define NAME_BY_CODE(name, code, bit_name, bit, text) [code] = #name,
@@ -18,9 +21,6 @@ static const char *const fault_bit_names[SXL_FAULT_BIT_COUNT] = {SXL_FAULT_LIST(
 #undef NAME_BY_CODE
 #undef TEXT_BY_CODE
 #undef NAME_BY_BIT
-
-static const char *const run_refusal_names[SXL_RUN_REFUSAL_NAME_COUNT] = {
-    "NONE", "NOT_READY", "ENCODER", "UNDERVOLTAGE"};
 
 /* Commissioning's lists (sxlink_commission.h), by number. */
 #define COMM_NAME(id, number, name, ...) [number] = name,

@@ -4,16 +4,8 @@
  *
  *   sixphase-link [-d DEVICE | --port DEVICE] [-b BAUD] [-t MS] [-n] COMMAND [ARGS]
  *
- * Commands: ping | status | profile | faults | run | stop | clear | speed RPM |
- *           torque NM | controller ddc|mptc49|mptc13 LAMBDA | decode HEXBYTE... |
- *           capture ... | identify ... (link_capture.c, link_identify.c) |
- *           open-phase | open-phase-action stop|ride-through [min-loss|max-torque] |
- *           isolate A..F | restore (link_open_phase.c) |
- *           torque-limited [continue|stop [--stop-after S]] (link_torque_limited.c) |
- *           shutdown (the virtual board only: it answers, then stops)
- * "faults" reads the drive's fault log until it is empty, one line per record.
- * -n prints the request frame in hex instead of sending it. "decode" checks
- * and prints a frame given as hex bytes (no device needed).
+ * The commands are one list, link_cli below (sixphase-link --help prints it). -n prints the
+ * request frame in hex instead of sending it.
  * Every error is one line on stderr and a non-zero exit status
  * (2: usage, 1: device or protocol).
  */
@@ -57,16 +49,17 @@ int fail(int code, const char *fmt, ...)
     return code;
 }
 
+static void link_cli_synopsis(char *out, size_t cap);
+static void link_cli_print_help(void);
+
 static int usage(const char *why)
 {
+    char commands[512];
+    link_cli_synopsis(commands, sizeof commands);
     return fail(EXIT_USAGE,
-                "%s (usage: sixphase-link [-d|--port DEVICE] [-b BAUD] [-t MS] [-n] "
-                "ping|status|profile|faults|run|stop|clear|shutdown|speed RPM|torque NM|controller "
-                "ddc|mptc49|mptc13 "
-                "LAMBDA|capture SIGNALS [...]|identify [...]|decode HEX...|open-phase|"
-                "open-phase-action ACTION [STRATEGY]|isolate LEG|restore|"
-                "torque-limited [continue|stop [--stop-after S]])",
-                why);
+                "%s (usage: sixphase-link [-d|--port DEVICE] [-b BAUD] [-t MS] [-n] %s [ARGS]; "
+                "sixphase-link --help lists the arguments)",
+                why, commands);
 }
 
 /* Numbers are plain decimals, sixphase-sim's rule (decimal_arg.h): 010, 0x10, " 5", "5ms" and
@@ -543,86 +536,73 @@ static int cmd_decode(int argc, char **argv)
     return fail(EXIT_IO, "incomplete frame");
 }
 
-/* Build the request for a command line; 0 on success. */
-static int build_request(int argc, char **argv, uint16_t *cmd, uint16_t *payload, uint16_t *len)
+/* The request builders of the commands that take arguments (argv[0] is the command's name):
+ * 0 when built, else an exit status after a one-line error. */
+static int build_speed(int argc, char **argv, uint16_t *cmd, uint16_t *payload, uint16_t *len)
 {
-    const char *c = argv[0];
-    *len = 0u;
-    if (strcmp(c, "ping") == 0) {
-        *cmd = SXL_CMD_PING;
-    } else if (strcmp(c, "status") == 0) {
-        *cmd = SXL_CMD_GET_STATUS;
-    } else if (strcmp(c, "run") == 0) {
-        *cmd = SXL_CMD_RUN;
-    } else if (strcmp(c, "stop") == 0) {
-        *cmd = SXL_CMD_STOP;
-    } else if (strcmp(c, "clear") == 0) {
-        *cmd = SXL_CMD_CLEAR_FAULT;
-    } else if (strcmp(c, "shutdown") == 0) {
-        *cmd = SXL_CMD_SIM_SHUTDOWN;
-    } else if (strcmp(c, "speed") == 0) {
-        double rpm;
-        if (argc != 2) {
-            return usage("speed needs one value in r/min, -20000..20000");
-        }
-        if (!parse_double(argv[1], -20000.0, 20000.0, &rpm)) {
-            return bad_number("speed", argv[1], "-20000..20000 r/min");
-        }
-        *cmd = SXL_CMD_SET_SPEED;
-        sxl_put_i32(payload, round_i32(rpm * 10.0));
-        *len = 4u;
-        return 0;
-    } else if (strcmp(c, "torque") == 0) {
-        double nm;
-        if (argc != 2) {
-            return usage("torque needs one value in N*m, -1000..1000");
-        }
-        if (!parse_double(argv[1], -1000.0, 1000.0, &nm)) {
-            return bad_number("torque", argv[1], "-1000..1000 N*m");
-        }
-        *cmd = SXL_CMD_SET_TORQUE;
-        sxl_put_i32(payload, round_i32(nm * 1000.0));
-        *len = 4u;
-        return 0;
-    } else if (strcmp(c, "controller") == 0) {
-        double lambda;
-        uint16_t id;
-        if (argc != 3) {
-            return usage("controller needs a name and lambda");
-        }
-        for (id = 0u; id < (uint16_t)CTL_CONTROLLER_COUNT; id++) {
-            if (strcmp(argv[1], ctl_controller_name(id)) == 0) {
-                break;
-            }
-        }
-        if (id == (uint16_t)CTL_CONTROLLER_COUNT) {
-            return usage("controller must be one of:" LINK_CONTROLLER_NAMES);
-        }
-        if (!parse_double(argv[2], CTL_LAMBDA_MIN, CTL_LAMBDA_MAX, &lambda)) {
-            return bad_number(
-                "lambda", argv[2],
-                CTL_RANGE_STR(CTL_LAMBDA_MIN) ".." CTL_RANGE_STR(CTL_LAMBDA_MAX) " N*m/Wb");
-        }
-        *cmd = SXL_CMD_SET_CONTROLLER;
-        payload[0] = id;
-        sxl_put_u32(&payload[1], (uint32_t)round_i32(lambda * 1000.0));
-        *len = 5u;
-        return 0;
-    } else {
-        const int op = link_open_phase_request(argc, argv, cmd, payload, len);
-        const int tl = (op == LINK_NOT_OPEN_PHASE)
-                           ? link_torque_limited_request(argc, argv, cmd, payload, len)
-                           : op;
-        return (tl == LINK_NOT_TORQUE_LIMITED) ? usage("unknown command") : tl;
+    const double max_rpm = (double)SXL_SPEED_REF_MAX_RPM;
+    double rpm;
+    if (argc != 2) {
+        return usage("speed needs one value in r/min");
     }
-    if (argc != 1) {
-        return usage("this command takes no arguments");
+    if (!parse_double(argv[1], -max_rpm, max_rpm, &rpm)) {
+        return bad_number(
+            "speed", argv[1],
+            "-" SXL_STR(SXL_SPEED_REF_MAX_RPM) "..." SXL_STR(SXL_SPEED_REF_MAX_RPM) " r/min");
     }
+    *cmd = SXL_CMD_SET_SPEED;
+    sxl_put_i32(&payload[SXL_SPEED_REF], round_i32(rpm * 10.0));
+    *len = SXL_SPEED_SIZE;
+    return 0;
+}
+
+static int build_torque(int argc, char **argv, uint16_t *cmd, uint16_t *payload, uint16_t *len)
+{
+    const double max_nm = (double)SXL_TORQUE_REF_MAX_NM;
+    double nm;
+    if (argc != 2) {
+        return usage("torque needs one value in N*m");
+    }
+    if (!parse_double(argv[1], -max_nm, max_nm, &nm)) {
+        return bad_number(
+            "torque", argv[1],
+            "-" SXL_STR(SXL_TORQUE_REF_MAX_NM) "..." SXL_STR(SXL_TORQUE_REF_MAX_NM) " N*m");
+    }
+    *cmd = SXL_CMD_SET_TORQUE;
+    sxl_put_i32(&payload[SXL_TORQUE_REF], round_i32(nm * 1000.0));
+    *len = SXL_TORQUE_SIZE;
+    return 0;
+}
+
+static int build_controller(int argc, char **argv, uint16_t *cmd, uint16_t *payload, uint16_t *len)
+{
+    double lambda;
+    uint16_t id;
+    if (argc != 3) {
+        return usage("controller needs a name and lambda");
+    }
+    for (id = 0u; id < (uint16_t)CTL_CONTROLLER_COUNT; id++) {
+        if (strcmp(argv[1], ctl_controller_name(id)) == 0) {
+            break;
+        }
+    }
+    if (id == (uint16_t)CTL_CONTROLLER_COUNT) {
+        return usage("controller must be one of:" LINK_CONTROLLER_NAMES);
+    }
+    if (!parse_double(argv[2], CTL_LAMBDA_MIN, CTL_LAMBDA_MAX, &lambda)) {
+        return bad_number(
+            "lambda", argv[2],
+            CTL_RANGE_STR(CTL_LAMBDA_MIN) ".." CTL_RANGE_STR(CTL_LAMBDA_MAX) " N*m/Wb");
+    }
+    *cmd = SXL_CMD_SET_CONTROLLER;
+    payload[SXL_SC_CONTROLLER] = id;
+    sxl_put_u32(&payload[SXL_SC_LAMBDA], (uint32_t)round_i32(lambda * 1000.0));
+    *len = SXL_SC_SIZE;
     return 0;
 }
 
 /* The options before the command; *next is the command's index. -1 to go on, else the exit
- * status (help printed, or a usage error). */
+ * status (help or version printed, or a usage error). */
 static int parse_options(int argc, char **argv, options_t *o, int *next)
 {
     int i = 1;
@@ -634,21 +614,11 @@ static int parse_options(int argc, char **argv, options_t *o, int *next)
             continue;
         }
         if (strcmp(opt, "-h") == 0 || strcmp(opt, "--help") == 0) {
-            printf(
-                "usage: sixphase-link [-d DEVICE | --port DEVICE] [-b BAUD] [-t MS] [-n] COMMAND "
-                "[ARGS]\n"
-                "commands: ping status profile faults run stop clear speed RPM torque NM\n"
-                "          shutdown (virtual board only: sixphase-sim serve answers, then stops)\n"
-                "          controller ddc|mptc49|mptc13 LAMBDA decode HEXBYTE...\n"
-                "          capture SIG[,SIG...] [--length N] [--decimate N] [--pre PCT]\n"
-                "                  [--trigger immediate|fault|rising:SIG:LEVEL|falling:SIG:LEVEL]\n"
-                "                  [--wait S] [--out FILE.csv] [--plot FILE.png]\n"
-                "          identify [--steps all|phases,encoder,r,ldq,lxy,psi_f,mech] [--current "
-                "F]\n"
-                "                   [--apply] [--partial] [--out FILE.h] [--wait S]\n"
-                "          open-phase  open-phase-action stop|ride-through [min-loss|max-torque]\n"
-                "          isolate A..F  restore\n"
-                "          torque-limited  torque-limited continue|stop [--stop-after S]\n");
+            link_cli_print_help();
+            return 0;
+        }
+        if (strcmp(opt, "--version") == 0) {
+            printf("sixphase-link %s (protocol %u)\n", SIXPHASE_VERSION, (unsigned)SXL_VERSION);
             return 0;
         }
         if (i + 1 >= argc) {
@@ -733,13 +703,174 @@ static int cmd_single(const options_t *o, uint16_t cmd, const uint16_t *payload,
     return (rc != 0) ? rc : print_reply(&reply);
 }
 
+static int run_faults(const options_t *o, int argc, char **argv)
+{
+    (void)argv;
+    if (argc != 1) {
+        return usage("this command takes no arguments");
+    }
+    return o->print_only ? print_request(SXL_CMD_GET_FAULT_RECORD, NULL, 0u) : cmd_faults(o);
+}
+
+static int run_profile(const options_t *o, int argc, char **argv)
+{
+    const uint16_t first_stage[SXL_PQ_SIZE] = {0u};
+    (void)argv;
+    if (argc != 1) {
+        return usage("this command takes no arguments");
+    }
+    return o->print_only ? print_request(SXL_CMD_GET_PROFILE, first_stage, SXL_PQ_SIZE)
+                         : cmd_profile(o);
+}
+
+static int run_decode(const options_t *o, int argc, char **argv)
+{
+    (void)o;
+    return cmd_decode(argc - 1, &argv[1]);
+}
+
+static int run_capture(const options_t *o, int argc, char **argv)
+{
+    return cmd_capture(o, argc - 1, &argv[1]);
+}
+
+static int run_identify(const options_t *o, int argc, char **argv)
+{
+    return cmd_identify(o, argc - 1, &argv[1]);
+}
+
+/* The tool's commands, one list: from it come the dispatch, the usage line, --help and each
+ * command's --help (docs/serial-protocol.md shows --help, tools/usage_doc.py). A command is
+ * plain (no arguments, one request: cmd), built (build makes its request from the arguments) or
+ * run (its own exchanges). */
+typedef int (*link_build_t)(int argc, char **argv, uint16_t *cmd, uint16_t *payload, uint16_t *len);
+typedef int (*link_run_t)(const options_t *o, int argc, char **argv);
+typedef struct {
+    const char *name, *args, *help;
+    uint16_t cmd;
+    link_build_t build;
+    link_run_t run;
+} link_cli_t;
+
+static const link_cli_t link_cli[] = {
+    {"ping", "", "the drive's protocol version", SXL_CMD_PING, NULL, NULL},
+    {"status", "", "state, fault, speed, torque, counters, stack", SXL_CMD_GET_STATUS, NULL, NULL},
+    {"profile", "", "the control ISR's timing, one row per stage", 0u, NULL, run_profile},
+    {"faults", "", "read the fault log until it is empty, one line per record", 0u, NULL,
+     run_faults},
+    {"run", "", "start (READY -> RUN), in a session armed just before", SXL_CMD_RUN, NULL, NULL},
+    {"stop", "", "stop (RUN or COMMISSION -> READY)", SXL_CMD_STOP, NULL, NULL},
+    {"clear", "", "clear a fault (FAULT -> READY when healthy)", SXL_CMD_CLEAR_FAULT, NULL, NULL},
+    {"shutdown", "", "virtual board only: sixphase-sim serve answers, then stops",
+     SXL_CMD_SIM_SHUTDOWN, NULL, NULL},
+    {"speed", "RPM",
+     "speed reference, r/min, -" SXL_STR(SXL_SPEED_REF_MAX_RPM) ".." SXL_STR(
+         SXL_SPEED_REF_MAX_RPM) "; selects the speed loop",
+     0u, build_speed, NULL},
+    {"torque", "NM",
+     "torque reference, N*m, -" SXL_STR(SXL_TORQUE_REF_MAX_NM) ".." SXL_STR(
+         SXL_TORQUE_REF_MAX_NM) "; selects the torque loop",
+     0u, build_torque, NULL},
+    {"controller", "NAME LAMBDA",
+     "controller, one of" LINK_CONTROLLER_NAMES
+     ", with lambda " CTL_RANGE_STR(CTL_LAMBDA_MIN) ".." CTL_RANGE_STR(CTL_LAMBDA_MAX) " N*m/Wb",
+     0u, build_controller, NULL},
+    {"capture",
+     "SIG[,SIG...] [--length N] [--decimate N] [--pre PCT] "
+     "[--trigger immediate|fault|rising:SIG:LEVEL|falling:SIG:LEVEL] [--wait S] [--out FILE.csv] "
+     "[--plot FILE.png]",
+     "record up to 4 signals in the drive's capture buffer, read them as CSV and a plot", 0u, NULL,
+     run_capture},
+    {"identify",
+     "[--steps all|phases,encoder,r,ldq,lxy,psi_f,mech] [--current F] [--apply] [--partial] "
+     "[--out FILE.h] [--wait S]",
+     "commission the motor: run the steps, print the results, apply or write them", 0u, NULL,
+     run_identify},
+    {"open-phase", "", "the open-phase action, strategy and isolated leg", 0u,
+     link_open_phase_request, NULL},
+    {"open-phase-action", "stop|ride-through [min-loss|max-torque]",
+     "what the drive does on an open phase", 0u, link_open_phase_request, NULL},
+    {"isolate", "A..F", "switch a leg off for good and run on five", 0u, link_open_phase_request,
+     NULL},
+    {"restore", "", "end a leg's isolation (READY)", 0u, link_open_phase_request, NULL},
+    {"torque-limited", "[continue|stop [--stop-after S]]",
+     "what the drive does when the speed loop sits at its torque limit: print, or set", 0u,
+     link_torque_limited_request, NULL},
+    {"decode", "HEXBYTE...", "check and print a frame given as hex bytes (no device)", 0u, NULL,
+     run_decode},
+};
+#define LINK_CLI_COUNT ((int)(sizeof link_cli / sizeof link_cli[0]))
+
+static const link_cli_t *link_cli_find(const char *name)
+{
+    int k;
+    for (k = 0; k < LINK_CLI_COUNT; k++) {
+        if (strcmp(link_cli[k].name, name) == 0) {
+            return &link_cli[k];
+        }
+    }
+    return NULL;
+}
+
+static void link_cli_print_help(void)
+{
+    int k;
+    printf("usage: sixphase-link [-d DEVICE | --port DEVICE] [-b BAUD] [-t MS] [-n] COMMAND "
+           "[ARGS]\n"
+           "       sixphase-link COMMAND --help | --help | --version\n"
+           "  -d, --port DEVICE  serial device (default /dev/ttyUSB0)\n"
+           "  -b BAUD            baud rate (default 115200)\n"
+           "  -t MS              reply timeout, 1..60000 ms (default 500)\n"
+           "  -n                 print the request frame in hex instead of sending it\n"
+           "commands:\n");
+    for (k = 0; k < LINK_CLI_COUNT; k++) {
+        printf("  %s%s%s\n      %s\n", link_cli[k].name, link_cli[k].args[0] ? " " : "",
+               link_cli[k].args, link_cli[k].help);
+    }
+}
+
+/* The usage line's commands, NAME|NAME|..., into out (cap chars); --help gives their arguments. */
+static void link_cli_synopsis(char *out, size_t cap)
+{
+    size_t n = 0u;
+    int k;
+    out[0] = '\0';
+    for (k = 0; k < LINK_CLI_COUNT && n < cap; k++) {
+        const int w = snprintf(&out[n], cap - n, "%s%s", (k > 0) ? "|" : "", link_cli[k].name);
+        n += (w > 0) ? (size_t)w : 0u;
+    }
+}
+
+/* One command line from its name on; the exit status. */
+static int link_cli_dispatch(const options_t *o, const link_cli_t *c, int argc, char **argv)
+{
+    uint16_t payload[SXL_MAX_PAYLOAD];
+    uint16_t cmd = c->cmd;
+    uint16_t len = 0u;
+    if (argc == 2 && (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0)) {
+        printf("usage: sixphase-link [options] %s%s%s\n  %s\n", c->name, c->args[0] ? " " : "",
+               c->args, c->help);
+        return 0;
+    }
+    if (c->run != NULL) {
+        return c->run(o, argc, argv);
+    }
+    if (c->build != NULL) {
+        const int rc = c->build(argc, argv, &cmd, payload, &len);
+        if (rc != 0) {
+            return rc;
+        }
+    } else if (argc != 1) {
+        return usage("this command takes no arguments");
+    }
+    return o->print_only ? print_request(cmd, payload, len) : cmd_single(o, cmd, payload, len);
+}
+
 #ifndef SIXPHASE_LINK_NO_MAIN /* the reply-parsing fuzz harness links the rest */
 int main(int argc, char **argv)
 {
     options_t o = {"/dev/ttyUSB0", 115200L, 500L, 0};
-    uint16_t payload[SXL_MAX_PAYLOAD];
-    uint16_t cmd = 0u;
-    uint16_t plen = 0u;
+    const link_cli_t *c;
     int i = 1;
     int rc = parse_options(argc, argv, &o, &i);
     if (rc >= 0) {
@@ -748,31 +879,7 @@ int main(int argc, char **argv)
     if (i >= argc) {
         return usage("missing command");
     }
-    if (strcmp(argv[i], "decode") == 0) {
-        return cmd_decode(argc - i - 1, &argv[i + 1]);
-    }
-    if (strcmp(argv[i], "capture") == 0) {
-        return cmd_capture(&o, argc - i - 1, &argv[i + 1]);
-    }
-    if (strcmp(argv[i], "identify") == 0) {
-        return cmd_identify(&o, argc - i - 1, &argv[i + 1]);
-    }
-    if (strcmp(argv[i], "faults") == 0 || strcmp(argv[i], "profile") == 0) {
-        const bool faults = strcmp(argv[i], "faults") == 0;
-        if (argc - i != 1) {
-            return usage("this command takes no arguments");
-        }
-        payload[0] = 0u;
-        if (o.print_only) {
-            return faults ? print_request(SXL_CMD_GET_FAULT_RECORD, NULL, 0u)
-                          : print_request(SXL_CMD_GET_PROFILE, payload, 1u);
-        }
-        return faults ? cmd_faults(&o) : cmd_profile(&o);
-    }
-    rc = build_request(argc - i, &argv[i], &cmd, payload, &plen);
-    if (rc != 0) {
-        return rc;
-    }
-    return o.print_only ? print_request(cmd, payload, plen) : cmd_single(&o, cmd, payload, plen);
+    c = link_cli_find(argv[i]);
+    return (c != NULL) ? link_cli_dispatch(&o, c, argc - i, &argv[i]) : usage("unknown command");
 }
 #endif

@@ -3,6 +3,7 @@
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <string.h>
 
 #include <cmocka.h>
 
@@ -84,6 +85,57 @@ static void background_periods(uint32_t periods)
         d.isr_count++;
         drive_background(&d);
     }
+}
+
+/* The dispatch is the command list (sxlink_commands.h): every listed code is answered, at its
+ * listed length only, with the token exactly where the list says; every code off the list, the
+ * virtual board's own included, is unknown. */
+#define LISTED_ROW(name, code, handler, armed, request, reply, notes)                              \
+    {code, (uint16_t)request##_SIZE, (armed) != 0},
+static const struct {
+    uint16_t code, len;
+    bool armed;
+} listed[] = {SXL_COMMAND_LIST(LISTED_ROW)};
+#undef LISTED_ROW
+
+static int listed_index(uint16_t code)
+{
+    uint16_t k;
+    for (k = 0u; k < (uint16_t)(sizeof listed / sizeof listed[0]); k++) {
+        if (listed[k].code == code) {
+            return (int)k;
+        }
+    }
+    return -1;
+}
+
+static void test_the_dispatch_is_the_command_list(void **state)
+{
+    uint16_t code;
+    (void)state;
+    calibrate();
+    assert_int_equal(sizeof listed / sizeof listed[0], SXL_COMMAND_COUNT);
+    for (code = 0u; code < SXL_REPLY; code++) {
+        const int k = listed_index(code);
+        uint16_t result;
+        memset(req.payload, 0, sizeof req.payload);
+        req.len = (k < 0) ? 0u : (uint16_t)(listed[k].len + 1u); /* one byte too many */
+        if (k < 0) {
+            assert_int_equal(send_raw(code), SXL_ERR_UNKNOWN);
+            continue;
+        }
+        assert_int_equal(send(code), SXL_ERR_LENGTH);
+        req.len = listed[k].len;
+        if (listed[k].armed) { /* the listed length, no token */
+            assert_int_equal(send_raw(code), SXL_ERR_NOT_ARMED);
+            req.len = listed[k].len;
+        }
+        result = send(code); /* the listed length, with the token where listed */
+        assert_true(result != SXL_ERR_UNKNOWN && result != SXL_ERR_LENGTH &&
+                    result != SXL_ERR_NOT_ARMED);
+        assert_int_equal(SXL_ARMED_COMMAND(code), listed[k].armed);
+    }
+    assert_int_equal(listed_index(SXL_CMD_SIM_SHUTDOWN), -1);
 }
 
 /* Commands that move the motor need the armed session's token (protocol 7): none, a wrong
@@ -841,6 +893,7 @@ int main(void)
         cmocka_unit_test_setup(test_commission_start_validates, setup),
         cmocka_unit_test_setup(test_commission_results_and_apply, setup),
         cmocka_unit_test_setup(test_commission_apply_refuses_a_mixed_set, setup),
+        cmocka_unit_test_setup(test_the_dispatch_is_the_command_list, setup),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
