@@ -14,6 +14,7 @@
 #include <cmocka.h>
 
 #include "fvf.h"
+#include "test_rng.h"
 #include "test_support.h"
 
 #define R_OHM 2.0
@@ -84,11 +85,7 @@ static double reference_cost(const fvf_point_t *p, double flux_ref, int16_t v, d
 }
 
 static uint32_t rng = 99u;
-static double uniform(double lo, double hi)
-{
-    rng = rng * 1664525u + 1013904223u;
-    return lo + (hi - lo) * (double)(rng >> 8) / 16777216.0;
-}
+static double uniform(double lo, double hi) { return test_lcg_range(&rng, lo, hi); }
 
 static void compare(int16_t controller, double max_mismatch_fraction, double max_cost_excess)
 {

@@ -20,6 +20,8 @@
 #include "ctl_tables.h"
 #include "ctl_vectors.h"
 #include "ctl_vsd.h"
+#include "q24_exact.h" /* qd, dq: every dq here is of |x| <= 3, never saturated */
+#include "test_rng.h"
 
 #define PI 3.14159265358979323846
 #define DEG (PI / 180.0)
@@ -29,18 +31,10 @@ static const double phase_deg[6] = {0.0, 120.0, 240.0, 30.0, 150.0, 270.0};
 
 /* ---------------------------------------------------------------- helpers */
 
-#if CTL_MATH_FLOAT
-static double qd(ctl_q x) { return (double)x; }
-static ctl_q dq(double x) { return (float)x; }
-#else
-static double qd(ctl_q x) { return (double)x / 16777216.0; }
-static ctl_q dq(double x) { return (ctl_q)floor(x * 16777216.0 + 0.5); }
-#endif
-
 /* Tolerance of the VSD transforms on per-unit values of magnitude up to ~3. */
 #define VSD_TOL 2.0e-6
 /* One Q24 LSB: the constant tables are exact to half of it in both arithmetics. */
-#define TABLE_TOL (1.0 / 16777216.0)
+#define TABLE_TOL Q24_LSB
 
 static test_rng_t rng = {0x2545F491u};
 static double rng_range(double lo, double hi) { return test_rng_range(&rng, lo, hi); }
