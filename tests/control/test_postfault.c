@@ -15,13 +15,12 @@
 #include "q24_exact.h" /* test_rng_q */
 #include "test_rng.h"
 #include "test_support.h"
-
-static const double phase_deg[6] = {0.0, 120.0, 240.0, 30.0, 150.0, 270.0};
+#include "vsd_reference.h"
 
 /* c_k = (cos th, sin th, cos 5th, sin 5th) */
 static void row(int k, double c[4])
 {
-    const double th = phase_deg[k] * TEST_PI / 180.0;
+    const double th = vsd_ref_phase_deg[k] * TEST_PI / 180.0;
     c[0] = cos(th);
     c[1] = sin(th);
     c[2] = cos(5.0 * th);

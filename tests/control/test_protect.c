@@ -10,6 +10,7 @@
 #include "ctl_protect.h"
 #include "ctl_pu.h"
 #include "test_support.h"
+#include "vsd_reference.h"
 
 static ctl_protect_t prot;
 static ctl_protect_limits_t limits;
@@ -29,13 +30,12 @@ static ctl_q amps(double a) { return ctl_from_float((float)(a / CTL_BASE_CURRENT
 /* A healthy running sample: balanced 3 A currents at angle theta, 540 V, 1500 r/min. */
 static ctl_protect_input_t healthy(int32_t n)
 {
-    static const double deg[6] = {0.0, 120.0, 240.0, 30.0, 150.0, 270.0};
     ctl_protect_input_t in;
     const double w = 1500.0 * TEST_PI / 30.0 * 3.0;
     const double theta = w * 1.0e-4 * (double)n;
     int16_t k;
     for (k = 0; k < 6; k++) {
-        const double i = 3.0 * cos(theta - deg[k] * TEST_PI / 180.0);
+        const double i = 3.0 * cos(theta - vsd_ref_phase_deg[k] * TEST_PI / 180.0);
         in.i_phase[k] = amps(i);
         in.raw_phase[k] = (int16_t)(2048.0 + i / (40.0 / 4096.0));
     }
@@ -226,14 +226,13 @@ static void test_open_phase_names_the_phase(void **state)
 static int32_t second_open = -1;
 static void postfault_currents(ctl_protect_input_t *in, int32_t n)
 {
-    static const double deg[6] = {0.0, 120.0, 240.0, 30.0, 150.0, 270.0};
     const double theta = 1500.0 * TEST_PI / 30.0 * 3.0 * 1.0e-4 * (double)(500 + n);
     const double ia = 3.0 * cos(theta);
     const double ib = 3.0 * sin(theta);
     double i[6];
     int k;
     for (k = 0; k < 6; k++) {
-        const double th = deg[k] * TEST_PI / 180.0;
+        const double th = vsd_ref_phase_deg[k] * TEST_PI / 180.0;
         /* i_x = -i_alpha, i_y = 0 (phase A's c_xy is (1, 0)) */
         i[k] = ia * cos(th) + ib * sin(th) - ia * cos(5.0 * th);
     }
@@ -404,12 +403,11 @@ static void test_accepted_fault_records_again(void **state)
  * judged open until the window spans an electrical turn; a window that never does is dropped. */
 static void slow_stationary_vector(ctl_protect_input_t *in, int32_t n)
 {
-    static const double deg[6] = {0.0, 120.0, 240.0, 30.0, 150.0, 270.0};
     const double w = 5.0 * TEST_PI / 30.0 * 3.0; /* electrical rad/s */
     const double theta = 1.5707963 + w * 1.0e-4 * (double)n;
     int k;
     for (k = 0; k < 6; k++) {
-        in->i_phase[k] = amps(7.0 * cos(theta - deg[k] * TEST_PI / 180.0));
+        in->i_phase[k] = amps(7.0 * cos(theta - vsd_ref_phase_deg[k] * TEST_PI / 180.0));
     }
     in->theta_e = ctl_wrap_turn(ctl_from_float((float)fmod(theta / (2.0 * TEST_PI), 1.0)));
     in->omega_e = ctl_from_float((float)(w / CTL_BASE_OMEGA_RAD_S));
@@ -422,10 +420,9 @@ static void slow_stationary_vector(ctl_protect_input_t *in, int32_t n)
  * current flows. */
 static void stand_then_coast(ctl_protect_input_t *in, int32_t n)
 {
-    static const double deg[6] = {0.0, 120.0, 240.0, 30.0, 150.0, 270.0};
     int k;
     for (k = 0; k < 6; k++) { /* at rest at 90 degrees: phase A carries nothing */
-        in->i_phase[k] = amps(7.0 * cos((90.0 - deg[k]) * TEST_PI / 180.0));
+        in->i_phase[k] = amps(7.0 * cos((90.0 - vsd_ref_phase_deg[k]) * TEST_PI / 180.0));
     }
     in->omega_e = CTL_Q(0.0);
     if (n >= 2000) {

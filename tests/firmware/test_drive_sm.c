@@ -13,6 +13,7 @@
 #include "drive_open_phase.h"
 #include "mock_hal_ctl.h"
 #include "test_support.h"
+#include "vsd_reference.h"
 
 static drive_t d;
 
@@ -592,7 +593,6 @@ static double op_theta; /* electrical angle of the test currents, rad */
  * words move by a count, as a live sensor's do) and the encoder turning with them. */
 static void run_rotating(int n, unsigned open)
 {
-    static const double deg[6] = {0.0, 120.0, 240.0, 30.0, 150.0, 270.0};
     const double step = 2.0 * TEST_PI * 75.0 * 1.0e-4;
     int i;
     int k;
@@ -600,7 +600,7 @@ static void run_rotating(int n, unsigned open)
     for (i = 0; i < n; i++) {
         double amps[6];
         for (k = 0; k < 6; k++) {
-            amps[k] = 3.0 * cos(op_theta - deg[k] * TEST_PI / 180.0);
+            amps[k] = 3.0 * cos(op_theta - vsd_ref_phase_deg[k] * TEST_PI / 180.0);
         }
         for (k = 0; k < 6; k++) { /* the set's other two carry equal and opposite currents */
             if ((open >> k) & 1u) {
