@@ -9,18 +9,11 @@
 #include "ctl.h"
 #include "ctl_pu.h"
 #include "ctl_vectors.h"
+#include "q24_exact.h" /* test_lcg_q */
+#include "test_rng.h"
 #include "test_support.h"
 
 static uint32_t rng = 2024u;
-static uint32_t next_random(void)
-{
-    rng = rng * 1664525u + 1013904223u;
-    return rng;
-}
-static ctl_q random_q(double lo, double hi)
-{
-    return ctl_from_float((float)(lo + (hi - lo) * (double)(next_random() >> 8) / 16777216.0));
-}
 
 static void test_default_parameters_are_valid(void **state)
 {
@@ -282,18 +275,19 @@ static void test_command_invariants_for_any_input(void **state)
             int16_t k;
             const bool extreme = (n % 10) == 0;
             for (k = 0; k < 6; k++) {
-                m.i_phase[k] = extreme ? (ctl_q)(int32_t)next_random() : random_q(-0.5, 0.5);
+                m.i_phase[k] =
+                    extreme ? (ctl_q)(int32_t)test_lcg_next(&rng) : test_lcg_q(&rng, -0.5, 0.5);
             }
-            m.vdc = extreme ? (ctl_q)(int32_t)next_random() : random_q(0.0, 1.5);
-            m.theta_e = (ctl_q)(int32_t)next_random();
-            m.omega_e = extreme ? (ctl_q)(int32_t)next_random() : random_q(-1.0, 1.0);
+            m.vdc = extreme ? (ctl_q)(int32_t)test_lcg_next(&rng) : test_lcg_q(&rng, 0.0, 1.5);
+            m.theta_e = (ctl_q)(int32_t)test_lcg_next(&rng);
+            m.omega_e = extreme ? (ctl_q)(int32_t)test_lcg_next(&rng) : test_lcg_q(&rng, -1.0, 1.0);
 #if CTL_MATH_FLOAT
             if (extreme) { /* random bit patterns are integers here: scale into a wide range */
                 for (k = 0; k < 6; k++) {
-                    m.i_phase[k] = random_q(-120.0, 120.0);
+                    m.i_phase[k] = test_lcg_q(&rng, -120.0, 120.0);
                 }
-                m.vdc = random_q(-120.0, 120.0);
-                m.omega_e = random_q(-120.0, 120.0);
+                m.vdc = test_lcg_q(&rng, -120.0, 120.0);
+                m.omega_e = test_lcg_q(&rng, -120.0, 120.0);
             }
 #endif
             ctl_step(&c, &m, &cmd);
@@ -322,8 +316,8 @@ static void test_duty_levels_parameter(void **state)
     for (n = 0; n < 2000; n++) {
         ctl_meas_t m = rated_measurement();
         ctl_cmd_t cmd;
-        m.theta_e = random_q(0.0, 1.0);
-        ctl_set_torque_ref(&c, random_q(-0.4, 0.4));
+        m.theta_e = test_lcg_q(&rng, 0.0, 1.0);
+        ctl_set_torque_ref(&c, test_lcg_q(&rng, -0.4, 0.4));
         ctl_step(&c, &m, &cmd);
         assert_true(cmd.duty == CTL_Q(0.0) || cmd.duty == CTL_Q(0.5) || cmd.duty == CTL_Q(1.0));
         seen_half = seen_half || cmd.duty == CTL_Q(0.5);

@@ -25,6 +25,7 @@
 
 #include "ctl_tables.h"
 #include "ctl_vectors.h"
+#include "vsd_reference.h"
 
 #define PI 3.14159265358979323846
 #define DEG (PI / 180.0)
@@ -32,54 +33,6 @@
 /* Samples per sector, plus two points this close (deg) inside each sector edge. */
 #define SAMPLES 400
 #define EDGE_INSET_DEG 1.0e-3
-
-static const double phase_deg[6] = {0.0, 120.0, 240.0, 30.0, 150.0, 270.0};
-
-typedef struct {
-    double alpha;
-    double beta;
-    double x;
-    double y;
-} vsd_d;
-
-/* Leg state from the octal name u_ab: a = [S_A S_B S_C] = v / 8, b = [S_D S_E S_F] = v % 8. */
-static int32_t state_leg(int32_t v, int32_t leg)
-{
-    const int32_t digit = (leg < 3) ? v / 8 : v % 8;
-    const int32_t pos = leg % 3;
-    if (pos == 0) {
-        return digit / 4;
-    }
-    if (pos == 1) {
-        return (digit / 2) % 2;
-    }
-    return digit % 2;
-}
-
-/* Per-unit (of Vdc) alpha-beta-x-y voltage of a switching state. */
-static vsd_d state_vsd(int32_t v)
-{
-    vsd_d r = {0.0, 0.0, 0.0, 0.0};
-    double m1 = 0.0;
-    double m2 = 0.0;
-    int32_t k;
-    for (k = 0; k < 3; k++) {
-        m1 += (double)state_leg(v, k) / 3.0;
-        m2 += (double)state_leg(v, k + 3) / 3.0;
-    }
-    for (k = 0; k < 6; k++) {
-        const double p = (double)state_leg(v, k) - ((k < 3) ? m1 : m2);
-        const double th = phase_deg[k] * DEG;
-        r.alpha += p * cos(th) / 3.0;
-        r.beta += p * sin(th) / 3.0;
-        r.x += p * cos(5.0 * th) / 3.0;
-        r.y += p * sin(5.0 * th) / 3.0;
-    }
-    return r;
-}
-
-static double mag_ab(vsd_d u) { return hypot(u.alpha, u.beta); }
-static double mag_xy(vsd_d u) { return hypot(u.x, u.y); }
 
 #define MAG_G4 (2.0 / 3.0 * 0.96592582628906829) /* 0.644 */
 #define MAG_G3 (1.41421356237309505 / 3.0)       /* 0.471 */
@@ -89,7 +42,10 @@ static double radial(vsd_d u, double phi) { return u.alpha * cos(phi) + u.beta *
 static double tangential(vsd_d u, double phi) { return -u.alpha * sin(phi) + u.beta * cos(phi); }
 
 /* Cosine between the x-y voltage of u and an x-y flux at angle phi. */
-static double cos_xy(vsd_d u, double phi) { return (u.x * cos(phi) + u.y * sin(phi)) / mag_xy(u); }
+static double cos_xy(vsd_d u, double phi)
+{
+    return (u.x * cos(phi) + u.y * sin(phi)) / vsd_ref_mag_xy(u);
+}
 
 /* Sample angle i (0 .. SAMPLES + 1) strictly inside [lo, lo + width) deg, in rad. */
 static double sample_in(double lo_deg, double width_deg, int32_t i)
@@ -138,9 +94,9 @@ static void test_table1_dtc_criterion(void **state)
             for (c = 0; c < 4; c++) {
                 const int32_t v = ctl_ddc_table1[s][t][c];
                 assert_true(v > 0 && v < 63);
-                u[c] = state_vsd(v);
+                u[c] = vsd_ref_state(v);
                 /* [0], [2] are G3 (0.471), [1], [3] are G4 (0.644). */
-                if (fabs(mag_ab(u[c]) - ((c % 2 == 0) ? MAG_G3 : MAG_G4)) > 1e-9) {
+                if (fabs(vsd_ref_mag_ab(u[c]) - ((c % 2 == 0) ? MAG_G3 : MAG_G4)) > 1e-9) {
                     fail_state("wrong group", s, t, c, v, 0.0);
                 }
             }
@@ -161,8 +117,8 @@ static void test_table1_dtc_criterion(void **state)
                     if (!(rd > 0.0)) {
                         fail_state("flux moves the wrong way", s, t, c, v, phi);
                     }
-                    min_tan = fmin(min_tan, tg / mag_ab(u[c]));
-                    min_rad = fmin(min_rad, rd / mag_ab(u[c]));
+                    min_tan = fmin(min_tan, tg / vsd_ref_mag_ab(u[c]));
+                    min_rad = fmin(min_rad, rd / vsd_ref_mag_ab(u[c]));
                 }
             }
             /* At the exact sector edges one pair is perpendicular to the flux (radial
@@ -250,8 +206,8 @@ static void test_table2_flux_reading(void **state)
                                     (unsigned)g4);
                         fail();
                     }
-                    u = state_vsd(v);
-                    uo = state_vsd(other);
+                    u = vsd_ref_state(v);
+                    uo = vsd_ref_state(other);
                     for (i = 0; i <= SAMPLES + 1; i++) {
                         const double phi = sample_in(15.0 * (double)j, 15.0, i);
                         const double cv = cos_xy(u, phi);
@@ -299,7 +255,7 @@ static void test_table2_xy_reading(void **state)
                                 (long)s, (long)t, (long)j, (unsigned)v);
                     fail();
                 }
-                u = state_vsd(v);
+                u = vsd_ref_state(v);
                 for (i = 0; i <= SAMPLES + 1; i++) {
                     const double phi = sample_in(15.0 * (double)j, 15.0, i);
                     const double cv = cos_xy(u, phi);
@@ -317,13 +273,13 @@ static void test_table2_xy_reading(void **state)
                         if (w == v) {
                             continue;
                         }
-                        margin = cos_xy(state_vsd(w), phi) - cv;
+                        margin = cos_xy(vsd_ref_state(w), phi) - cv;
                         min_margin = fmin(min_margin, margin);
                         if (!(margin > 1e-9)) {
                             print_error("table2_xy[%ld][%ld][%ld] = u%02o: u%02o opposes psi_xy "
                                         "at least as well (cos %.6f vs %.6f) at %.4f deg\n",
                                         (long)s, (long)t, (long)j, (unsigned)v, (unsigned)w,
-                                        cos_xy(state_vsd(w), phi), cv, phi / DEG);
+                                        cos_xy(vsd_ref_state(w), phi), cv, phi / DEG);
                             fail();
                         }
                     }

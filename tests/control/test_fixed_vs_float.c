@@ -14,7 +14,9 @@
 #include <cmocka.h>
 
 #include "fvf.h"
+#include "test_rng.h"
 #include "test_support.h"
+#include "vsd_reference.h"
 
 #define R_OHM 2.0
 #define LD_H 0.035
@@ -22,8 +24,6 @@
 #define PSI_F 0.225
 #define TS_S 1.0e-4
 #define POINTS 20000
-
-static const double phase_deg[6] = {0.0, 120.0, 240.0, 30.0, 150.0, 270.0};
 
 /* alpha-beta voltage of a switching state per unit of Vdc, from the phase-voltage formula. */
 static void state_voltage(int16_t v, double *ua, double *ub)
@@ -41,8 +41,8 @@ static void state_voltage(int16_t v, double *ua, double *ub)
     *ub = 0.0;
     for (k = 0; k < 6; k++) {
         const double ph = s[k] - (k < 3 ? m1 : m2);
-        *ua += ph * cos(phase_deg[k] * TEST_PI / 180.0) / 3.0;
-        *ub += ph * sin(phase_deg[k] * TEST_PI / 180.0) / 3.0;
+        *ua += ph * cos(vsd_ref_phase_deg[k] * TEST_PI / 180.0) / 3.0;
+        *ub += ph * sin(vsd_ref_phase_deg[k] * TEST_PI / 180.0) / 3.0;
     }
 }
 
@@ -84,11 +84,7 @@ static double reference_cost(const fvf_point_t *p, double flux_ref, int16_t v, d
 }
 
 static uint32_t rng = 99u;
-static double uniform(double lo, double hi)
-{
-    rng = rng * 1664525u + 1013904223u;
-    return lo + (hi - lo) * (double)(rng >> 8) / 16777216.0;
-}
+static double uniform(double lo, double hi) { return test_lcg_range(&rng, lo, hi); }
 
 static void compare(int16_t controller, double max_mismatch_fraction, double max_cost_excess)
 {

@@ -12,14 +12,15 @@
 #include "ctl_postfault.h"
 #include "ctl_pu.h"
 #include "ctl_vectors.h"
+#include "q24_exact.h" /* test_rng_q */
+#include "test_rng.h"
 #include "test_support.h"
-
-static const double phase_deg[6] = {0.0, 120.0, 240.0, 30.0, 150.0, 270.0};
+#include "vsd_reference.h"
 
 /* c_k = (cos th, sin th, cos 5th, sin 5th) */
 static void row(int k, double c[4])
 {
-    const double th = phase_deg[k] * TEST_PI / 180.0;
+    const double th = vsd_ref_phase_deg[k] * TEST_PI / 180.0;
     c[0] = cos(th);
     c[1] = sin(th);
     c[2] = cos(5.0 * th);
@@ -326,11 +327,6 @@ static void test_projection(void **state)
     }
 }
 
-static ctl_q random_q(test_rng_t *rng, double lo, double hi)
-{
-    return ctl_from_float((float)test_rng_range(rng, lo, hi));
-}
-
 /* Within each three-phase set the healthy legs' duties differ as the command's state and
  * duty say (their common part, the set's zero state, applies no voltage): d * (S_i - S_j). */
 static void assert_realises_command(const ctl_cmd_t *cmd, int open)
@@ -378,14 +374,14 @@ static void test_step_never_drives_the_open_leg(void **state)
                 int j;
                 for (j = 0; j < 6; j++) {
                     m.i_phase[j] =
-                        (n % 50 == 0) ? ctl_from_float(100.0f) : random_q(&rng, -2.0, 2.0);
+                        (n % 50 == 0) ? ctl_from_float(100.0f) : test_rng_q(&rng, -2.0, 2.0);
                 }
-                m.vdc = random_q(&rng, -0.5, 1.5);
-                m.theta_e = random_q(&rng, -3.0, 3.0);
-                m.omega_e = random_q(&rng, -4.0, 4.0);
-                ctl_set_torque_ref(&c, random_q(&rng, -1.0, 1.0));
+                m.vdc = test_rng_q(&rng, -0.5, 1.5);
+                m.theta_e = test_rng_q(&rng, -3.0, 3.0);
+                m.omega_e = test_rng_q(&rng, -4.0, 4.0);
+                ctl_set_torque_ref(&c, test_rng_q(&rng, -1.0, 1.0));
                 if (n % 2 == 0) {
-                    ctl_set_speed_ref(&c, random_q(&rng, -1.0, 1.0));
+                    ctl_set_speed_ref(&c, test_rng_q(&rng, -1.0, 1.0));
                 }
                 ctl_step(&c, &m, &cmd);
                 assert_true(cmd.enable);

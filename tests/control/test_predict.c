@@ -10,6 +10,7 @@
 
 #include "ctl_predict.h"
 #include "ctl_pu.h"
+#include "test_rng.h"
 #include "test_support.h"
 
 #define R_OHM 2.0
@@ -51,12 +52,6 @@ static state_t exact_step(state_t s, double w, double ud, double uq, double ux, 
     return s;
 }
 
-static double uniform(uint32_t *seed, double lo, double hi)
-{
-    *seed = *seed * 1664525u + 1013904223u;
-    return lo + (hi - lo) * (double)(*seed >> 8) / 16777216.0;
-}
-
 static ctl_q pu(double si, double base) { return ctl_from_float((float)(si / base)); }
 
 /* Largest one-step error of the Euler predictor over random operating points at rated
@@ -69,12 +64,12 @@ static double worst_error(double ts, uint32_t seed)
     assert_true(ctl_model_init(&m, (float)R_OHM, (float)LD_H, (float)LQ_H, (float)LXY_H,
                                (float)PSI_F, 3, (float)ts));
     for (n = 0; n < 300; n++) {
-        const state_t s0 = {uniform(&seed, -4.0, 2.0), uniform(&seed, -4.0, 4.0),
-                            uniform(&seed, -2.0, 2.0)};
-        const double w = uniform(&seed, -1.0, 1.0) * 1600.0 * TEST_PI / 30.0 * 3.0;
-        const double ud = uniform(&seed, -348.0, 348.0);
-        const double uq = uniform(&seed, -348.0, 348.0);
-        const double ux = uniform(&seed, -348.0, 348.0);
+        const state_t s0 = {test_lcg_range(&seed, -4.0, 2.0), test_lcg_range(&seed, -4.0, 4.0),
+                            test_lcg_range(&seed, -2.0, 2.0)};
+        const double w = test_lcg_range(&seed, -1.0, 1.0) * 1600.0 * TEST_PI / 30.0 * 3.0;
+        const double ud = test_lcg_range(&seed, -348.0, 348.0);
+        const double uq = test_lcg_range(&seed, -348.0, 348.0);
+        const double ux = test_lcg_range(&seed, -348.0, 348.0);
         const state_t ref = exact_step(s0, w, ud, uq, ux, ts);
         ctl_q id1;
         ctl_q iq1;

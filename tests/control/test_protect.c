@@ -9,17 +9,23 @@
 
 #include "ctl_protect.h"
 #include "ctl_pu.h"
+#include "hal_board.h"
 #include "test_support.h"
+#include "vsd_reference.h"
 
 static ctl_protect_t prot;
 static ctl_protect_limits_t limits;
+
+/* The board's control period and ADC scaling (hal_board.h). */
+#define TS_S (1.0 / HAL_BOARD_PWM_HZ)
+#define ADC_ZERO ((int16_t)HAL_BOARD_CURRENT_ZERO_COUNTS)
 
 static int setup(void **state)
 {
     ctl_protect_settings_t s;
     (void)state;
     ctl_protect_settings_default(&s);
-    ctl_protect_limits_build(&limits, &s, 1.0e-4f, 3, 0.01f);
+    ctl_protect_limits_build(&limits, &s, (float)TS_S, 3, 0.01f);
     ctl_protect_init(&prot);
     return 0;
 }
@@ -29,18 +35,18 @@ static ctl_q amps(double a) { return ctl_from_float((float)(a / CTL_BASE_CURRENT
 /* A healthy running sample: balanced 3 A currents at angle theta, 540 V, 1500 r/min. */
 static ctl_protect_input_t healthy(int32_t n)
 {
-    static const double deg[6] = {0.0, 120.0, 240.0, 30.0, 150.0, 270.0};
     ctl_protect_input_t in;
     const double w = 1500.0 * TEST_PI / 30.0 * 3.0;
-    const double theta = w * 1.0e-4 * (double)n;
+    const double theta = w * TS_S * (double)n;
     int16_t k;
     for (k = 0; k < 6; k++) {
-        const double i = 3.0 * cos(theta - deg[k] * TEST_PI / 180.0);
+        const double i = 3.0 * cos(theta - vsd_ref_phase_deg[k] * TEST_PI / 180.0);
         in.i_phase[k] = amps(i);
-        in.raw_phase[k] = (int16_t)(2048.0 + i / (40.0 / 4096.0));
+        in.raw_phase[k] =
+            (int16_t)(HAL_BOARD_CURRENT_ZERO_COUNTS + i / HAL_BOARD_CURRENT_A_PER_COUNT);
     }
     in.vdc = ctl_from_float((float)(540.0 / CTL_BASE_VOLTAGE_V));
-    in.raw_vdc = (int16_t)(540.0 / (800.0 / 4096.0));
+    in.raw_vdc = (int16_t)(540.0 / HAL_BOARD_VDC_V_PER_COUNT);
     in.theta_e = ctl_wrap_turn(ctl_from_float((float)fmod(theta / (2.0 * TEST_PI), 1.0)));
     in.omega_e = ctl_from_float((float)(w / CTL_BASE_OMEGA_RAD_S));
     in.torque_est = ctl_from_float((float)(7.0 / CTL_BASE_TORQUE_NM));
@@ -226,14 +232,13 @@ static void test_open_phase_names_the_phase(void **state)
 static int32_t second_open = -1;
 static void postfault_currents(ctl_protect_input_t *in, int32_t n)
 {
-    static const double deg[6] = {0.0, 120.0, 240.0, 30.0, 150.0, 270.0};
-    const double theta = 1500.0 * TEST_PI / 30.0 * 3.0 * 1.0e-4 * (double)(500 + n);
+    const double theta = 1500.0 * TEST_PI / 30.0 * 3.0 * TS_S * (double)(500 + n);
     const double ia = 3.0 * cos(theta);
     const double ib = 3.0 * sin(theta);
     double i[6];
     int k;
     for (k = 0; k < 6; k++) {
-        const double th = deg[k] * TEST_PI / 180.0;
+        const double th = vsd_ref_phase_deg[k] * TEST_PI / 180.0;
         /* i_x = -i_alpha, i_y = 0 (phase A's c_xy is (1, 0)) */
         i[k] = ia * cos(th) + ib * sin(th) - ia * cos(5.0 * th);
     }
@@ -284,14 +289,14 @@ static void test_isolated_phase_word_may_rest(void **state)
     for (n = 0; n < 2000; n++) {
         ctl_protect_input_t in = healthy(500 + n);
         postfault_currents(&in, n);
-        in.raw_phase[0] = 2048; /* phase A's word at rest */
+        in.raw_phase[0] = ADC_ZERO; /* phase A's word at rest */
         assert_int_equal(ctl_protect_check(&prot, &limits, &in, CTL_Q(0.3), 044, CTL_Q(0.6)), 0);
     }
     assert_true(ctl_protect_converter_alive(&prot));
     for (n = 0; n < 60; n++) {
         ctl_protect_input_t in = healthy(2500 + n);
         postfault_currents(&in, n);
-        in.raw_phase[0] = 2048;
+        in.raw_phase[0] = ADC_ZERO;
         in.raw_phase[3] = 2500; /* a healthy phase's word frozen: stuck */
         if (ctl_protect_check(&prot, &limits, &in, CTL_Q(0.3), 044, CTL_Q(0.6)) != 0u) {
             break;
@@ -308,7 +313,7 @@ static ctl_protect_input_t stopped_with_frozen_word(int32_t n)
     int16_t k;
     for (k = 0; k < 6; k++) {
         in.i_phase[k] = CTL_Q(0.0);
-        in.raw_phase[k] = (int16_t)(2048 + (n + k) % 3 - 1);
+        in.raw_phase[k] = (int16_t)(ADC_ZERO + (n + k) % 3 - 1);
     }
     in.raw_phase[1] = 2500;
     in.running = false;
@@ -404,12 +409,11 @@ static void test_accepted_fault_records_again(void **state)
  * judged open until the window spans an electrical turn; a window that never does is dropped. */
 static void slow_stationary_vector(ctl_protect_input_t *in, int32_t n)
 {
-    static const double deg[6] = {0.0, 120.0, 240.0, 30.0, 150.0, 270.0};
     const double w = 5.0 * TEST_PI / 30.0 * 3.0; /* electrical rad/s */
-    const double theta = 1.5707963 + w * 1.0e-4 * (double)n;
+    const double theta = 1.5707963 + w * TS_S * (double)n;
     int k;
     for (k = 0; k < 6; k++) {
-        in->i_phase[k] = amps(7.0 * cos(theta - deg[k] * TEST_PI / 180.0));
+        in->i_phase[k] = amps(7.0 * cos(theta - vsd_ref_phase_deg[k] * TEST_PI / 180.0));
     }
     in->theta_e = ctl_wrap_turn(ctl_from_float((float)fmod(theta / (2.0 * TEST_PI), 1.0)));
     in->omega_e = ctl_from_float((float)(w / CTL_BASE_OMEGA_RAD_S));
@@ -422,10 +426,9 @@ static void slow_stationary_vector(ctl_protect_input_t *in, int32_t n)
  * current flows. */
 static void stand_then_coast(ctl_protect_input_t *in, int32_t n)
 {
-    static const double deg[6] = {0.0, 120.0, 240.0, 30.0, 150.0, 270.0};
     int k;
     for (k = 0; k < 6; k++) { /* at rest at 90 degrees: phase A carries nothing */
-        in->i_phase[k] = amps(7.0 * cos((90.0 - deg[k]) * TEST_PI / 180.0));
+        in->i_phase[k] = amps(7.0 * cos((90.0 - vsd_ref_phase_deg[k]) * TEST_PI / 180.0));
     }
     in->omega_e = CTL_Q(0.0);
     if (n >= 2000) {

@@ -19,32 +19,12 @@
 #include <math.h>
 
 #include "ctl_q.h"
+#include "q24_exact.h" /* qd, dq, Q24_LSB */
+#include "test_rng.h"
 
 #define TWO_PI 6.283185307179586476925
 
-/* One least significant bit of the fixed-point format, in per unit. */
-#define Q24_LSB (1.0 / 16777216.0)
-
 /* ---------------------------------------------------------------- helpers */
-
-#if CTL_MATH_FLOAT
-static double qd(ctl_q x) { return (double)x; }
-static ctl_q dq(double x) { return (float)x; }
-#else
-/* Exact conversions of the Q24 raw value, independent of ctl_to_float. */
-static double qd(ctl_q x) { return (double)x * Q24_LSB; }
-static ctl_q dq(double x)
-{
-    const double r = floor(x * 16777216.0 + 0.5);
-    if (r >= 2147483647.0) {
-        return INT32_MAX;
-    }
-    if (r <= -2147483648.0) {
-        return INT32_MIN;
-    }
-    return (ctl_q)r;
-}
-#endif
 
 static test_rng_t rng = {0x12345678u};
 static uint32_t rng_u32(void) { return test_rng_u32(&rng); }

@@ -10,6 +10,7 @@
 #include "ctl_mptc.h"
 #include "ctl_tables.h"
 #include "ctl_vectors.h"
+#include "test_rng.h"
 #include "test_support.h"
 
 static ctl_model_t model;

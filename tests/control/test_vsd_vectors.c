@@ -20,89 +20,22 @@
 #include "ctl_tables.h"
 #include "ctl_vectors.h"
 #include "ctl_vsd.h"
+#include "q24_exact.h" /* qd, dq: every dq here is of |x| <= 3, never saturated */
+#include "test_rng.h"
+#include "vsd_reference.h"
 
 #define PI 3.14159265358979323846
 #define DEG (PI / 180.0)
 
-/* Phase axes A B C D E F in degrees (method notes §2). */
-static const double phase_deg[6] = {0.0, 120.0, 240.0, 30.0, 150.0, 270.0};
-
 /* ---------------------------------------------------------------- helpers */
-
-#if CTL_MATH_FLOAT
-static double qd(ctl_q x) { return (double)x; }
-static ctl_q dq(double x) { return (float)x; }
-#else
-static double qd(ctl_q x) { return (double)x / 16777216.0; }
-static ctl_q dq(double x) { return (ctl_q)floor(x * 16777216.0 + 0.5); }
-#endif
 
 /* Tolerance of the VSD transforms on per-unit values of magnitude up to ~3. */
 #define VSD_TOL 2.0e-6
 /* One Q24 LSB: the constant tables are exact to half of it in both arithmetics. */
-#define TABLE_TOL (1.0 / 16777216.0)
+#define TABLE_TOL Q24_LSB
 
 static test_rng_t rng = {0x2545F491u};
 static double rng_range(double lo, double hi) { return test_rng_range(&rng, lo, hi); }
-
-/* Amplitude-invariant VSD of six phase quantities, in double. */
-typedef struct {
-    double alpha;
-    double beta;
-    double x;
-    double y;
-} vsd_d;
-
-static vsd_d vsd_ref(const double p[6])
-{
-    vsd_d r = {0.0, 0.0, 0.0, 0.0};
-    int32_t k;
-    for (k = 0; k < 6; k++) {
-        const double th = phase_deg[k] * DEG;
-        r.alpha += p[k] * cos(th) / 3.0;
-        r.beta += p[k] * sin(th) / 3.0;
-        r.x += p[k] * cos(5.0 * th) / 3.0;
-        r.y += p[k] * sin(5.0 * th) / 3.0;
-    }
-    return r;
-}
-
-/* Switch state of leg 0..5 (A..F) from the paper's octal name u_ab, by digits. */
-static int32_t state_leg(int32_t v, int32_t leg)
-{
-    const int32_t digit = (leg < 3) ? v / 8 : v % 8; /* a = [S_A S_B S_C], b = [S_D S_E S_F] */
-    const int32_t pos = leg % 3;                     /* 0 = most significant */
-    if (pos == 0) {
-        return digit / 4;
-    }
-    if (pos == 1) {
-        return (digit / 2) % 2;
-    }
-    return digit % 2;
-}
-
-/* Voltage of a switching state per unit of Vdc: v_A = S_A - (S_A + S_B + S_C) / 3 etc.,
- * then the VSD (method notes §2). */
-static vsd_d state_vsd(int32_t v)
-{
-    double s[6];
-    double p[6];
-    double m1;
-    double m2;
-    int32_t k;
-    for (k = 0; k < 6; k++) {
-        s[k] = (double)state_leg(v, k);
-    }
-    m1 = (s[0] + s[1] + s[2]) / 3.0;
-    m2 = (s[3] + s[4] + s[5]) / 3.0;
-    for (k = 0; k < 6; k++) {
-        p[k] = s[k] - ((k < 3) ? m1 : m2);
-    }
-    return vsd_ref(p);
-}
-
-static double mag_ab(vsd_d u) { return hypot(u.alpha, u.beta); }
-static double mag_xy(vsd_d u) { return hypot(u.x, u.y); }
 
 /* Angle in [0, 360) degrees. */
 static double ang_deg(double yy, double xx)
@@ -149,7 +82,7 @@ static double vsd_dist(vsd_d a, vsd_d b)
 /* Group 0..4 by |u_ab| (G4 largest), -1 if none matches. */
 static int32_t group_of(vsd_d u)
 {
-    const double m = mag_ab(u);
+    const double m = vsd_ref_mag_ab(u);
     if (fabs(m - MAG_G4) < 1e-6) {
         return 4;
     }
@@ -199,7 +132,7 @@ static void test_vsd_forward_matches_formula(void **state)
             pq[k] = dq(p[k]);
             pin[k] = qd(pq[k]);
         }
-        want = vsd_ref(pin);
+        want = vsd_ref_forward(pin);
         ctl_vsd_forward(pq, &got);
         expect_close(qd(got.alpha), want.alpha, VSD_TOL, "forward alpha", pin[0]);
         expect_close(qd(got.beta), want.beta, VSD_TOL, "forward beta", pin[0]);
@@ -259,7 +192,7 @@ static void harmonic_phases(ctl_q pq[6], double amp, double wt, double h)
 {
     int32_t k;
     for (k = 0; k < 6; k++) {
-        pq[k] = dq(amp * cos(h * (wt - phase_deg[k] * DEG)));
+        pq[k] = dq(amp * cos(h * (wt - vsd_ref_phase_deg[k] * DEG)));
     }
 }
 
@@ -368,7 +301,7 @@ static void test_vector_table(void **state)
     (void)state;
     assert_int_equal(CTL_VECTOR_COUNT, 64);
     for (v = 0; v < 64; v++) {
-        const vsd_d want = state_vsd(v);
+        const vsd_d want = vsd_ref_state(v);
         const vsd_d got = table_vsd(v);
         double p[6];
         ctl_q pq[6];
@@ -381,10 +314,10 @@ static void test_vector_table(void **state)
         max_err = fmax(max_err, vsd_dist(got, want));
         /* The library's own transform of the phase voltages agrees with its table. */
         for (k = 0; k < 6; k++) {
-            const double s1 = (double)state_leg(v, (k < 3) ? 0 : 3);
-            const double s2 = (double)state_leg(v, (k < 3) ? 1 : 4);
-            const double s3 = (double)state_leg(v, (k < 3) ? 2 : 5);
-            p[k] = (double)state_leg(v, k) - (s1 + s2 + s3) / 3.0;
+            const double s1 = (double)vsd_ref_state_leg(v, (k < 3) ? 0 : 3);
+            const double s2 = (double)vsd_ref_state_leg(v, (k < 3) ? 1 : 4);
+            const double s3 = (double)vsd_ref_state_leg(v, (k < 3) ? 2 : 5);
+            p[k] = (double)vsd_ref_state_leg(v, k) - (s1 + s2 + s3) / 3.0;
             pq[k] = dq(p[k]);
         }
         ctl_vsd_forward(pq, &f);
@@ -420,16 +353,17 @@ static void test_vector_groups(void **state)
         double a;
         double offset;
         if (grp < 0) {
-            print_error("state 0%02o: |u_ab| %.6f matches no group\n", (unsigned)v, mag_ab(u));
+            print_error("state 0%02o: |u_ab| %.6f matches no group\n", (unsigned)v,
+                        vsd_ref_mag_ab(u));
             fail();
         }
         count[grp]++;
-        expect_close(mag_ab(u), quoted_ab[grp], 6e-4, "|u_ab| vs brief", (double)v);
-        expect_close(mag_xy(u), quoted_xy[grp], 6e-4, "|u_xy| vs brief", (double)v);
+        expect_close(vsd_ref_mag_ab(u), quoted_ab[grp], 6e-4, "|u_ab| vs brief", (double)v);
+        expect_close(vsd_ref_mag_xy(u), quoted_xy[grp], 6e-4, "|u_xy| vs brief", (double)v);
         if (grp == 0) {
             /* Zero vectors: u00, u07, u70, u77. */
             assert_true(v == 000 || v == 007 || v == 070 || v == 077);
-            expect_close(mag_xy(u), 0.0, 1e-7, "|u_xy| zero", (double)v);
+            expect_close(vsd_ref_mag_xy(u), 0.0, 1e-7, "|u_xy| zero", (double)v);
             continue;
         }
         /* G4, G3, G1 sit at 15 + 30k deg, G2 at 30k deg. */
@@ -511,10 +445,10 @@ static void test_vector_examples(void **state)
     for (i = 0; i < (int32_t)(sizeof ex / sizeof ex[0]); i++) {
         const vsd_d u = table_vsd(ex[i].v);
         const double v = (double)ex[i].v;
-        expect_close(mag_ab(u), ex[i].ab, 6e-4, "example |u_ab|", v);
+        expect_close(vsd_ref_mag_ab(u), ex[i].ab, 6e-4, "example |u_ab|", v);
         expect_close(ang_dist(ang_deg(u.beta, u.alpha), ex[i].ab_deg), 0.0, 1e-4,
                      "example alpha-beta angle", v);
-        expect_close(mag_xy(u), ex[i].xy, 6e-4, "example |u_xy|", v);
+        expect_close(vsd_ref_mag_xy(u), ex[i].xy, 6e-4, "example |u_xy|", v);
         expect_close(ang_dist(ang_deg(u.y, u.x), ex[i].xy_deg), 0.0, 1e-4, "example x-y angle", v);
     }
 }
@@ -527,7 +461,7 @@ static void test_vector_leg_ones(void **state)
     for (v = 0; v < 64; v++) {
         int32_t ones = 0;
         for (leg = 0; leg < 6; leg++) {
-            const int32_t want = state_leg(v, leg);
+            const int32_t want = vsd_ref_state_leg(v, leg);
             ones += want;
             assert_int_equal(ctl_vector_leg(v, leg), want);
         }
@@ -559,12 +493,12 @@ static void test_mptc49(void **state)
         assert_true(s >= 0 && s < 64);
         if (i > 0) {
             /* Every other candidate has a non-zero voltage. */
-            const vsd_d u = state_vsd(s);
-            assert_true(mag_ab(u) + mag_xy(u) > 0.1);
+            const vsd_d u = vsd_ref_state(s);
+            assert_true(vsd_ref_mag_ab(u) + vsd_ref_mag_xy(u) > 0.1);
         }
         /* All 49 voltages distinct in alpha-beta-x-y. */
         for (j = 0; j < i; j++) {
-            if (vsd_dist(state_vsd(s), state_vsd(ctl_mptc49_vectors[j])) < 1e-6) {
+            if (vsd_dist(vsd_ref_state(s), vsd_ref_state(ctl_mptc49_vectors[j])) < 1e-6) {
                 print_error("mptc49[%ld] = 0%02o and [%ld] = 0%02o have the same voltage\n",
                             (long)i, (unsigned)s, (long)j, (unsigned)ctl_mptc49_vectors[j]);
                 fail();
@@ -575,7 +509,7 @@ static void test_mptc49(void **state)
     for (v = 0; v < 64; v++) {
         int32_t found = 0;
         for (i = 0; i < 49; i++) {
-            if (vsd_dist(state_vsd(v), state_vsd(ctl_mptc49_vectors[i])) < 1e-6) {
+            if (vsd_dist(vsd_ref_state(v), vsd_ref_state(ctl_mptc49_vectors[i])) < 1e-6) {
                 found++;
             }
         }
@@ -599,14 +533,15 @@ static void test_mptc13(void **state)
     for (i = 1; i < 13; i++) {
         const int32_t s = ctl_mptc13_vectors[i];
         assert_true(s >= 0 && s < 64);
-        expect_close(mag_ab(state_vsd(s)), MAG_G4, 1e-9, "mptc13 entry is G4", (double)s);
+        expect_close(vsd_ref_mag_ab(vsd_ref_state(s)), MAG_G4, 1e-9, "mptc13 entry is G4",
+                     (double)s);
         for (j = 0; j < i; j++) {
             assert_true(s != ctl_mptc13_vectors[j]);
         }
     }
     /* ... and they are all 12 G4 states. */
     for (v = 0; v < 64; v++) {
-        if (fabs(mag_ab(state_vsd(v)) - MAG_G4) < 1e-9) {
+        if (fabs(vsd_ref_mag_ab(vsd_ref_state(v)) - MAG_G4) < 1e-9) {
             g4_states++;
         }
     }

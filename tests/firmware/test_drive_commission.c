@@ -18,65 +18,57 @@
 #include "ctl_pu.h"
 #include "drive.h"
 #include "drive_commission.h"
-#include "mock_hal_ctl.h"
+#include "drive_fixture.h"
 
 static drive_t d;
-static uint32_t period; /* control periods run by the test */
 
-static int setup(void **state)
-{
-    ctl_params_t p;
-    (void)state;
-    mock_reset();
-    ctl_params_default(&p);
-    will_return(ctl_init, true);
-    drive_init(&d, &p);
-    period = 0u;
-    return 0;
-}
-
-/* Phase currents in A as the ADC's words (a live converter: the last bit alternates). */
+/* Phase currents in A as the ADC's words (a live converter: the last bit alternates with the
+ * period). */
 static void set_currents(const float amps[6])
 {
     int k;
     for (k = 0; k < 6; k++) {
         const float counts = (float)HAL_BOARD_CURRENT_ZERO_COUNTS +
-                             amps[k] / (float)HAL_BOARD_CURRENT_A_PER_COUNT + (float)(period & 1u);
+                             amps[k] / (float)HAL_BOARD_CURRENT_A_PER_COUNT +
+                             (float)(fixture_periods & 1u);
         mock_adc.phase[k] = (uint16_t)(counts + 0.5f);
     }
 }
 
-static void run_isr(int n)
+/* The fixture's inputs: no current in any phase. */
+static void no_current(void)
 {
-    int i;
-    for (i = 0; i < n; i++) {
-        const float zero[6] = {0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f};
-        set_currents(zero);
-        will_return(hal_adc_read, true);
-        drive_control_isr(&d);
-        period++;
-    }
+    const float zero[6] = {0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f};
+    set_currents(zero);
 }
 
 /* A perfect machine for the phase check: each phase carries exactly its share of the x-y
  * current reference the sequence asks for. */
-static void run_isr_following(int n)
+static void following_current(void)
 {
-    int i, k;
-    for (i = 0; i < n; i++) {
-        const float v[4] = {0.0f, 0.0f, d.comm.x.ref_xy[0], d.comm.x.ref_xy[1]};
-        float amps[6];
-        for (k = 0; k < 6; k++) {
-            amps[k] = ident_vsd_phase(v, (int16_t)k);
-        }
-        set_currents(amps);
-        will_return(hal_adc_read, true);
-        drive_control_isr(&d);
-        period++;
+    const float v[4] = {0.0f, 0.0f, d.comm.x.ref_xy[0], d.comm.x.ref_xy[1]};
+    float amps[6];
+    int k;
+    for (k = 0; k < 6; k++) {
+        amps[k] = ident_vsd_phase(v, (int16_t)k);
     }
+    set_currents(amps);
 }
 
-static void calibrate(void) { run_isr(DRIVE_CALIBRATION_SAMPLES); }
+static int setup(void **state)
+{
+    (void)state;
+    fixture_init(&d);
+    fixture_inputs = no_current;
+    return 0;
+}
+
+static void run_isr_following(int n)
+{
+    fixture_inputs = following_current;
+    fixture_run_isr(&d, n);
+    fixture_inputs = no_current;
+}
 
 static void test_requests_checked_and_refused_outside_ready(void **state)
 {
@@ -84,7 +76,7 @@ static void test_requests_checked_and_refused_outside_ready(void **state)
     /* calibrating */
     assert_int_equal(drive_request_commission(&d, COMM_STEPS_ALL, 400u), DRIVE_COMM_REFUSED);
     assert_int_equal(d.comm.reason, COMM_REASON_NOT_READY);
-    calibrate();
+    fixture_calibrate(&d);
     /* bad masks and currents */
     assert_int_equal(drive_request_commission(&d, 0u, 400u), DRIVE_COMM_INVALID);
     assert_int_equal(drive_request_commission(&d, 0x80u | 0x7Fu, 400u), DRIVE_COMM_INVALID);
@@ -95,19 +87,19 @@ static void test_requests_checked_and_refused_outside_ready(void **state)
     assert_int_equal(drive_request_commission(&d, 0x3Fu, 801u), DRIVE_COMM_INVALID);
     /* the DC link low */
     mock_adc.vdc = 1000u; /* 195 V */
-    run_isr(1);
+    fixture_run_isr(&d, 1);
     assert_int_equal(drive_request_commission(&d, 0x3Fu, 400u), DRIVE_COMM_REFUSED);
     assert_int_equal(d.comm.reason, COMM_REASON_UNDERVOLTAGE);
-    mock_adc.vdc = 2765u;
-    run_isr(1);
+    mock_adc.vdc = MOCK_ADC_VDC_540V;
+    fixture_run_isr(&d, 1);
     /* an encoder error after its index: refused; no index yet: what the sequence is for */
     mock_encoder.index_seen = true;
     mock_encoder.healthy = false;
-    run_isr(1);
+    fixture_run_isr(&d, 1);
     assert_int_equal(drive_request_commission(&d, 0x3Fu, 400u), DRIVE_COMM_REFUSED);
     assert_int_equal(d.comm.reason, COMM_REASON_ENCODER_ERROR);
     mock_encoder.index_seen = false;
-    run_isr(1);
+    fixture_run_isr(&d, 1);
     /* a leg isolated (open-phase operation, drive_open_phase.h): five legs, refused */
     d.isolated_leg = 2;
     assert_int_equal(drive_request_commission(&d, 0x3Fu, 400u), DRIVE_COMM_REFUSED);
@@ -115,7 +107,7 @@ static void test_requests_checked_and_refused_outside_ready(void **state)
     d.isolated_leg = -1;
     assert_int_equal(drive_request_commission(&d, 0x3Fu, 400u), DRIVE_COMM_OK);
     assert_int_equal(d.state, DRIVE_STATE_READY); /* the ISR takes it */
-    run_isr(1);
+    fixture_run_isr(&d, 1);
     assert_int_equal(d.state, DRIVE_STATE_COMMISSION);
     assert_false(mock_rec.pwm_off);
     assert_int_equal(mock_rec.ctl_step, 0u);
@@ -125,19 +117,19 @@ static void test_requests_checked_and_refused_outside_ready(void **state)
 static void test_refused_while_running_and_in_fault(void **state)
 {
     (void)state;
-    calibrate();
+    fixture_calibrate(&d);
     mock_cmd.enable = true;
     drive_request_run(&d);
-    run_isr(2);
+    fixture_run_isr(&d, 2);
     assert_int_equal(d.state, DRIVE_STATE_RUN);
     assert_int_equal(drive_request_commission(&d, 0x3Fu, 400u), DRIVE_COMM_REFUSED);
     assert_int_equal(d.comm.reason, COMM_REASON_NOT_READY);
-    run_isr(5);
+    fixture_run_isr(&d, 5);
     assert_int_equal(d.state, DRIVE_STATE_RUN);
     /* a request stored before a run started is dropped when the ISR sees RUN */
     drive_trip(&d, DRIVE_FAULT_OVERRUN);
     assert_int_equal(drive_request_commission(&d, 0x3Fu, 400u), DRIVE_COMM_REFUSED);
-    run_isr(3);
+    fixture_run_isr(&d, 3);
     assert_int_equal(d.state, DRIVE_STATE_FAULT);
     assert_true(mock_rec.pwm_off);
 }
@@ -146,23 +138,23 @@ static void test_stop_aborts_with_outputs_off(void **state)
 {
     uint32_t off;
     (void)state;
-    calibrate();
+    fixture_calibrate(&d);
     assert_int_equal(drive_request_commission(&d, 0x3Fu, 400u), DRIVE_COMM_OK);
-    run_isr(20);
+    fixture_run_isr(&d, 20);
     assert_int_equal(d.state, DRIVE_STATE_COMMISSION);
     /* a run request in COMMISSION is refused, never deferred */
     drive_request_run(&d);
-    run_isr(1);
+    fixture_run_isr(&d, 1);
     assert_int_equal(d.state, DRIVE_STATE_COMMISSION);
     assert_int_equal(d.run_refusal, DRIVE_RUN_REFUSED_STATE);
     off = mock_rec.force_off;
     drive_request_stop(&d);
-    run_isr(1);
+    fixture_run_isr(&d, 1);
     assert_int_equal(d.state, DRIVE_STATE_READY);
     assert_true(mock_rec.pwm_off && mock_rec.force_off > off);
     assert_int_equal(d.comm.state, COMM_STATE_ABORTED);
     assert_int_equal(d.comm.reason, COMM_REASON_ABORTED);
-    run_isr(20);
+    fixture_run_isr(&d, 20);
     assert_int_equal(d.state, DRIVE_STATE_READY);
     assert_int_equal(mock_rec.ctl_step, 0u);
 }
@@ -171,9 +163,9 @@ static void test_protection_trip_ends_it_in_fault(void **state)
 {
     float amps[6] = {20.0f, -20.0f, 0.0f, 0.0f, 0.0f, 0.0f};
     (void)state;
-    calibrate();
+    fixture_calibrate(&d);
     assert_int_equal(drive_request_commission(&d, 0x3Fu, 400u), DRIVE_COMM_OK);
-    run_isr(10);
+    fixture_run_isr(&d, 10);
     assert_int_equal(d.state, DRIVE_STATE_COMMISSION);
     set_currents(amps); /* beyond the 15 A over-current limit */
     will_return(hal_adc_read, true);
@@ -190,9 +182,9 @@ static void test_protection_trip_ends_it_in_fault(void **state)
 static void test_failed_step_ends_in_ready(void **state)
 {
     (void)state;
-    calibrate();
+    fixture_calibrate(&d);
     assert_int_equal(drive_request_commission(&d, 0x3Fu, 400u), DRIVE_COMM_OK);
-    run_isr(600);
+    fixture_run_isr(&d, 600);
     assert_int_equal(d.state, DRIVE_STATE_READY);
     assert_true(mock_rec.pwm_off);
     assert_int_equal(d.comm.state, COMM_STATE_FAILED);
@@ -204,11 +196,11 @@ static void test_failed_step_ends_in_ready(void **state)
 /* An OPEN_PHASE fault cleared: the next run checks the phases before any control step. */
 static void open_phase_cleared(void)
 {
-    calibrate();
+    fixture_calibrate(&d);
     drive_trip(&d, DRIVE_FAULT_OPEN_PHASE);
     assert_int_equal(d.state, DRIVE_STATE_FAULT);
     drive_request_clear_fault(&d);
-    run_isr(1);
+    fixture_run_isr(&d, 1);
     assert_int_equal(d.state, DRIVE_STATE_READY);
     assert_true(d.phase_check_pending);
     mock_cmd.enable = true;
@@ -225,10 +217,10 @@ static void test_phase_check_before_run_fails_back_to_open_phase(void **state)
         n++;
     }
     assert_int_equal(n, 1);
-    run_isr(1);
+    fixture_run_isr(&d, 1);
     assert_int_equal(d.state, DRIVE_STATE_RUN);
     assert_true(d.phase_verifying);
-    run_isr(1000);
+    fixture_run_isr(&d, 1000);
     assert_int_equal(d.state, DRIVE_STATE_FAULT);
     assert_int_equal(d.fault, DRIVE_FAULT_OPEN_PHASE);
     assert_true(mock_rec.pwm_off);
@@ -257,13 +249,13 @@ static void test_phase_check_before_run_passes_then_controls(void **state)
     assert_int_equal(d.comm.x.result[COMM_Q_PHASES].quality, COMM_QUALITY_OK);
     assert_true(i * 1.0e-4 < 0.06);          /* a few tens of ms */
     assert_int_equal(mock_rec.ctl_step, 1u); /* control from the period the check passed */
-    run_isr(5);
+    fixture_run_isr(&d, 5);
     assert_int_equal(mock_rec.ctl_step, 6u);
     /* the next run needs no check */
     drive_request_stop(&d);
-    run_isr(1);
+    fixture_run_isr(&d, 1);
     drive_request_run(&d);
-    run_isr(1);
+    fixture_run_isr(&d, 1);
     assert_int_equal(d.state, DRIVE_STATE_RUN);
     assert_false(d.phase_verifying);
 }
@@ -272,10 +264,10 @@ static void test_stop_during_the_phase_check(void **state)
 {
     (void)state;
     open_phase_cleared();
-    run_isr(10);
+    fixture_run_isr(&d, 10);
     assert_true(d.phase_verifying);
     drive_request_stop(&d);
-    run_isr(1);
+    fixture_run_isr(&d, 1);
     assert_int_equal(d.state, DRIVE_STATE_READY);
     assert_false(d.phase_verifying);
     assert_true(d.phase_check_pending);

@@ -11,7 +11,7 @@
 #include "drive_link.h"
 #include "profile.h"
 #include "stack_watch.h"
-#include "mock_hal_ctl.h"
+#include "drive_fixture.h"
 
 static drive_t d;
 static sxl_frame_t req;
@@ -19,12 +19,8 @@ static sxl_frame_t rep;
 
 static int setup(void **state)
 {
-    ctl_params_t p;
     (void)state;
-    mock_reset();
-    ctl_params_default(&p);
-    will_return(ctl_init, true);
-    drive_init(&d, &p);
+    fixture_init(&d);
     req.len = 0u;
     return 0;
 }
@@ -65,16 +61,6 @@ static uint16_t send(uint16_t cmd)
         (void)arm_into_request();
     }
     return send_raw(cmd);
-}
-
-static void calibrate(void)
-{
-    int i;
-    for (i = 0; i < DRIVE_CALIBRATION_SAMPLES; i++) {
-        will_return(hal_adc_read, true);
-        drive_control_isr(&d);
-    }
-    assert_int_equal(d.state, DRIVE_STATE_READY);
 }
 
 /* periods of the background loop, the ISR's period count advanced as the ISR would */
@@ -148,7 +134,7 @@ static void test_motion_commands_need_the_armed_token(void **state)
     uint32_t token;
     uint16_t k;
     (void)state;
-    calibrate();
+    fixture_ready(&d);
     for (k = 0u; k < 4u; k++) {
         req.len = 0u;
         assert_int_equal(send_raw(motion[k]), SXL_ERR_NOT_ARMED);
@@ -255,7 +241,7 @@ static void test_run_stop_clear(void **state)
     (void)state;
     assert_int_equal(send(SXL_CMD_RUN), SXL_ERR_REFUSED); /* calibrating */
     assert_false(d.run_requested);
-    calibrate();
+    fixture_ready(&d);
     d.encoder.healthy = false;
     assert_int_equal(send(SXL_CMD_RUN), SXL_ERR_REFUSED);
     d.encoder.healthy = true;
@@ -301,7 +287,7 @@ static void test_set_controller(void **state)
 static void test_profile(void **state)
 {
     (void)state;
-    calibrate();
+    fixture_ready(&d);
     req.len = 1u;
     req.payload[0] = PROF_TOTAL;
     assert_int_equal(send(SXL_CMD_GET_PROFILE), SXL_OK);
@@ -355,11 +341,10 @@ static uint32_t trip_overcurrent_then_overrun(void)
 {
     uint32_t period;
     mock_encoder.elec_angle = 0x40000000u; /* 0.25 turn, steady: no encoder jump */
-    calibrate();
+    fixture_ready(&d);
     mock_cmd.enable = true;
     assert_int_equal(send(SXL_CMD_RUN), SXL_OK);
-    will_return(hal_adc_read, true);
-    drive_control_isr(&d);
+    fixture_run_isr(&d, 1);
     assert_int_equal(d.state, DRIVE_STATE_RUN);
 
     /* what the controller had in force, as the record should report it */
@@ -368,14 +353,12 @@ static uint32_t trip_overcurrent_then_overrun(void)
     d.ctl.applied_vector = 45;
     d.ctl.applied_duty = CTL_Q(0.6);
     mock_encoder.mech_speed_q16 = 25 << 16; /* 1500 r/min */
-    mock_adc.phase[0] = (uint16_t)(2048 + OVER_LIMIT_COUNTS);
-    mock_adc.phase[1] = (uint16_t)(2048 - OVER_LIMIT_COUNTS);
-    will_return(hal_adc_read, true);
-    drive_control_isr(&d);
+    mock_adc.phase[0] = (uint16_t)(MOCK_ADC_ZERO + OVER_LIMIT_COUNTS);
+    mock_adc.phase[1] = (uint16_t)(MOCK_ADC_ZERO - OVER_LIMIT_COUNTS);
+    fixture_run_isr(&d, 1);
     assert_int_equal(d.state, DRIVE_STATE_FAULT);
     period = d.protect.period;
-    will_return(hal_adc_read, true);
-    drive_control_isr(&d); /* still over the limit: already latched, no new record */
+    fixture_run_isr(&d, 1); /* still over the limit: already latched, no new record */
     drive_trip(&d, DRIVE_FAULT_OVERRUN);
     return period;
 }
@@ -528,7 +511,7 @@ static void test_open_phase_commands(void **state)
 {
     const uint16_t *op = &rep.payload[1];
     (void)state;
-    calibrate();
+    fixture_ready(&d);
     assert_int_equal(send(SXL_CMD_GET_OPEN_PHASE), SXL_OK);
     assert_int_equal(rep.len, 1u + SXL_OP_SIZE);
     assert_int_equal(op[SXL_OP_ACTION], 0u);
@@ -549,12 +532,10 @@ static void test_open_phase_commands(void **state)
     assert_int_equal(send(SXL_CMD_ISOLATE_LEG), SXL_ERR_VALUE);
     req.payload[0] = 1u;
     assert_int_equal(send(SXL_CMD_ISOLATE_LEG), SXL_OK);
-    will_return(hal_adc_read, true);
-    drive_control_isr(&d);
+    fixture_run_isr(&d, 1);
     assert_int_equal(send(SXL_CMD_ISOLATE_LEG), SXL_ERR_REFUSED); /* one already */
     drive_background(&d);
-    will_return(hal_adc_read, true);
-    drive_control_isr(&d);
+    fixture_run_isr(&d, 1);
     req.len = 0u;
     assert_int_equal(send(SXL_CMD_GET_OPEN_PHASE), SXL_OK);
     assert_int_equal(op[SXL_OP_ACTION], 1u);
@@ -575,8 +556,7 @@ static void test_open_phase_commands(void **state)
     assert_int_equal(send(SXL_CMD_RESTORE_LEGS), SXL_ERR_REFUSED); /* READY only */
     d.state = DRIVE_STATE_READY;
     assert_int_equal(send(SXL_CMD_RESTORE_LEGS), SXL_OK);
-    will_return(hal_adc_read, true);
-    drive_control_isr(&d);
+    fixture_run_isr(&d, 1);
     assert_int_equal(send(SXL_CMD_RESTORE_LEGS), SXL_ERR_REFUSED); /* none isolated */
     assert_int_equal(d.isolated_leg, -1);
 }
@@ -680,7 +660,7 @@ static void test_commission_start_validates(void **state)
     req.payload[SXL_CC_MASK] = 0x3Fu;
     sxl_put_u16(&req.payload[SXL_CC_CURRENT], 400u);
     assert_int_equal(send(SXL_CMD_COMMISSION_START), SXL_ERR_REFUSED); /* calibrating */
-    calibrate();
+    fixture_ready(&d);
     req.payload[SXL_CC_MASK] = 0xFFu; /* an unknown step */
     assert_int_equal(send(SXL_CMD_COMMISSION_START), SXL_ERR_VALUE);
     req.payload[SXL_CC_MASK] = 0x05u; /* R without the encoder step */
@@ -690,21 +670,18 @@ static void test_commission_start_validates(void **state)
     assert_int_equal(send(SXL_CMD_COMMISSION_START), SXL_ERR_VALUE);
     sxl_put_u16(&req.payload[SXL_CC_CURRENT], 400u);
     mock_adc.vdc = 1000u; /* 195 V: below the under-voltage limit */
-    will_return(hal_adc_read, true);
-    drive_control_isr(&d);
+    fixture_run_isr(&d, 1);
     assert_int_equal(send(SXL_CMD_COMMISSION_START), SXL_ERR_REFUSED);
     req.len = 0u;
     assert_int_equal(send(SXL_CMD_COMMISSION_STATUS), SXL_OK);
     assert_int_equal(rep.len, 1u + SXL_CT_SIZE);
     assert_int_equal(rep.payload[1 + SXL_CT_STATE], SXL_COMM_STATE_IDLE);
     assert_int_equal(rep.payload[1 + SXL_CT_REASON], SXL_COMM_REASON_UNDERVOLTAGE);
-    mock_adc.vdc = 2765u;
-    will_return(hal_adc_read, true);
-    drive_control_isr(&d);
+    mock_adc.vdc = MOCK_ADC_VDC_540V;
+    fixture_run_isr(&d, 1);
     req.len = SXL_CC_SIZE;
     assert_int_equal(send(SXL_CMD_COMMISSION_START), SXL_OK);
-    will_return(hal_adc_read, true);
-    drive_control_isr(&d);
+    fixture_run_isr(&d, 1);
     assert_int_equal(d.state, DRIVE_STATE_COMMISSION);
     req.len = 0u;
     assert_int_equal(send(SXL_CMD_COMMISSION_STATUS), SXL_OK);
@@ -719,8 +696,7 @@ static void test_commission_start_validates(void **state)
     assert_int_equal(send(SXL_CMD_STOP), SXL_ERR_LENGTH);
     req.len = 0u;
     assert_int_equal(send(SXL_CMD_STOP), SXL_OK);
-    will_return(hal_adc_read, true);
-    drive_control_isr(&d);
+    fixture_run_isr(&d, 1);
     assert_int_equal(d.state, DRIVE_STATE_READY);
     assert_int_equal(send(SXL_CMD_COMMISSION_STATUS), SXL_OK);
     assert_int_equal(rep.payload[1 + SXL_CT_STATE], SXL_COMM_STATE_ABORTED);
@@ -732,7 +708,7 @@ static void test_commission_results_and_apply(void **state)
     ident_result_t *res = d.comm.x.result;
     uint16_t applied;
     (void)state;
-    calibrate();
+    fixture_ready(&d);
     req.len = 0u;
     assert_int_equal(send(SXL_CMD_COMMISSION_APPLY), SXL_ERR_REFUSED); /* nothing identified */
     req.len = 1u;
@@ -831,7 +807,7 @@ static void test_commission_apply_refuses_a_mixed_set(void **state)
     ident_result_t *res = d.comm.x.result;
     const uint16_t all = (1u << SXL_COMM_Q_OFFSET) | (uint16_t)SXL_COMM_MODEL_QUANTITIES;
     (void)state;
-    calibrate();
+    fixture_ready(&d);
     /* psi_f poor, 170 sigma from the 0.225 Wb kept */
     comm_results_all_ok();
     res[COMM_Q_PSI_F] =

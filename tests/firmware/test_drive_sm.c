@@ -11,40 +11,25 @@
 #include "ctl_pu.h"
 #include "drive.h"
 #include "drive_open_phase.h"
-#include "mock_hal_ctl.h"
+#include "drive_fixture.h"
 #include "test_support.h"
+#include "vsd_reference.h"
 
 static drive_t d;
 
 static int setup(void **state)
 {
-    ctl_params_t p;
     (void)state;
-    mock_reset();
-    ctl_params_default(&p);
-    will_return(ctl_init, true);
-    drive_init(&d, &p);
+    fixture_init(&d);
     return 0;
 }
-
-/* n control periods with fresh conversions */
-static void run_isr(int n)
-{
-    int i;
-    for (i = 0; i < n; i++) {
-        will_return(hal_adc_read, true);
-        drive_control_isr(&d);
-    }
-}
-
-static void calibrate(void) { run_isr(DRIVE_CALIBRATION_SAMPLES); }
 
 static void test_init_calibrates_with_pwm_off(void **state)
 {
     (void)state;
     assert_int_equal(d.state, DRIVE_STATE_CALIBRATE);
     assert_true(mock_rec.force_off >= 1u);
-    run_isr(10);
+    fixture_run_isr(&d, 10);
     assert_int_equal(d.state, DRIVE_STATE_CALIBRATE);
     assert_int_equal(mock_rec.enable, 0u);
     assert_int_equal(mock_rec.write, 0u);
@@ -55,13 +40,12 @@ static void test_calibration_averages_offsets(void **state)
     int n;
     int i;
     (void)state;
-    /* phase i alternates around 2048 + 10 i - 30 by +-5 counts */
+    /* phase i alternates around mid scale (2048) + 10 i - 30 by +-5 counts */
     for (n = 0; n < DRIVE_CALIBRATION_SAMPLES; n++) {
         for (i = 0; i < HAL_ADC_PHASES; i++) {
-            mock_adc.phase[i] = (uint16_t)(2048 + 10 * i - 30 + ((n & 1) ? 5 : -5));
+            mock_adc.phase[i] = (uint16_t)(MOCK_ADC_ZERO + 10 * i - 30 + ((n & 1) ? 5 : -5));
         }
-        will_return(hal_adc_read, true);
-        drive_control_isr(&d);
+        fixture_run_isr(&d, 1);
         if (n < DRIVE_CALIBRATION_SAMPLES - 1) {
             assert_int_equal(d.state, DRIVE_STATE_CALIBRATE);
         }
@@ -69,7 +53,7 @@ static void test_calibration_averages_offsets(void **state)
     assert_int_equal(d.state, DRIVE_STATE_READY);
     assert_true(d.calibrated);
     for (i = 0; i < HAL_ADC_PHASES; i++) {
-        assert_int_equal(d.offset_counts[i], 2048 + 10 * i - 30);
+        assert_int_equal(d.offset_counts[i], MOCK_ADC_ZERO + 10 * i - 30);
     }
     assert_int_equal(mock_rec.enable, 0u); /* PWM stayed off */
 }
@@ -77,27 +61,27 @@ static void test_calibration_averages_offsets(void **state)
 static void test_offset_out_of_range_faults(void **state)
 {
     (void)state;
-    mock_adc.phase[4] = (uint16_t)(2048 + DRIVE_OFFSET_TOLERANCE_COUNTS + 1);
-    calibrate();
+    mock_adc.phase[4] = (uint16_t)(MOCK_ADC_ZERO + DRIVE_OFFSET_TOLERANCE_COUNTS + 1);
+    fixture_calibrate(&d);
     assert_int_equal(d.state, DRIVE_STATE_FAULT);
     assert_int_equal(d.fault, DRIVE_FAULT_ADC_OFFSET);
     assert_true(mock_rec.pwm_off);
     assert_false(d.calibrated);
     /* clearing restarts the calibration instead of going READY */
-    mock_adc.phase[4] = 2048u;
+    mock_adc.phase[4] = MOCK_ADC_ZERO;
     drive_request_clear_fault(&d);
-    run_isr(1);
+    fixture_run_isr(&d, 1);
     assert_int_equal(d.state, DRIVE_STATE_CALIBRATE);
     assert_int_equal(d.fault, DRIVE_FAULT_NONE);
-    calibrate();
+    fixture_calibrate(&d);
     assert_int_equal(d.state, DRIVE_STATE_READY);
 }
 
 static void test_offset_low_side_faults(void **state)
 {
     (void)state;
-    mock_adc.phase[0] = (uint16_t)(2048 - DRIVE_OFFSET_TOLERANCE_COUNTS - 1);
-    calibrate();
+    mock_adc.phase[0] = (uint16_t)(MOCK_ADC_ZERO - DRIVE_OFFSET_TOLERANCE_COUNTS - 1);
+    fixture_calibrate(&d);
     assert_int_equal(d.fault, DRIVE_FAULT_ADC_OFFSET);
 }
 
@@ -105,13 +89,13 @@ static void test_run_refused_until_calibrated(void **state)
 {
     (void)state;
     drive_request_run(&d);
-    run_isr(1);
+    fixture_run_isr(&d, 1);
     assert_int_equal(d.state, DRIVE_STATE_CALIBRATE);
     assert_int_equal(d.run_refused, 1u);
-    calibrate();
+    fixture_calibrate(&d);
     /* the early request was dropped, not deferred */
     assert_int_equal(d.state, DRIVE_STATE_READY);
-    run_isr(5);
+    fixture_run_isr(&d, 5);
     assert_int_equal(d.state, DRIVE_STATE_READY);
     assert_int_equal(mock_rec.enable, 0u);
     assert_int_equal(mock_rec.ctl_step, 0u);
@@ -121,32 +105,32 @@ static void test_run_and_stop(void **state)
 {
     int i;
     (void)state;
-    calibrate();
+    fixture_calibrate(&d);
     mock_cmd.enable = true;
     for (i = 0; i < CTL_PHASES; i++) {
         mock_cmd.leg_duty[i] = CTL_Q(0.5);
     }
     mock_cmd.leg_duty[5] = CTL_Q(1.0);
     drive_request_run(&d);
-    run_isr(1);
+    fixture_run_isr(&d, 1);
     assert_int_equal(d.state, DRIVE_STATE_RUN);
     assert_int_equal(mock_rec.enable, 1u);
     assert_int_equal(mock_rec.ctl_reset, 1u);
     assert_int_equal(mock_rec.ctl_step, 1u);
     assert_int_equal(mock_rec.duty[0], 16384u);
     assert_int_equal(mock_rec.duty[5], HAL_PWM_DUTY_ONE);
-    run_isr(3);
+    fixture_run_isr(&d, 3);
     assert_int_equal(mock_rec.ctl_step, 4u);
     assert_int_equal(mock_rec.write, 4u);
 
     /* the core disabling its outputs switches everything off */
     mock_cmd.enable = false;
-    run_isr(1);
+    fixture_run_isr(&d, 1);
     assert_true(mock_rec.pwm_off);
     mock_cmd.enable = true;
 
     drive_request_stop(&d);
-    run_isr(1);
+    fixture_run_isr(&d, 1);
     assert_int_equal(d.state, DRIVE_STATE_READY);
     assert_true(mock_rec.pwm_off);
 }
@@ -154,10 +138,10 @@ static void test_run_and_stop(void **state)
 static void test_run_refused_without_encoder(void **state)
 {
     (void)state;
-    calibrate();
+    fixture_calibrate(&d);
     mock_encoder.healthy = false;
     drive_request_run(&d);
-    run_isr(1);
+    fixture_run_isr(&d, 1);
     assert_int_equal(d.state, DRIVE_STATE_READY);
     assert_int_equal(d.run_refused, 1u);
     assert_int_equal(mock_rec.enable, 0u);
@@ -167,15 +151,15 @@ static void test_fault_forces_off_and_latches(void **state)
 {
     uint32_t off_before;
     (void)state;
-    calibrate();
+    fixture_calibrate(&d);
     mock_cmd.enable = true;
     drive_request_run(&d);
-    run_isr(2);
+    fixture_run_isr(&d, 2);
     assert_int_equal(d.state, DRIVE_STATE_RUN);
 
     off_before = mock_rec.force_off;
     mock_rec.hw_trip = true;
-    run_isr(1);
+    fixture_run_isr(&d, 1);
     assert_int_equal(d.state, DRIVE_STATE_FAULT);
     assert_int_equal(d.fault, DRIVE_FAULT_HW_TRIP);
     assert_true(mock_rec.force_off > off_before);
@@ -184,19 +168,19 @@ static void test_fault_forces_off_and_latches(void **state)
     /* latched: trip gone, still FAULT; run refused; PWM kept off */
     mock_rec.hw_trip = false;
     drive_request_run(&d);
-    run_isr(5);
+    fixture_run_isr(&d, 5);
     assert_int_equal(d.state, DRIVE_STATE_FAULT);
     assert_true(mock_rec.pwm_off);
 
     /* clear refused while the trip input is active */
     mock_rec.hw_trip = true;
     drive_request_clear_fault(&d);
-    run_isr(1);
+    fixture_run_isr(&d, 1);
     assert_int_equal(d.state, DRIVE_STATE_FAULT);
     /* clear accepted when healthy, back to READY (calibrated) */
     mock_rec.hw_trip = false;
     drive_request_clear_fault(&d);
-    run_isr(1);
+    fixture_run_isr(&d, 1);
     assert_int_equal(d.state, DRIVE_STATE_READY);
     assert_int_equal(d.fault, DRIVE_FAULT_NONE);
     assert_true(mock_rec.pwm_off); /* enabled only by a new run */
@@ -205,12 +189,12 @@ static void test_fault_forces_off_and_latches(void **state)
 static void test_stale_clear_does_not_clear_later_fault(void **state)
 {
     (void)state;
-    calibrate();
+    fixture_calibrate(&d);
     drive_request_clear_fault(&d); /* no fault yet: dropped */
-    run_isr(1);
+    fixture_run_isr(&d, 1);
     assert_false(d.clear_requested);
     drive_report_overrun(&d);
-    run_isr(3);
+    fixture_run_isr(&d, 3);
     assert_int_equal(d.state, DRIVE_STATE_FAULT);
     assert_int_equal(d.fault, DRIVE_FAULT_OVERRUN);
 }
@@ -218,10 +202,10 @@ static void test_stale_clear_does_not_clear_later_fault(void **state)
 static void test_missing_conversion_faults_in_run(void **state)
 {
     (void)state;
-    calibrate();
+    fixture_calibrate(&d);
     mock_cmd.enable = true;
     drive_request_run(&d);
-    run_isr(1);
+    fixture_run_isr(&d, 1);
     will_return(hal_adc_read, false);
     drive_control_isr(&d);
     assert_int_equal(d.state, DRIVE_STATE_FAULT);
@@ -246,9 +230,9 @@ static void run_isr_live_words(int n)
     int k;
     for (i = 0; i < n; i++) {
         for (k = 0; k < HAL_ADC_PHASES; k++) {
-            mock_adc.phase[k] = (uint16_t)(2048 + (i & 1));
+            mock_adc.phase[k] = (uint16_t)(MOCK_ADC_ZERO + (i & 1));
         }
-        run_isr(1);
+        fixture_run_isr(&d, 1);
     }
 }
 
@@ -257,7 +241,7 @@ static void run_isr_live_words(int n)
 static void test_dead_adc_faults_in_ready_and_blocks_the_clear(void **state)
 {
     (void)state;
-    calibrate();
+    fixture_calibrate(&d);
     assert_int_equal(d.state, DRIVE_STATE_READY);
     run_isr_without_conversion(1);
     assert_int_equal(d.state, DRIVE_STATE_FAULT);
@@ -273,7 +257,7 @@ static void test_dead_adc_faults_in_ready_and_blocks_the_clear(void **state)
     assert_int_equal(mock_rec.enable, 0u);
     /* the converter back: a clear in a period with a fresh, clean check succeeds */
     drive_request_clear_fault(&d);
-    run_isr(1);
+    fixture_run_isr(&d, 1);
     assert_int_equal(d.state, DRIVE_STATE_READY);
     assert_int_equal(d.clear_blocked, 0u);
 }
@@ -284,28 +268,28 @@ static void test_dead_adc_faults_in_ready_and_blocks_the_clear(void **state)
 static void test_running_only_faults_block_the_clear_while_present(void **state)
 {
     (void)state;
-    calibrate();
+    fixture_calibrate(&d);
     mock_cmd.enable = true;
     drive_request_run(&d);
-    run_isr(1);
+    fixture_run_isr(&d, 1);
     mock_adc.vdc = 1536u; /* 300 V */
-    run_isr(10);
+    fixture_run_isr(&d, 10);
     assert_int_equal(d.state, DRIVE_STATE_FAULT);
     assert_int_equal(d.fault, DRIVE_FAULT_DC_UNDERVOLTAGE);
     drive_request_clear_fault(&d);
-    run_isr(1);
+    fixture_run_isr(&d, 1);
     assert_int_equal(d.state, DRIVE_STATE_FAULT);
     assert_int_equal(d.clear_blocked, CTL_FAULT_DC_UNDERVOLTAGE);
-    mock_adc.vdc = 2765u; /* 540 V */
+    mock_adc.vdc = MOCK_ADC_VDC_540V;
     drive_request_clear_fault(&d);
-    run_isr(1);
+    fixture_run_isr(&d, 1);
     assert_int_equal(d.state, DRIVE_STATE_READY);
 
     /* a converter whose words froze while current flowed */
     drive_trip(&d, DRIVE_FAULT_ADC_STUCK);
-    run_isr(CTL_PROTECT_ALIVE_PERIODS); /* the mock's words do not move */
+    fixture_run_isr(&d, CTL_PROTECT_ALIVE_PERIODS); /* the mock's words do not move */
     drive_request_clear_fault(&d);
-    run_isr(1);
+    fixture_run_isr(&d, 1);
     assert_int_equal(d.state, DRIVE_STATE_FAULT);
     assert_int_equal(d.clear_blocked, CTL_FAULT_ADC_STUCK);
     run_isr_live_words(2);
@@ -317,10 +301,10 @@ static void test_running_only_faults_block_the_clear_while_present(void **state)
 static void test_overrun_and_encoder_faults(void **state)
 {
     (void)state;
-    calibrate();
+    fixture_calibrate(&d);
     mock_cmd.enable = true;
     drive_request_run(&d);
-    run_isr(1);
+    fixture_run_isr(&d, 1);
     drive_report_overrun(&d);
     assert_int_equal(d.state, DRIVE_STATE_FAULT);
     assert_int_equal(d.fault, DRIVE_FAULT_OVERRUN);
@@ -330,21 +314,21 @@ static void test_overrun_and_encoder_faults(void **state)
     assert_int_equal(d.fault, DRIVE_FAULT_OVERRUN);
 
     drive_request_clear_fault(&d);
-    run_isr(1);
+    fixture_run_isr(&d, 1);
     assert_int_equal(d.state, DRIVE_STATE_READY);
     drive_request_run(&d);
-    run_isr(1);
+    fixture_run_isr(&d, 1);
     assert_int_equal(d.state, DRIVE_STATE_RUN);
     mock_encoder.healthy = false;
-    run_isr(1);
+    fixture_run_isr(&d, 1);
     assert_int_equal(d.fault, DRIVE_FAULT_ENCODER);
     /* clear needs the encoder healthy again */
     drive_request_clear_fault(&d);
-    run_isr(1);
+    fixture_run_isr(&d, 1);
     assert_int_equal(d.state, DRIVE_STATE_FAULT);
     mock_encoder.healthy = true;
     drive_request_clear_fault(&d);
-    run_isr(1);
+    fixture_run_isr(&d, 1);
     assert_int_equal(d.state, DRIVE_STATE_READY);
 }
 
@@ -354,36 +338,36 @@ static void test_overrun_and_encoder_faults(void **state)
 static void test_encoder_clear_needs_the_index_again(void **state)
 {
     (void)state;
-    calibrate();
+    fixture_calibrate(&d);
     mock_cmd.enable = true;
     drive_request_run(&d);
-    run_isr(2);
+    fixture_run_isr(&d, 2);
     assert_int_equal(d.state, DRIVE_STATE_RUN);
     mock_encoder.elec_angle += 0x40000000u; /* a quarter electrical turn at standstill */
-    run_isr(1);
+    fixture_run_isr(&d, 1);
     assert_int_equal(d.fault, DRIVE_FAULT_ENCODER);
     assert_true(mock_encoder.healthy); /* nothing else says the count is wrong */
 
     drive_request_clear_fault(&d);
-    run_isr(1);
+    fixture_run_isr(&d, 1);
     assert_int_equal(d.state, DRIVE_STATE_READY);
     assert_int_equal(mock_rec.rehome, 1u);
     drive_request_run(&d);
-    run_isr(10);
+    fixture_run_isr(&d, 10);
     assert_int_equal(d.state, DRIVE_STATE_READY);
     assert_int_equal(d.run_refusal, DRIVE_RUN_REFUSED_ENCODER);
     assert_int_equal(mock_rec.enable, 1u); /* only the first run */
 
     mock_encoder.healthy = true; /* the index passed */
     drive_request_run(&d);
-    run_isr(1);
+    fixture_run_isr(&d, 1);
     assert_int_equal(d.state, DRIVE_STATE_RUN);
     assert_int_equal(mock_rec.enable, 2u);
 
     /* a clear of another fault keeps the homing */
     drive_trip(&d, DRIVE_FAULT_OVERRUN);
     drive_request_clear_fault(&d);
-    run_isr(1);
+    fixture_run_isr(&d, 1);
     assert_int_equal(d.state, DRIVE_STATE_READY);
     assert_int_equal(mock_rec.rehome, 1u);
 }
@@ -400,7 +384,7 @@ static void test_params_rejected_at_init(void **state)
     assert_int_equal(d.fault, DRIVE_FAULT_PARAMS);
     assert_true(mock_rec.pwm_off);
     drive_request_clear_fault(&d);
-    run_isr(3);
+    fixture_run_isr(&d, 3);
     assert_int_equal(d.state, DRIVE_STATE_FAULT); /* not clearable */
 
     /* a startup fault is not clearable either */
@@ -408,7 +392,7 @@ static void test_params_rejected_at_init(void **state)
     drive_init(&d, &p);
     drive_trip(&d, DRIVE_FAULT_STARTUP);
     drive_request_clear_fault(&d);
-    run_isr(1);
+    fixture_run_isr(&d, 1);
     assert_int_equal(d.state, DRIVE_STATE_FAULT);
 }
 
@@ -434,18 +418,18 @@ static void test_applied_set_rescales_speed_and_limits(void **state)
     ctl_params_t p = d.params_bg;
     const double wb = CTL_BASE_OMEGA_RAD_S;
     (void)state;
-    calibrate();
+    fixture_calibrate(&d);
     assert_int_equal(d.state, DRIVE_STATE_READY);
     mock_encoder.mech_speed_q16 = 10 * 65536; /* 10 rev/s = 600 r/min */
-    run_isr(1);
+    fixture_run_isr(&d, 1);
     assert_near((double)ctl_to_float(d.meas.omega_e), 10.0 * CTL_TWO_PI * 3.0 / wb, 1e-5);
 
     p.pole_pairs = 2;
     p.protect.overspeed_rpm = 500.0f;
     assert_int_equal(drive_request_params(&d, &p), CTL_PARAM_OK);
-    run_isr(1);
+    fixture_run_isr(&d, 1);
     assert_near((double)ctl_to_float(d.meas.omega_e), 10.0 * CTL_TWO_PI * 2.0 / wb, 1e-5);
-    run_isr(5); /* the new 500 r/min limit, 5-period filter */
+    fixture_run_isr(&d, 5); /* the new 500 r/min limit, 5-period filter */
     assert_int_equal(d.state, DRIVE_STATE_FAULT);
     assert_int_equal(d.fault, DRIVE_FAULT_OVERSPEED);
 }
@@ -474,26 +458,17 @@ static void test_references(void **state)
 /* 1700 counts from mid scale is 16.6 A: over the 15 A software limit, inside the sensors */
 #define OVER_LIMIT_COUNTS 1700
 
-static void start_running(void)
-{
-    calibrate();
-    mock_cmd.enable = true;
-    drive_request_run(&d);
-    run_isr(2);
-    assert_int_equal(d.state, DRIVE_STATE_RUN);
-}
-
 static void test_overcurrent_forces_off_before_any_write(void **state)
 {
     ctl_fault_record_t r;
     uint32_t writes;
     (void)state;
-    start_running();
+    fixture_start_running(&d);
     writes = mock_rec.write;
     /* A and B opposite: the set still sums to zero, only the magnitude is wrong */
-    mock_adc.phase[0] = (uint16_t)(2048 + OVER_LIMIT_COUNTS);
-    mock_adc.phase[1] = (uint16_t)(2048 - OVER_LIMIT_COUNTS);
-    run_isr(1);
+    mock_adc.phase[0] = (uint16_t)(MOCK_ADC_ZERO + OVER_LIMIT_COUNTS);
+    mock_adc.phase[1] = (uint16_t)(MOCK_ADC_ZERO - OVER_LIMIT_COUNTS);
+    fixture_run_isr(&d, 1);
     assert_int_equal(d.state, DRIVE_STATE_FAULT);
     assert_int_equal(d.fault, DRIVE_FAULT_OVERCURRENT);
     assert_int_equal(drive_faults_latched(&d), CTL_FAULT_OVERCURRENT);
@@ -502,12 +477,12 @@ static void test_overcurrent_forces_off_before_any_write(void **state)
 
     /* clear refused while the current is still high; the record stays */
     drive_request_clear_fault(&d);
-    run_isr(1);
+    fixture_run_isr(&d, 1);
     assert_int_equal(d.state, DRIVE_STATE_FAULT);
-    mock_adc.phase[0] = 2048u;
-    mock_adc.phase[1] = 2048u;
+    mock_adc.phase[0] = MOCK_ADC_ZERO;
+    mock_adc.phase[1] = MOCK_ADC_ZERO;
     drive_request_clear_fault(&d);
-    run_isr(1);
+    fixture_run_isr(&d, 1);
     assert_int_equal(d.state, DRIVE_STATE_READY);
     assert_int_equal(drive_faults_latched(&d), 0u);
 
@@ -532,17 +507,17 @@ static void test_current_span_scales_the_phase_currents(void **state)
     assert_int_equal(d.current_pu_per_count, per_count_20a);
     assert_true(drive_set_current_span(&d, 100.0f));
     assert_int_equal(d.current_pu_per_count, ctl_from_float(100.0f / 4096.0f / 10.0f));
-    start_running();
+    fixture_start_running(&d);
     assert_false(drive_set_current_span(&d, 40.0f)); /* not while running */
-    mock_adc.phase[0] = (uint16_t)(2048 + 500);
-    mock_adc.phase[1] = (uint16_t)(2048 - 500);
-    run_isr(1);
+    mock_adc.phase[0] = (uint16_t)(MOCK_ADC_ZERO + 500);
+    mock_adc.phase[1] = (uint16_t)(MOCK_ADC_ZERO - 500);
+    fixture_run_isr(&d, 1);
     assert_true(d.meas.i_phase[0] > ctl_from_float(1.21f) &&
                 d.meas.i_phase[0] < ctl_from_float(1.23f));
     assert_int_equal(d.state, DRIVE_STATE_RUN);
-    mock_adc.phase[0] = (uint16_t)(2048 + OVER_LIMIT_COUNTS); /* 41.5 A */
-    mock_adc.phase[1] = (uint16_t)(2048 - OVER_LIMIT_COUNTS);
-    run_isr(1);
+    mock_adc.phase[0] = (uint16_t)(MOCK_ADC_ZERO + OVER_LIMIT_COUNTS); /* 41.5 A */
+    mock_adc.phase[1] = (uint16_t)(MOCK_ADC_ZERO - OVER_LIMIT_COUNTS);
+    fixture_run_isr(&d, 1);
     assert_int_equal(d.fault, DRIVE_FAULT_OVERCURRENT);
 }
 
@@ -550,11 +525,11 @@ static void test_simultaneous_faults_one_record_all_bits(void **state)
 {
     ctl_fault_record_t r;
     (void)state;
-    start_running();
-    mock_adc.phase[3] = (uint16_t)(2048 + OVER_LIMIT_COUNTS);
-    mock_adc.phase[4] = (uint16_t)(2048 - OVER_LIMIT_COUNTS);
+    fixture_start_running(&d);
+    mock_adc.phase[3] = (uint16_t)(MOCK_ADC_ZERO + OVER_LIMIT_COUNTS);
+    mock_adc.phase[4] = (uint16_t)(MOCK_ADC_ZERO - OVER_LIMIT_COUNTS);
     mock_rec.hw_trip = true;
-    run_isr(1);
+    fixture_run_isr(&d, 1);
     assert_int_equal(d.fault, DRIVE_FAULT_HW_TRIP); /* the most severe code names it */
     assert_int_equal(drive_faults_latched(&d), CTL_FAULT_HW_TRIP | CTL_FAULT_OVERCURRENT);
     assert_true(drive_read_fault_record(&d, &r));
@@ -571,15 +546,15 @@ static void test_simultaneous_faults_one_record_all_bits(void **state)
 static void test_dc_overvoltage_faults_when_idle(void **state)
 {
     (void)state;
-    calibrate();
+    fixture_calibrate(&d);
     mock_adc.vdc = 3800u; /* 742 V, over the 720 V limit */
-    run_isr(2);
+    fixture_run_isr(&d, 2);
     assert_int_equal(d.state, DRIVE_STATE_READY); /* filtered: 3 periods */
-    run_isr(1);
+    fixture_run_isr(&d, 1);
     assert_int_equal(d.state, DRIVE_STATE_FAULT);
     assert_int_equal(d.fault, DRIVE_FAULT_DC_OVERVOLTAGE);
     drive_request_run(&d);
-    run_isr(1);
+    fixture_run_isr(&d, 1);
     assert_int_equal(d.state, DRIVE_STATE_FAULT);
     assert_int_equal(mock_rec.enable, 0u);
 }
@@ -592,7 +567,6 @@ static double op_theta; /* electrical angle of the test currents, rad */
  * words move by a count, as a live sensor's do) and the encoder turning with them. */
 static void run_rotating(int n, unsigned open)
 {
-    static const double deg[6] = {0.0, 120.0, 240.0, 30.0, 150.0, 270.0};
     const double step = 2.0 * TEST_PI * 75.0 * 1.0e-4;
     int i;
     int k;
@@ -600,7 +574,7 @@ static void run_rotating(int n, unsigned open)
     for (i = 0; i < n; i++) {
         double amps[6];
         for (k = 0; k < 6; k++) {
-            amps[k] = 3.0 * cos(op_theta - deg[k] * TEST_PI / 180.0);
+            amps[k] = 3.0 * cos(op_theta - vsd_ref_phase_deg[k] * TEST_PI / 180.0);
         }
         for (k = 0; k < 6; k++) { /* the set's other two carry equal and opposite currents */
             if ((open >> k) & 1u) {
@@ -619,15 +593,14 @@ static void run_rotating(int n, unsigned open)
                            amps[k] / HAL_BOARD_CURRENT_A_PER_COUNT + (double)(i & 1));
         }
         mock_encoder.elec_angle = (uint32_t)(fmod(op_theta / (2.0 * TEST_PI), 1.0) * 4294967296.0);
-        will_return(hal_adc_read, true);
-        drive_control_isr(&d);
+        fixture_run_isr(&d, 1);
         op_theta += step;
     }
 }
 
 static void start_rotating(void)
 {
-    calibrate();
+    fixture_calibrate(&d);
     mock_cmd.enable = true;
     drive_request_run(&d);
     run_rotating(450, 0u);
@@ -725,16 +698,16 @@ static void test_open_phase_stops_by_default(void **state)
 static void test_isolate_and_restore_commands(void **state)
 {
     (void)state;
-    calibrate();
+    fixture_calibrate(&d);
     assert_false(drive_request_isolate_leg(&d, 6));
     assert_false(drive_request_restore_legs(&d)); /* none isolated */
     assert_true(drive_request_isolate_leg(&d, 4));
-    run_isr(1);
+    fixture_run_isr(&d, 1);
     assert_int_equal(d.isolated_leg, 4);
     assert_int_equal(d.isolation_cause, DRIVE_ISOLATION_COMMAND);
     assert_false(drive_request_isolate_leg(&d, 1)); /* one at a time */
     drive_background(&d);
-    run_isr(1);
+    fixture_run_isr(&d, 1);
     assert_int_equal(ctl_postfault_config(&d.ctl)->open_leg, 4);
     mock_cmd.enable = true;
     drive_request_run(&d);
@@ -743,9 +716,9 @@ static void test_isolate_and_restore_commands(void **state)
     assert_false(mock_rec.pwm_off);
     assert_false(drive_request_restore_legs(&d)); /* not in RUN */
     drive_request_stop(&d);
-    run_isr(1);
+    fixture_run_isr(&d, 1);
     assert_true(drive_request_restore_legs(&d));
-    run_isr(1);
+    fixture_run_isr(&d, 1);
     assert_int_equal(d.isolated_leg, -1);
     assert_int_equal(mock_rec.isolated, 0u);
     /* RUN before the healthy set arrives: outputs held off */
@@ -763,11 +736,11 @@ static void test_requested_set_carries_the_isolated_leg(void **state)
 {
     ctl_params_t p = d.params_bg;
     (void)state;
-    calibrate();
+    fixture_calibrate(&d);
     p.open_phase = 3;
     assert_int_equal(drive_request_params(&d, &p), CTL_PARAM_OK);
     assert_int_equal(mock_rec.requested.open_phase, -1);
-    run_isr(1);
+    fixture_run_isr(&d, 1);
     assert_int_equal(ctl_postfault_config(&d.ctl)->open_leg, CTL_POSTFAULT_NO_LEG);
 }
 

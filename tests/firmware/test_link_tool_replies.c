@@ -28,6 +28,7 @@
 #include <cmocka.h>
 
 #include "motor_params_file.h"
+#include "link_bytes.h"
 #include "sxlink.h"
 #include "sxlink_commission.h"
 
@@ -108,14 +109,7 @@ static int next_request(session_t *s, sxl_decoder_t *dec, sxl_frame_t *req)
 
 static void reply(session_t *s, uint16_t cmd, const uint16_t *payload, uint16_t len)
 {
-    uint16_t frame[SXL_MAX_FRAME];
-    const uint16_t n = sxl_encode((uint16_t)(cmd | SXL_REPLY), payload, len, frame, SXL_MAX_FRAME);
-    uint16_t i;
-    assert_true(n > 0u);
-    for (i = 0u; i < n; i++) {
-        const unsigned char b = (unsigned char)frame[i];
-        assert_int_equal(write(s->master, &b, 1), 1);
-    }
+    link_send_frame(s->master, (uint16_t)(cmd | SXL_REPLY), payload, len);
 }
 
 /* The tool's exit status and its standard error. */

@@ -21,6 +21,7 @@
 
 #include <cmocka.h>
 
+#include "link_bytes.h"
 #include "sxlink.h"
 
 static const char *tool;
@@ -80,23 +81,6 @@ static void read_request(const session_t *s, sxl_frame_t *req)
     }
 }
 
-static void send_bytes(const session_t *s, const uint16_t *bytes, uint16_t n)
-{
-    uint16_t i;
-    for (i = 0u; i < n; i++) {
-        const unsigned char b = (unsigned char)bytes[i];
-        assert_int_equal(write(s->master, &b, 1), 1);
-    }
-}
-
-static void send_frame(const session_t *s, uint16_t cmd, const uint16_t *payload, uint16_t len)
-{
-    uint16_t frame[SXL_MAX_FRAME];
-    const uint16_t n = sxl_encode(cmd, payload, len, frame, SXL_MAX_FRAME);
-    assert_true(n > 0u);
-    send_bytes(s, frame, n);
-}
-
 static int finish(session_t *s, char *out, size_t cap)
 {
     int status;
@@ -126,17 +110,17 @@ static void test_noise_and_a_stale_reply_are_skipped(void **state)
     start(&s, "status");
     read_request(&s, &req);
     assert_int_equal(req.cmd, SXL_CMD_GET_STATUS);
-    send_bytes(&s, noise, 6u);
+    link_send_bytes(s.master, noise, 6u);
     n = sxl_encode(SXL_CMD_GET_STATUS | SXL_REPLY, pong, 2u, bad, SXL_MAX_FRAME);
     bad[n - 1u] ^= 0x5Au; /* a reply with a CRC error */
-    send_bytes(&s, bad, n);
-    send_frame(&s, SXL_CMD_PING | SXL_REPLY, pong, 2u); /* stale: an earlier request's */
+    link_send_bytes(s.master, bad, n);
+    link_send_frame(s.master, SXL_CMD_PING | SXL_REPLY, pong, 2u); /* stale: an earlier request's */
     memset(status, 0, sizeof status);
     status[0] = SXL_OK;
     status[1u + SXL_ST_STATE] = 2u; /* READY */
     sxl_put_u16(&status[1u + SXL_ST_STACK_USED], 812u);
     sxl_put_u16(&status[1u + SXL_ST_STACK_WORDS], 1792u);
-    send_frame(&s, SXL_CMD_GET_STATUS | SXL_REPLY, status, (uint16_t)(1u + SXL_ST_SIZE));
+    link_send_frame(s.master, SXL_CMD_GET_STATUS | SXL_REPLY, status, (uint16_t)(1u + SXL_ST_SIZE));
     assert_int_equal(finish(&s, out, sizeof out), 0);
     assert_non_null(strstr(out, "state=READY"));
     assert_non_null(strstr(out, "\nstack: 812 of 1792 words used (45 %)\n"));

@@ -10,6 +10,7 @@
 #include "ctl.h"
 #include "hal_cycles.h"
 #include "profile.h"
+#include "test_rng.h"
 
 /* Each reading advances the counter by `step`, plus `extra` once when armed. */
 static uint32_t counter;
@@ -128,11 +129,6 @@ static void test_core_stage_hook(void **state)
  * busy / 2^16 + 1 below it beyond, saturated at 65535. Busy is the latency alone here (the
  * counter does not move: TOTAL is 0). */
 static uint32_t lcg = 12345u;
-static uint32_t next_rand(void)
-{
-    lcg = lcg * 1664525u + 1013904223u;
-    return lcg;
-}
 
 static void test_32bit_mean_and_load(void **state)
 {
@@ -147,7 +143,7 @@ static void test_32bit_mean_and_load(void **state)
     assert_int_equal(drive_profile.stage[PROF_LATENCY].mean_x256, 0x00FFFFFFu << 8);
     prof_init(period, 150000000u);
     for (k = 0; k < 200000; k++) {
-        const uint32_t r = next_rand();
+        const uint32_t r = test_lcg_next(&lcg);
         const uint32_t busy = (k < 100000) ? (r >> 16) : (r >> (8u + (r & 7u)));
         const uint32_t exact = (uint32_t)(((uint64_t)busy * 1000u) / period);
         uint32_t got;

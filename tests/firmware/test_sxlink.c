@@ -9,6 +9,7 @@
 #include <cmocka.h>
 
 #include "sxlink.h"
+#include "test_rng.h"
 
 static sxl_rx_t push_all(sxl_decoder_t *d, const uint16_t *b, uint16_t n, sxl_frame_t *f,
                          int *frames)
@@ -194,11 +195,7 @@ static void test_false_start_before_a_frame(void **state)
 }
 
 static uint32_t lcg = 12345u;
-static uint16_t random_byte(void)
-{
-    lcg = lcg * 1664525u + 1013904223u;
-    return (uint16_t)(lcg >> 24);
-}
+static uint16_t random_byte(void) { return (uint16_t)(test_lcg_next(&lcg) >> 24); }
 
 /* 10 000 trials of 1..16 random bytes before each of three frames: none is lost. */
 static void test_no_frame_lost_after_noise(void **state)

@@ -34,6 +34,7 @@
 #include "drive.h"
 #include "drive_link.h"
 #include "fault_inject.h"
+#include "hal_board.h"
 #include "hal_sim.h"
 #include "inverter.h"
 #include "plant.h"
@@ -316,7 +317,10 @@ static struct {
     bool on, inv_made;
 } plant;
 
-#define PLANT_TS_S 1.0e-4 /* the harness's PWM: 10 kHz (power_up) */
+#define PLANT_TS_S (1.0 / HAL_BOARD_PWM_HZ) /* the harness's PWM (power_up) */
+/* The ADC's words at rest, from the board's scaling: no current (mid scale), a 540 V DC link. */
+#define ADC_ZERO ((uint16_t)HAL_BOARD_CURRENT_ZERO_COUNTS)
+#define ADC_VDC_540V ((uint16_t)(540.0 / HAL_BOARD_VDC_V_PER_COUNT + 0.5))
 /* Plant periods per input: short inputs (what mutation mostly makes) 25.6 ms of the drive's
  * time, so that the fuzzer keeps its pace (a plant period costs about what a hundred plain
  * ones do under the sanitizers); long ones (first byte bit 1: the seeds that commission)
@@ -343,9 +347,9 @@ static void plant_start(bool homed)
     sim_encoder_power_up(&plant.enc, &plant.p, &plant.x, homed);
     sim_fault_begin(&plant.fault, SIM_FAULT_NONE, 0.0);
     for (k = 0; k < HAL_ADC_PHASES; k++) {
-        plant.frozen.phase[k] = 2048u;
+        plant.frozen.phase[k] = ADC_ZERO;
     }
-    plant.frozen.vdc = 2765u;
+    plant.frozen.vdc = ADC_VDC_540V;
     plant.t = 0.0;
     plant.on = true;
 }
@@ -461,9 +465,9 @@ static void power_up(void)
 {
     ctl_params_t p;
     hal_sim_reset();
-    (void)hal_pwm_init(10000u, 2000u);
+    (void)hal_pwm_init(HAL_BOARD_PWM_HZ, HAL_BOARD_DEAD_TIME_NS);
     (void)hal_adc_init();
-    (void)hal_encoder_init(2500u, 3u, 0u);
+    (void)hal_encoder_init(HAL_BOARD_ENCODER_LINES, 3u, 0u);
     ctl_params_default(&p);
     drive_init(&drive, &p);
 }
@@ -482,11 +486,11 @@ static void calibrated_start(void)
         int32_t n;
         power_up();
         for (k = 0; k < HAL_ADC_PHASES; k++) {
-            adc.phase[k] = 2048u;
+            adc.phase[k] = ADC_ZERO;
         }
-        adc.vdc = 2765u;
+        adc.vdc = ADC_VDC_540V;
         for (n = 0; n < DRIVE_CALIBRATION_SAMPLES; n++) {
-            adc.phase[0] = (uint16_t)(2048 + (n & 1)); /* a live converter */
+            adc.phase[0] = (uint16_t)(ADC_ZERO + (n & 1)); /* a live converter */
             hal_sim_post_adc(&adc);
             hal_sim_post_encoder(&enc);
             drive_control_isr(&drive);

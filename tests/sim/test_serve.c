@@ -36,6 +36,7 @@
 
 #include "capture_signals.h"
 #include "drive.h"
+#include "link_bytes.h"
 #include "sxlink.h"
 
 static pid_t server;
@@ -63,22 +64,13 @@ static void sleep_s(double s)
     (void)nanosleep(&d, NULL);
 }
 
-static void send_bytes(const uint16_t *b, uint16_t n)
-{
-    uint16_t i;
-    for (i = 0; i < n; i++) {
-        const unsigned char c = (unsigned char)b[i];
-        assert_int_equal(write(port, &c, 1), 1);
-    }
-}
-
 /* One request and its reply within timeout_s; the reply's result byte is returned (or -1). */
 static int request_frame(uint16_t cmd, const uint16_t *payload, uint16_t len, sxl_frame_t *reply)
 {
     uint16_t frame[SXL_MAX_FRAME];
     const uint16_t n = sxl_encode(cmd, payload, len, frame, (uint16_t)SXL_MAX_FRAME);
     const double deadline = now_s() + 5.0; /* a loaded host may answer late */
-    send_bytes(frame, n);
+    link_send_bytes(port, frame, n);
     while (now_s() < deadline) {
         struct pollfd p = {port, POLLIN, 0};
         unsigned char c;
@@ -305,16 +297,16 @@ static void test_garbage_is_counted_and_skipped(void **state)
     (void)state;
     status(&r);
     before = sxl_get_u16(&r.payload[1 + SXL_ST_RX_ERRORS]);
-    send_bytes(noise, 5); /* a start with a length whose bytes never come */
+    link_send_bytes(port, noise, 5); /* a start with a length whose bytes never come */
     sleep_s(0.05);
     n = sxl_encode(SXL_CMD_PING, NULL, 0, frame, (uint16_t)SXL_MAX_FRAME);
     frame[n - 1] ^= 0x55u; /* bad CRC */
-    send_bytes(frame, n);
+    link_send_bytes(port, frame, n);
     sleep_s(0.05);
-    send_bytes(oversize, 2);
+    link_send_bytes(port, oversize, 2);
     sleep_s(0.05);
     n = sxl_encode(SXL_CMD_GET_STATUS, NULL, 0, frame, (uint16_t)SXL_MAX_FRAME);
-    send_bytes(frame, (uint16_t)(n / 2)); /* half a frame, then silence */
+    link_send_bytes(port, frame, (uint16_t)(n / 2)); /* half a frame, then silence */
     sleep_s(0.05);
     assert_int_equal(request(SXL_CMD_PING, NULL, 0, &r), 0);
     status(&r);

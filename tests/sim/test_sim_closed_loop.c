@@ -35,6 +35,7 @@
 #include <cmocka.h>
 
 #include "sim.h"
+#include "sim_run_checked.h"
 
 /* DDC variant for run_case: 0 the paper's method, every improvement off (the regression
  * group); < 0 the core's defaults (the product's DDC, the robustness group); 1 the torque guard
@@ -62,20 +63,11 @@ static void case_config(int controller, int arith, sim_scenario_t scen, double l
     c->protect = (controller != 1);
 }
 
-static void run_config(const sim_config_t *c, sim_result_t *r)
-{
-    char err[200] = "";
-    if (sim_run(c, r, err, sizeof err) != 0) {
-        print_error("sim_run failed: %s\n", err);
-        fail();
-    }
-}
-
 static void run_case(int controller, int arith, sim_scenario_t scen, double lambda, sim_result_t *r)
 {
     sim_config_t c;
     case_config(controller, arith, scen, lambda, &c);
-    run_config(&c, r);
+    sim_run_checked(&c, r);
     print_message(
         "%-7s %-5s %-9s lambda %5.0f: speed %7.1f r/min, Te %.3f N m, THD %6.1f %% (h50 %5.1f %%), "
         "ripple %.3f N m, xy %.2f A, f_sw %.0f Hz, transient %.1f ms, %.0fx real time\n",
@@ -92,7 +84,7 @@ static void run_case_ideal(int controller, sim_scenario_t scen, double lambda, s
     case_config(controller, 0, scen, lambda, &c);
     c.plant.dead_time_on = c.plant.harmonics_on = c.plant.adc_offset_on = false;
     c.plant.adc_gain_on = c.plant.adc_noise_on = c.plant.encoder_quant_on = false;
-    run_config(&c, r);
+    sim_run_checked(&c, r);
 }
 
 /* Side by side at lambda 200: the paper's duty search falls into the heavy-flux-weighting trap
@@ -208,9 +200,9 @@ static void test_sensor_span_removes_clipping(void **state)
     sim_result_t board, wide;
     (void)state;
     case_config(1, 0, SIM_SCEN_STEADY, 100.0, &c);
-    run_config(&c, &board);
+    sim_run_checked(&c, &board);
     c.plant.current_sensor_span_a = 50.0;
-    run_config(&c, &wide);
+    sim_run_checked(&c, &wide);
     print_message("MPTC-49 clipped conversions: %ld at +-20 A, %ld at +-50 A (peak %.1f A)\n",
                   board.adc_clipped, wide.adc_clipped, wide.phase_current_peak_a);
     assert_true(board.adc_clipped > 100);
@@ -372,7 +364,7 @@ static void test_fewest_transitions_lowers_thd(void **state)
                 c.mid_period_angle = 0;
                 c.pulse_pattern = fewest; /* by ones, or fewest transitions (u00 or u77) */
                 c.seed = (uint64_t)seed;
-                run_config(&c, &r);
+                sim_run_checked(&c, &r);
                 thd[fewest] += r.thd_percent / 3.0;
                 fsw[fewest] += r.switching_freq_hz / 3.0;
             }
@@ -410,7 +402,7 @@ static void test_product_ddc_goals_over_lambda(void **state)
                  * paper's 24.89 %: its start-up moves a 3-seed mean by noise of 0.4 pp) */
                 c.light_load_current_a = 0.0;
                 c.seed = (uint64_t)seed;
-                run_config(&c, &r);
+                sim_run_checked(&c, &r);
                 thd[variant] += r.thd_percent / 3.0;
                 ripple[variant] += r.torque_ripple_nm / 3.0;
                 fsw[variant] += r.switching_freq_hz / 3.0;

@@ -29,6 +29,7 @@
 #include "ctl_pu.h"
 #include "hal_sim.h"
 #include "sim.h"
+#include "sim_run_checked.h"
 #include "sxlink.h"
 #include "sim_run_state.h"
 #include "sxlink_commission.h"
@@ -65,11 +66,7 @@ static void config(sim_config_t *c, const plant_t *p, int arith)
 
 static void run(const sim_config_t *c, sim_result_t *r)
 {
-    char err[200] = "";
-    if (sim_run(c, r, err, sizeof err) != 0) {
-        print_error("sim_run failed: %s\n", err);
-        fail();
-    }
+    sim_run_checked(c, r);
     assert_true(r->comm.ran);
 }
 

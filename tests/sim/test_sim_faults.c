@@ -21,17 +21,8 @@
 #include <unistd.h>
 
 #include "sim.h"
+#include "sim_run_checked.h"
 #include "sxlink.h"
-
-static void run(sim_config_t *c, sim_result_t *r)
-{
-    char err[200] = "";
-    c->out_dir = NULL;
-    if (sim_run(c, r, err, sizeof err) != 0) {
-        print_error("sim_run failed: %s\n", err);
-        fail();
-    }
-}
 
 static void check_fault(sim_fault_t kind, int arith)
 {
@@ -42,7 +33,7 @@ static void check_fault(sim_fault_t kind, int arith)
     sim_config_default(&c);
     c.arith = arith;
     c.fault = kind;
-    run(&c, &r);
+    sim_run_quiet(&c, &r);
     print_message("fault-%-16s %-5s code %2d mask 0x%04x detect %6.1f ms (bound %5.1f) outputs_off "
                   "%d records %d\n",
                   fi->name, r.arith, r.fault, r.faults_latched, r.fault_detect_ms,
@@ -89,7 +80,7 @@ static void test_injection_time_is_honoured(void **state)
     sim_config_default(&c);
     c.fault = SIM_FAULT_DC_OVERVOLTAGE;
     c.fault_time_s = 0.3;
-    run(&c, &r);
+    sim_run_quiet(&c, &r);
     assert_true(r.fault_inject_s > 0.2999 && r.fault_inject_s < 0.3001);
     assert_true(r.fault_time_s >= 0.3 && r.fault_time_s < 0.301);
 }
@@ -115,7 +106,7 @@ static void test_healthy_runs_do_not_trip(void **state)
                     c.plant.adc_offset_on = c.plant.adc_gain_on = c.plant.adc_noise_on = false;
                     c.plant.encoder_quant_on = false;
                 }
-                run(&c, &r);
+                sim_run_quiet(&c, &r);
                 if (r.fault != 0) {
                     print_error("%s %s ideal=%d: fault %d mask 0x%04x at %.4f s\n", r.controller,
                                 r.scenario, ideal, r.fault, r.faults_latched, r.fault_time_s);
@@ -137,7 +128,7 @@ static void test_mptc49_trips_the_protection(void **state)
     (void)state;
     sim_config_default(&c);
     c.controller = 1;
-    run(&c, &r);
+    sim_run_quiet(&c, &r);
     print_message("mptc49 with protection: code %d mask 0x%04x at %.2f ms\n", r.fault,
                   r.faults_latched, 1e3 * r.fault_time_s);
     assert_int_not_equal(r.fault, 0);
@@ -219,7 +210,7 @@ static void test_encoder_clear_waits_for_the_index(void **state)
         c.observer = &ob;
         p.ops = arith ? &simflt_sim_ctl_ops_float : &sim_ctl_ops_fixed;
         p.pole_pairs = (double)c.plant.pole_pairs;
-        run(&c, &r);
+        sim_run_quiet(&c, &r);
         print_message("%s: refused %u times before the index (at %.4f s), %u after; running "
                       "from %.4f s\n",
                       r.arith, p.refused_before_index, p.t_index, p.refused_after_index, p.t_run);
@@ -277,7 +268,7 @@ static void test_trace_shows_outputs_off_from_the_trip(void **state)
         } else {
             c.fault = (sim_fault_t)k;
         }
-        run(&c, &r);
+        sim_run_quiet(&c, &r);
         print_message("%-16s outputs off in %ld periods from %.4f s, %ld of them showing a "
                       "command (first %.4f s)\n",
                       k == (int)SIM_FAULT_COUNT ? "hardware trip" : sim_fault_info(c.fault)->name,

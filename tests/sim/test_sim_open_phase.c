@@ -16,18 +16,9 @@
 #include <cmocka.h>
 
 #include "sim.h"
+#include "sim_run_checked.h"
 
 #define RIDE_LOAD_NM 3.5 /* within the minimum-loss limit of 8.4 / 1.803 = 4.66 N m */
-
-static void run(sim_config_t *c, sim_result_t *r)
-{
-    char err[200] = "";
-    c->out_dir = NULL;
-    if (sim_run(c, r, err, sizeof err) != 0) {
-        print_error("sim_run failed: %s\n", err);
-        fail();
-    }
-}
 
 static void ride_config(sim_config_t *c, int phase)
 {
@@ -84,7 +75,7 @@ static void test_each_phase_rides_through(void **state)
         sim_config_t c;
         sim_result_t r;
         ride_config(&c, phase);
-        run(&c, &r);
+        sim_run_quiet(&c, &r);
         check_ride_through(&c, &r, phase);
         assert_true(fabs(r.torque_limit_end_nm - 8.4 / (sqrt(13.0) / 2.0)) < 0.01);
     }
@@ -98,15 +89,15 @@ static void test_variants_ride_through(void **state)
     (void)state;
     ride_config(&c, 0);
     c.arith = 1;
-    run(&c, &r);
+    sim_run_quiet(&c, &r);
     check_ride_through(&c, &r, 0);
     ride_config(&c, 3);
     c.controller = 2;
-    run(&c, &r);
+    sim_run_quiet(&c, &r);
     check_ride_through(&c, &r, 3);
     ride_config(&c, 1);
     c.postfault_strategy = 1;
-    run(&c, &r);
+    sim_run_quiet(&c, &r);
     check_ride_through(&c, &r, 1);
     assert_true(fabs(r.torque_limit_end_nm - 8.4 / sqrt(3.0)) < 0.01);
     assert_true(r.phase_rms_a[3] < 0.25 * r.phase_rms_a[0]); /* B open: MT holds D near zero */
@@ -121,7 +112,7 @@ static void test_handoff_delay(void **state)
     (void)state;
     ride_config(&c, 2);
     c.handoff_delay_s = 0.006;
-    run(&c, &r);
+    sim_run_quiet(&c, &r);
     print_message("hand-off 6 ms: five legs %.1f ms after the isolation, dip %.1f r/min\n",
                   r.postfault_start_ms - r.isolation_ms, r.speed_dip_rpm);
     assert_true(fabs(r.postfault_start_ms - r.isolation_ms - 6.1) < 0.15);
@@ -138,7 +129,7 @@ static void test_second_open_phase_stops(void **state)
     ride_config(&c, 2);
     c.second_fault_phase = 4;
     c.second_fault_s = 0.5;
-    run(&c, &r);
+    sim_run_quiet(&c, &r);
     print_message("second fault: state %d fault %d at %.1f ms, records %d, outputs off %d\n",
                   r.final_state, r.fault, 1e3 * r.fault_time_s, r.fault_records,
                   r.outputs_off ? 1 : 0);
@@ -159,7 +150,7 @@ static void test_rated_load_exceeds_the_derated_limit(void **state)
     (void)state;
     ride_config(&c, 2);
     c.load_nm = 7.0;
-    run(&c, &r);
+    sim_run_quiet(&c, &r);
     print_message("rated load: state %d, mean speed %.0f r/min, torque %.2f N m, dip %.0f r/min\n",
                   r.final_state, r.speed_mean_rpm, r.torque_mean_nm, r.speed_dip_rpm);
     assert_int_equal(r.final_state, 3);
@@ -174,7 +165,7 @@ static void test_rated_load_exceeds_the_derated_limit(void **state)
     assert_false(r.torque_limited_stopped);
     /* the other choice: stop after 0.5 s at the limit */
     c.torque_limited_action = 1;
-    run(&c, &r);
+    sim_run_quiet(&c, &r);
     print_message("rated load, stop: state %d, stopped %d, flagged %.3f s\n", r.final_state,
                   r.torque_limited_stopped ? 1 : 0, r.torque_limited_s);
     assert_int_equal(r.final_state, 2); /* READY */
@@ -193,7 +184,7 @@ static void test_isolation_command_on_a_connected_phase(void **state)
     sim_config_default(&c);
     c.load_nm = RIDE_LOAD_NM;
     c.isolate_leg = 2;
-    run(&c, &r);
+    sim_run_quiet(&c, &r);
     print_message("isolate C, phase connected: diodes conduct %.0f %% of the window, i_C rms %.2f "
                   "A, peak %.2f A, ripple %.2f N m\n",
                   100.0 * r.diode_conduction, r.phase_rms_a[2], r.phase_peak_a[2],
@@ -216,7 +207,7 @@ static void test_paper_ddc_rides_through(void **state)
     c.mid_period_angle = 0;
     c.flux_tie_band = 0.0;
     c.pulse_pattern = 0;
-    run(&c, &r);
+    sim_run_quiet(&c, &r);
     check_ride_through(&c, &r, 2);
 }
 
@@ -252,7 +243,7 @@ static void test_open_while_braking(void **state)
         c.seed = (uint64_t)seed;
         c.duration_s = 0.6;
         c.arith = (seed == 5) ? 1 : 0; /* the float build at the seed */
-        run(&c, &r);
+        sim_run_quiet(&c, &r);
         check_found_in_time(&r, 2, "braking");
     }
 }
@@ -273,7 +264,7 @@ static void test_open_during_reversal_braking(void **state)
         c.fault_phase = phase;
         c.fault_time_s = 0.15;
         c.duration_s = 0.6;
-        run(&c, &r);
+        sim_run_quiet(&c, &r);
         check_found_in_time(&r, phase, "reversal");
     }
 }
@@ -296,7 +287,7 @@ static void test_open_at_light_and_no_load(void **state)
         c.load_nm = loads[i / 4];
         c.speed_rpm = speeds[(i / 2) % 2];
         c.duration_s = 0.6;
-        run(&c, &r);
+        sim_run_quiet(&c, &r);
         print_message("%.1f N m, %.0f r/min, %c open: isolated %d after %.1f ms, state %d\n",
                       c.load_nm, c.speed_rpm, 'A' + phase, r.isolated_leg, r.isolation_ms,
                       r.final_state);
@@ -324,7 +315,7 @@ static void test_open_at_no_load_low_speed(void **state)
         c.load_nm = 0.0;
         c.speed_rpm = speeds[i / 6];
         c.duration_s = 0.6;
-        run(&c, &r);
+        sim_run_quiet(&c, &r);
         print_message("no load, %.0f r/min, %c open: isolated %d after %.1f ms, state %d\n",
                       c.speed_rpm, 'A' + phase, r.isolated_leg, r.isolation_ms, r.final_state);
         assert_int_equal(r.final_state, 3);
@@ -346,7 +337,7 @@ static void test_two_phases_at_light_load(void **state)
     c.load_nm = 0.5;
     c.second_fault_phase = 5;
     c.second_fault_s = 0.55;
-    run(&c, &r);
+    sim_run_quiet(&c, &r);
     print_message("0.5 N m, C then F: C isolated after %.1f ms, state %d fault %d at %.1f ms, "
                   "records %d\n",
                   r.isolation_ms, r.final_state, r.fault, 1e3 * r.fault_time_s, r.fault_records);
@@ -373,7 +364,7 @@ static void test_mptc49_on_five_legs(void **state)
         c.protect = false;
         c.open_model = 1;
         c.isolate_leg = phase;
-        run(&c, &r);
+        sim_run_quiet(&c, &r);
         print_message("MPTC-49, %c opened and isolated: five legs from %.1f ms, dip %.1f r/min, "
                       "mean %.1f r/min, torque %.2f N m, ripple %.2f N m, i rms %.3f A\n",
                       'A' + phase, r.postfault_start_ms, r.speed_dip_rpm, r.speed_mean_rpm,

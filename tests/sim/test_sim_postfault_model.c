@@ -18,6 +18,7 @@
 #include "ctl_postfault.h"
 #include "ctl_pu.h"
 #include "plant.h"
+#include "test_rng.h"
 
 #define PI 3.14159265358979323846
 #define TS 1e-4
@@ -103,10 +104,8 @@ static void test_projection_against_the_plant(void **state)
         for (n = 0; n < 200; n++) {
             plant_state_t s = {0};
             model_err_t e;
-            rng = rng * 1664525u + 1013904223u;
-            s.i_d = -2.0 + 4.0 * (double)(rng >> 8) / 16777216.0;
-            rng = rng * 1664525u + 1013904223u;
-            s.i_q = -4.0 + 8.0 * (double)(rng >> 8) / 16777216.0;
+            s.i_d = test_lcg_range(&rng, -2.0, 2.0);
+            s.i_q = test_lcg_range(&rng, -4.0, 4.0);
             s.i_x = 0.3 * s.i_q;
             s.theta_m = 2.0 * PI * (double)n / 200.0 / 3.0;
             s.omega_m = 157.0 * ((n % 3) - 1); /* -1500, 0, +1500 r/min */

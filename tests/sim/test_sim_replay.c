@@ -41,6 +41,7 @@
 #include "reproduce_cases.h"
 #include "scenario.h"
 #include "sim.h"
+#include "sim_run_checked.h"
 
 #define MAX_SAMPLES 80000 /* 0.56 s at 100 kHz and more: the longest replay (reversal) */
 #define MAX_FINE 32
@@ -216,18 +217,14 @@ static void replay_alloc(replay_t *rep, bool alloc)
 static void replay_run(replay_t *rep, sim_config_t c, double start_s, sim_result_t *r)
 {
     sim_observer_t obs = {rep, replay_period, NULL};
-    char err[256] = "";
     replay_alloc(rep, false);
     memset(rep->plant, 0, sizeof rep->plant);
     replay_alloc(rep, true);
     rep->start_s = start_s;
     rep->started = rep->in_window = false;
     rep->window_first = 0;
-    c.out_dir = NULL;
     c.observer = &obs;
-    if (sim_run(&c, r, err, sizeof err) != 0) {
-        fail_msg("%s", err);
-    }
+    sim_run_quiet(&c, r);
 }
 
 /* Replay one case over its analysis window, extended back to 5 ms before a reference or load

@@ -24,9 +24,9 @@ void mock_reset(void)
     memset(&mock_cmd, 0, sizeof mock_cmd);
     memset(&mock_diag, 0, sizeof mock_diag);
     for (i = 0; i < HAL_ADC_PHASES; i++) {
-        mock_adc.phase[i] = 2048u;
+        mock_adc.phase[i] = MOCK_ADC_ZERO;
     }
-    mock_adc.vdc = 2765u;
+    mock_adc.vdc = MOCK_ADC_VDC_540V;
     mock_encoder.elec_angle = 0u;
     mock_encoder.mech_speed_q16 = 0;
     mock_encoder.healthy = true;

@@ -17,6 +17,7 @@
 
 #include "ctl.h"
 #include "hal_adc.h"
+#include "hal_board.h"
 #include "hal_encoder.h"
 #include "hal_pwm.h"
 
@@ -47,6 +48,10 @@ extern uint32_t mock_encoder_offset; /* hal_encoder_offset / hal_encoder_set_off
 extern ctl_cmd_t mock_cmd;           /* what ctl_step returns */
 extern ctl_diag_t mock_diag;         /* what ctl_diag returns */
 extern ctl_param_error_t mock_request_result;
+
+/* mock_reset's ADC words, from the board's scaling: no current (mid scale), a 540 V DC link. */
+#define MOCK_ADC_ZERO ((uint16_t)HAL_BOARD_CURRENT_ZERO_COUNTS)
+#define MOCK_ADC_VDC_540V ((uint16_t)(540.0 / HAL_BOARD_VDC_V_PER_COUNT + 0.5)) /* 2765 */
 
 void mock_reset(void);
 

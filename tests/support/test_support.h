@@ -1,4 +1,5 @@
-/* Small helpers shared by the control-core tests (include after cmocka.h). */
+/* Assertions on doubles shared by the tests (include after cmocka.h). Random numbers:
+ * test_rng.h. */
 #ifndef TEST_SUPPORT_H
 #define TEST_SUPPORT_H
 
@@ -18,27 +19,6 @@
             fail();                                                                                \
         }                                                                                          \
     } while (0)
-
-/* Deterministic xorshift32 sequence for random test points. */
-typedef struct {
-    uint32_t state;
-} test_rng_t;
-
-static inline uint32_t test_rng_u32(test_rng_t *r)
-{
-    uint32_t x = r->state;
-    x ^= x << 13;
-    x ^= x >> 17;
-    x ^= x << 5;
-    r->state = x;
-    return x;
-}
-
-/* Uniform in [lo, hi). */
-static inline double test_rng_range(test_rng_t *r, double lo, double hi)
-{
-    return lo + (hi - lo) * ((double)test_rng_u32(r) * (1.0 / 4294967296.0));
-}
 
 /* |got - want| <= tol, naming the function and its input when it fails. */
 static inline void expect_close(double got, double want, double tol, const char *what, double input)
