@@ -99,7 +99,7 @@ static void test_the_dispatch_is_the_command_list(void **state)
 {
     uint16_t code;
     (void)state;
-    calibrate();
+    fixture_ready(&d);
     assert_int_equal(sizeof listed / sizeof listed[0], SXL_COMMAND_COUNT);
     for (code = 0u; code < SXL_REPLY; code++) {
         const int k = listed_index(code);
