@@ -34,7 +34,7 @@
 
 #include <cmocka.h>
 
-#include "sim.h"
+#include "run/sim.h"
 
 /* DDC variant for run_case: 0 the paper's method, every improvement off (the regression
  * group); < 0 the core's defaults (the product's DDC, the robustness group); 1 the torque guard

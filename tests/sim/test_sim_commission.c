@@ -28,9 +28,9 @@
 #include "ctl_params.h"
 #include "ctl_pu.h"
 #include "hal_sim.h"
-#include "sim.h"
+#include "run/sim.h"
 #include "sxlink.h"
-#include "sim_run_state.h"
+#include "run/sim_run_state.h"
 #include "sxlink_commission.h"
 
 typedef struct {

@@ -20,7 +20,7 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "sim.h"
+#include "run/sim.h"
 #include "sxlink.h"
 
 static void run(sim_config_t *c, sim_result_t *r)

@@ -10,15 +10,15 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "fault_inject.h"
-#include "inverter.h"
-#include "plant.h"
-#include "recorder.h"
+#include "bridge/sim_ctl.h"
+#include "plant/fault_inject.h"
+#include "plant/inverter.h"
+#include "plant/plant.h"
+#include "plant/sim_adc.h"
+#include "plant/sim_encoder.h"
+#include "record/recorder.h"
 #include "scenario.h"
 #include "sim.h"
-#include "sim_adc.h"
-#include "sim_ctl.h"
-#include "sim_encoder.h"
 #include "sim_metrics.h"
 #include "sim_open_phase.h"
 

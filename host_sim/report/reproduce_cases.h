@@ -12,8 +12,8 @@
 #ifndef SIM_REPRODUCE_CASES_H
 #define SIM_REPRODUCE_CASES_H
 
-#include "batch.h"
-#include "sim.h"
+#include "run/batch.h"
+#include "run/sim.h"
 
 #define REP_MAX_CASES 320
 #define REP_BASELINE_SENSOR_SPAN_A 50.0

@@ -18,7 +18,7 @@
 
 #include <stddef.h>
 
-#include "batch.h"
+#include "run/batch.h"
 #include "sweep_grid.h"
 
 #define SWEEP_BINARY_ID_LEN 32

@@ -11,9 +11,9 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "batch.h"
-#include "cli.h"
-#include "plots.h"
+#include "cli/cli.h"
+#include "report/plots.h"
+#include "run/batch.h"
 #include "sweep_grid.h"
 #include "sweep_points.h"
 #include "sweep_table.h"

@@ -11,8 +11,8 @@
 #include <stdbool.h>
 #include <stddef.h>
 
-#include "metrics.h"
-#include "recorder.h"
+#include "record/metrics.h"
+#include "record/recorder.h"
 #include "sim.h"
 
 typedef struct {

@@ -13,9 +13,9 @@
 #include <stdint.h>
 #include <stdio.h>
 
-#include "metrics.h"
+#include "bridge/sim_ctl.h"
+#include "record/metrics.h"
 #include "sim.h"
-#include "sim_ctl.h"
 
 struct sim_run;
 

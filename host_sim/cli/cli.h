@@ -9,7 +9,7 @@
 #include <stddef.h>
 #include <stdio.h>
 
-#include "sim.h"
+#include "run/sim.h"
 
 typedef struct {
     sim_config_t cfg;

@@ -14,13 +14,13 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "batch.h"
 #include "plots.h"
 #include "reproduce_cases.h"
 #include "reproduce_commission.h"
 #include "reproduce_postfault.h"
 #include "reproduce_report.h"
-#include "sim.h"
+#include "run/batch.h"
+#include "run/sim.h"
 
 static double rep_now(void)
 {

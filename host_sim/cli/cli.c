@@ -12,7 +12,7 @@
 #include "ctl_params.h"
 #include "decimal_arg.h"
 #include "motor_params_file.h"
-#include "scenario.h"
+#include "run/scenario.h"
 #include "sxlink_commission.h"
 
 #define CLI_DEG_TO_RAD (3.14159265358979323846 / 180.0)

@@ -5,7 +5,7 @@
 #include <string.h>
 
 #include "sim_open_phase.h"
-#include "sim_rng.h"
+#include "plant/sim_rng.h"
 #include "commission.h"
 #include "ctl_params.h"
 #include "sxlink_commission.h"

@@ -11,7 +11,7 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "cli.h"
+#include "cli/cli.h"
 #include "decimal_arg.h"
 
 static int grid_fail(char *err, size_t len, const char *fmt, const char *a, const char *b)

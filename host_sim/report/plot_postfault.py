@@ -10,7 +10,7 @@ import os
 import matplotlib.pyplot as plt
 import numpy as np
 
-# trace.csv columns (host_sim/recorder.c)
+# trace.csv columns (host_sim/record/recorder.c)
 T, SPEED, PHASES, TE, TREF = 0, 1, range(3, 9), 13, 16
 NAMES = "ABCDEF"
 

@@ -18,7 +18,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 import plot_postfault  # noqa: E402  (beside this script)
 
-# trace.csv columns (see host_sim/sim.c)
+# trace.csv columns (see host_sim/run/sim.c)
 T, SPEED, IA, IB, IC, IX, IY, TE, TREF = 0, 1, 3, 4, 5, 11, 12, 13, 16
 USECOLS = tuple(range(0, 18))
 PROCESSES = 2  # drawing processes

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Plots of a `sixphase-sim sweep` (DIR/sweep.csv, columns in host_sim/sweep_table.h).
+"""Plots of a `sixphase-sim sweep` (DIR/sweep.csv, columns in host_sim/sweep/sweep_table.h).
 
 Only the points whose outcome is "ok" are drawn: a point the drive stopped in a fault has the
 metrics of a stopped drive (no ripple, no switching) and a failed run has none.

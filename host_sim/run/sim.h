@@ -10,10 +10,10 @@
 #include <stdio.h>
 #include <stdint.h>
 
-#include "fault_inject.h"
-#include "plant.h"
-#include "recorder.h"
-#include "sim_ctl.h"
+#include "bridge/sim_ctl.h"
+#include "plant/fault_inject.h"
+#include "plant/plant.h"
+#include "record/recorder.h"
 
 typedef enum {
     SIM_SCEN_STEADY = 0,    /* 1500 r/min, rated load */
