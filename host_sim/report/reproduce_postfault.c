@@ -5,7 +5,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "run/sim_open_phase.h"
+#include "run/scenario.h"
 
 /* One open-phase run: the product's DDC (the core's defaults), fault-open-phase at 0.25 s in
  * phase `phase`, ride-through or stop, the load the derated drive can carry. */

@@ -5,7 +5,11 @@
 #ifndef SIM_SCENARIO_H
 #define SIM_SCENARIO_H
 
-#include "sim.h"
+#include "sim_config.h"
+
+/* Default length of the ride-through fault runs (sim_open_phase.h): injection, detection, the
+ * hand-off, the recovery and a 0.2 s analysis window of five-leg operation. */
+#define SIM_OPEN_PHASE_DURATION_S 0.8
 
 typedef struct {
     double speed;        /* r/min: final reference */

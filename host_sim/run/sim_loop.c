@@ -7,6 +7,7 @@
 #include <stdio.h>
 
 #include "hal_sim.h"
+#include "sim_open_phase.h"
 #include "sim_run_state.h"
 
 #define LOOP_RAD_S_TO_RPM (60.0 / (2.0 * 3.14159265358979323846))

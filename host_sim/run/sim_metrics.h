@@ -13,7 +13,7 @@
 
 #include "record/metrics.h"
 #include "record/recorder.h"
-#include "sim.h"
+#include "sim_config.h"
 
 typedef struct {
     /* plant samples of the analysis window */

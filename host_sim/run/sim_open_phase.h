@@ -3,7 +3,8 @@
  * share once per period after its ISR (as the board's background loop would run it), an
  * isolation command at a set time, the plant following the legs the drive isolated (their phases
  * open, plant_params_t.phase_open, the currents commutated at once as the all-off model does),
- * and the metrics of the transition and of five-leg operation. Internal to host_sim.
+ * and the metrics of the transition and of five-leg operation. Its state is the run's
+ * (sim_open_phase_t, sim_run_state.h). Internal to host_sim.
  */
 #ifndef SIM_OPEN_PHASE_H
 #define SIM_OPEN_PHASE_H
@@ -14,26 +15,12 @@
 #include <stdio.h>
 
 #include "bridge/sim_ctl.h"
-#include "record/metrics.h"
-#include "sim.h"
+#include "sim_config.h"
 
 struct sim_run;
 
-/* Default of the ride-through fault runs: injection, detection, the hand-off, the recovery and
- * a 0.2 s analysis window of five-leg operation. */
-#define SIM_OPEN_PHASE_DURATION_S 0.8
 /* The band the speed must stay in to count as recovered (brief §7's transient band). */
 #define SIM_OPEN_PHASE_BAND 0.02
-
-typedef struct {
-    uint16_t isolated_seen; /* legs the plant treats as switched off */
-    bool command_sent;
-    double t_event; /* the fault's injection or the isolation command, scenario clock; < 0 none */
-    double t_isolated; /* the first isolation, scenario clock; < 0 none yet */
-    double min_speed_rpm;
-    double peak_a; /* largest |i| of any phase from the event on */
-    metrics_settle_t settle;
-} sim_open_phase_t;
 
 /* At set-up, after the plan and the fault: when the event comes (a fault-open-phase injection or
  * an isolation command) and the second open phase. 0, or -1 with a one-line message in err when

@@ -1,6 +1,7 @@
 /* A finished run's result record, see sim_run_state.h. */
 #include <stdio.h>
 
+#include "sim_open_phase.h"
 #include "sim_run_state.h"
 
 static void result_identity(const sim_run_t *rs, sim_result_t *r)

@@ -1,6 +1,7 @@
 /*
  * Everything one simulation run owns, shared by the files that make up sim_run(): set-up and
- * calibration (sim_setup.c), the period loop (sim_loop.c), the results (sim_result.c).
+ * calibration (sim_setup.c), the period loop (sim_loop.c), the results (sim_result.c), the
+ * commissioning and open-phase parts (sim_commission.c, sim_open_phase.c).
  * Internal to host_sim.
  */
 #ifndef SIM_RUN_STATE_H
@@ -16,11 +17,22 @@
 #include "plant/plant.h"
 #include "plant/sim_adc.h"
 #include "plant/sim_encoder.h"
+#include "record/metrics.h"
 #include "record/recorder.h"
 #include "scenario.h"
-#include "sim.h"
+#include "sim_config.h"
 #include "sim_metrics.h"
-#include "sim_open_phase.h"
+
+/* The open-phase part's state (sim_open_phase.h) */
+typedef struct {
+    uint16_t isolated_seen; /* legs the plant treats as switched off */
+    bool command_sent;
+    double t_event; /* the fault's injection or the isolation command, scenario clock; < 0 none */
+    double t_isolated; /* the first isolation, scenario clock; < 0 none yet */
+    double min_speed_rpm;
+    double peak_a; /* largest |i| of any phase from the event on */
+    metrics_settle_t settle;
+} sim_open_phase_t;
 
 typedef struct sim_run {
     const sim_config_t *cfg;

@@ -10,6 +10,7 @@
 #include "ctl_machine.h"
 #include "hal_cycles.h"
 #include "hal_sim.h"
+#include "sim_open_phase.h"
 #include "sim_run_state.h"
 #include "sxlink.h"
 

@@ -161,7 +161,7 @@ int sim_sweep_main(int argc, char **argv)
     rc = sweep_configure(&g, points, cases);
     if (rc == 0) {
         (void)sweep_run_missing(&g, points, cases, &resumed);
-        if (sweep_table_write(&g, points, &sum) != 0) {
+        if (sweep_table_write(&g, points, sweep_point_read, &sum) != 0) {
             fprintf(stderr, "sixphase-sim: cannot write the tables in '%s'\n", g.out);
             rc = 1;
         } else {

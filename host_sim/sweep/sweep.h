@@ -24,8 +24,6 @@
 #define SIM_SWEEP_H
 
 #define SWEEP_MAX_POINTS 400
-#define SWEEP_MAX_AXES 4
-#define SWEEP_MAX_VALUES 256
 
 /* argv[0] is the first option after `sweep`. Returns the process exit status. */
 int sim_sweep_main(int argc, char **argv);

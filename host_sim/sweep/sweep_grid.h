@@ -4,8 +4,9 @@
 
 #include <stddef.h>
 
-#include "sweep.h"
-
+/* A grid's limits: swept options, values of one, run arguments */
+#define SWEEP_MAX_AXES 4
+#define SWEEP_MAX_VALUES 256
 #define SWEEP_MAX_ARGS 96
 
 typedef struct {

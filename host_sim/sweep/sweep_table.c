@@ -7,8 +7,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "sweep_points.h"
-
 #define TABLE_MAX_COLUMNS 320
 #define TABLE_KEY 80
 #define TABLE_VALUE 256
@@ -266,11 +264,11 @@ static void row_options(table_row_t *r, const sweep_grid_t *g, long p)
 }
 
 /* Point p's row: its options, outcome and metrics. */
-static void row_build(table_row_t *r, const sweep_grid_t *g, long p)
+static void row_build(table_row_t *r, const sweep_grid_t *g, long p, sweep_table_read_fn read)
 {
     char num[32], err[TABLE_VALUE] = "";
     char *json = NULL;
-    const int ok = sweep_point_read(g, p, &json, err, sizeof err);
+    const int ok = read(g, p, &json, err, sizeof err);
     flat_t f;
     r->n = 0;
     (void)snprintf(num, sizeof num, "%ld", p);
@@ -420,7 +418,8 @@ static void summary_add(sweep_summary_t *s, const table_row_t *r)
     }
 }
 
-int sweep_table_write(const sweep_grid_t *g, long points, sweep_summary_t *sum)
+int sweep_table_write(const sweep_grid_t *g, long points, sweep_table_read_fn read,
+                      sweep_summary_t *sum)
 {
     static table_row_t row;
     static table_columns_t cols;
@@ -431,7 +430,7 @@ int sweep_table_write(const sweep_grid_t *g, long points, sweep_summary_t *sum)
     memset(sum, 0, sizeof *sum);
     cols.n = 0;
     for (p = 0; p < points; p++) {
-        row_build(&row, g, p);
+        row_build(&row, g, p, read);
         columns_merge(&cols, &row);
     }
     (void)snprintf(path, sizeof path, "%s/sweep.csv", g->out);
@@ -453,7 +452,7 @@ int sweep_table_write(const sweep_grid_t *g, long points, sweep_summary_t *sum)
     fputs("\n", csv);
     fputs("[\n", json);
     for (p = 0; p < points; p++) {
-        row_build(&row, g, p);
+        row_build(&row, g, p, read);
         summary_add(sum, &row);
         write_row(csv, json, &cols, &row, p + 1 == points);
     }

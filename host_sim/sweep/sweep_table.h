@@ -29,7 +29,13 @@ typedef struct {
  * after it), 0 when it is cut short or malformed. */
 int sweep_table_metrics_whole(const char *json);
 
-/* Writes both tables; 0, or -1 when they cannot be written. */
-int sweep_table_write(const sweep_grid_t *g, long points, sweep_summary_t *sum);
+/* Point p's outcome as sweep_point_read gives it: 1 ok (*json: its whole metrics.json, malloc'd,
+ * for the caller to free), 0 not (err: why, one line). */
+typedef int (*sweep_table_read_fn)(const sweep_grid_t *g, long p, char **json, char *err,
+                                   size_t len);
+
+/* Writes both tables from the points' outcomes (read); 0, or -1 when they cannot be written. */
+int sweep_table_write(const sweep_grid_t *g, long points, sweep_table_read_fn read,
+                      sweep_summary_t *sum);
 
 #endif /* SIM_SWEEP_TABLE_H */
