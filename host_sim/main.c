@@ -6,13 +6,13 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "cli.h"
-#include "plots.h"
-#include "reproduce.h"
-#include "scenario.h"
-#include "serve.h"
-#include "sim.h"
-#include "sweep.h"
+#include "cli/cli.h"
+#include "report/plots.h"
+#include "report/reproduce.h"
+#include "run/scenario.h"
+#include "run/serve.h"
+#include "run/sim.h"
+#include "sweep/sweep.h"
 
 /* A long run's progress on a terminal (the run's observer, every 1,000 periods). */
 typedef struct {

@@ -30,7 +30,7 @@ END = "<!-- /commission-grid -->"
 ARITHS = ("fixed", "float")
 SIGMAS = 3.0
 
-# The reference machine (control/include/ctl_machine.h, host_sim/plant.c).
+# The reference machine (control/include/ctl_machine.h, host_sim/plant/plant.c).
 REF = {"r": 2.0, "ld": 0.035, "lq": 0.055, "lxy": 0.010, "psi": 0.225, "pp": 3, "j": 0.01,
        "b": 0.001}
 

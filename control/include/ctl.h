@@ -22,6 +22,7 @@
 #include <stdint.h>
 
 #include "ctl_config.h"
+#include "ctl_diag.h"
 #include "ctl_params.h"
 #include "ctl_q.h"
 #include "ctl_speed_pi.h"
@@ -71,21 +72,6 @@ typedef struct {
     ctl_q duty;                 /* fraction of the period the active vector is applied */
     bool enable;                /* false: all switches off */
 } ctl_cmd_t;
-
-typedef struct {
-    ctl_q i_d, i_q, i_x, i_y;   /* measured, at sample k */
-    ctl_q torque_est;           /* Te(k) from measured currents */
-    ctl_q psi_d_est, psi_q_est; /* psi_s(k) in the rotor frame; |psi_s|: ctl_diag_flux_est */
-    ctl_q torque_ref;
-    ctl_q flux_ref;
-    ctl_q torque_pred; /* chosen candidate, at k+2 */
-    ctl_q flux_pred;
-    ctl_q cost;
-    int16_t flux_sector; /* alpha-beta sector 0..11 at k+1 (DDC) */
-    int16_t xy_sector;   /* x-y sector used by table 2 (DDC) */
-    int16_t candidates;  /* candidates evaluated this step */
-    bool braking;        /* DDC used the torque-lowering half of table 1 */
-} ctl_diag_t;
 
 /*
  * Parameter hand-off (C2000Ware's init/run split, double-buffered): the background builds
@@ -163,6 +149,9 @@ void ctl_set_torque_ref(ctl_t *c, ctl_q torque_pu);
 
 /* One control period. */
 void ctl_step(ctl_t *c, const ctl_meas_t *m, ctl_cmd_t *cmd);
+/* One control period with all six legs (ctl.c), the step ctl_step (ctl_step.c) hands the period
+ * to when no phase is open (ctl_postfault_step, ctl_postfault.h, otherwise). */
+void ctl_healthy_step(ctl_t *c, const ctl_meas_t *m, ctl_cmd_t *cmd);
 
 const ctl_diag_t *ctl_diag(const ctl_t *c);
 

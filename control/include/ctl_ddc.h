@@ -14,6 +14,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 
+#include "ctl_ddc_types.h"
 #include "ctl_q.h"
 #include "ctl_search.h"
 
@@ -25,30 +26,10 @@ typedef struct {
     ctl_q psi_y;
 } ctl_ddc_flux_t;
 
-#define CTL_DDC_LEVELS_MAX 11
-
-/* The search's settings, built once per parameter set (ctl_config_t), outside the ISR. */
-typedef struct {
-    int16_t direction; /* 0 flux-error reading, 1 x-y-table reading (ctl_ddc_direction_t) */
-    int16_t n_levels;  /* 2..CTL_DDC_LEVELS_MAX */
-    bool torque_guard; /* improvement: flux weighting moves the duty at most one level */
-    /* improvement: the flux term decides only between levels whose torque errors are within
-     * this times |Te(d=1) - Te(d=0)| of the best (the tie band over the levels' count); 0: off */
-    ctl_q tie_per_span;
-    ctl_q levels[CTL_DDC_LEVELS_MAX]; /* 1, (n-2)/(n-1), ..., 0; unused entries 0 */
-} ctl_ddc_config_t;
-
 /* Fills cfg; n_levels in 2..CTL_DDC_LEVELS_MAX and tie_band (a fraction of one level, 0: off)
  * in 0..1 (the caller has checked them). */
 void ctl_ddc_config_init(ctl_ddc_config_t *cfg, int16_t direction, int16_t n_levels,
                          bool torque_guard, float tie_band);
-
-/* The k+2 state under the zero vector: torque and flux components (the root on demand). */
-typedef struct {
-    ctl_q torque;
-    ctl_q psi_d;
-    ctl_q psi_q;
-} ctl_ddc_state_t;
 
 /* stage_hook (profiling, 0: none) is told when the table stage ends. */
 void ctl_ddc_select(const ctl_horizon_t *h, const ctl_ddc_flux_t *flux, const ctl_ddc_config_t *cfg,

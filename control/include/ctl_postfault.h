@@ -24,9 +24,6 @@
 /* One control period with the open phase of the configuration in force (which must have one);
  * all-off while no valid set was ever in force (ctl_step calls it for both). */
 void ctl_postfault_step(ctl_t *c, const ctl_meas_t *m, ctl_cmd_t *cmd);
-/* One control period with all six legs (ctl.c), the step ctl_step (ctl_step.c) hands the
- * period to otherwise. */
-void ctl_healthy_step(ctl_t *c, const ctl_meas_t *m, ctl_cmd_t *cmd);
 
 /* The prediction's projection on its own (tests): the rotor-frame currents (i_d, i_q) and x-y
  * currents moved along M^-1 c_k until the open phase carries none at the rotor angle whose sine

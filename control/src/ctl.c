@@ -5,7 +5,6 @@
 #include "ctl_ddc.h"
 #include "ctl_diag_record.h"
 #include "ctl_mptc.h"
-#include "ctl_postfault.h"
 #include "ctl_pulse.h"
 #include "ctl_search.h"
 #include "ctl_vectors.h"
@@ -289,6 +288,6 @@ SIXPHASE_RAMFUNC void ctl_healthy_step(ctl_t *c, const ctl_meas_t *m, ctl_cmd_t 
                         &c->applied_edges);
     c->applied_vector = cmd->vector;
     c->applied_duty = cmd->duty;
-    ctl_diag_record(c, cfg, smp.id, smp.iq, smp.vsd.x, smp.vsd.y, &h, &choice);
+    ctl_diag_record(&c->diag, cfg, smp.id, smp.iq, smp.vsd.x, smp.vsd.y, &h, &choice);
     CTL_STAGE_MARK(c->stage_hook, CTL_STAGE_SEARCH);
 }

@@ -7,7 +7,7 @@
 #ifndef CTL_DDC_LEVELS_H
 #define CTL_DDC_LEVELS_H
 
-#include "ctl_ddc.h"
+#include "ctl_ddc_types.h"
 #include "ctl_search.h"
 
 /* The levels that compete: those in [*first, *last] whose torque error is at most *bound. All

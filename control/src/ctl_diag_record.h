@@ -6,15 +6,16 @@
 #ifndef CTL_DIAG_RECORD_H
 #define CTL_DIAG_RECORD_H
 
-#include "ctl.h"
+#include "ctl_config.h"
+#include "ctl_diag.h"
 #include "ctl_search.h"
 
 /* The sampled d-q and x-y currents and the estimates from them, the references of the horizon
- * and the choice. */
-static inline void ctl_diag_record(ctl_t *c, const ctl_config_t *cfg, ctl_q id, ctl_q iq, ctl_q ix,
-                                   ctl_q iy, const ctl_horizon_t *h, const ctl_choice_t *choice)
+ * and the choice, into dg (the controller's ctl_t.diag). */
+static inline void ctl_diag_record(ctl_diag_t *dg, const ctl_config_t *cfg, ctl_q id, ctl_q iq,
+                                   ctl_q ix, ctl_q iy, const ctl_horizon_t *h,
+                                   const ctl_choice_t *choice)
 {
-    ctl_diag_t *dg = &c->diag;
     dg->i_d = id;
     dg->i_q = iq;
     dg->i_x = ix;

@@ -381,6 +381,6 @@ void ctl_postfault_step(ctl_t *c, const ctl_meas_t *m, ctl_cmd_t *cmd)
         pf_select_mptc(cfg, &p, &choice);
     }
     pf_command(c, cfg, p.pf, &choice, cmd);
-    ctl_diag_record(c, cfg, i0.d, i0.q, i0.x, i0.y, &p.h, &choice);
+    ctl_diag_record(&c->diag, cfg, i0.d, i0.q, i0.x, i0.y, &p.h, &choice);
     CTL_STAGE_MARK(c->stage_hook, CTL_STAGE_SEARCH);
 }

@@ -8,7 +8,7 @@
 
 #include <stdint.h>
 
-#include "drive.h"
+#include "drive_core.h"
 
 /* The sample of one signal in this period (0 for an unknown id). */
 int16_t drive_capture_value(const drive_t *d, int16_t signal);

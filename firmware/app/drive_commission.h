@@ -10,7 +10,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 
-#include "drive.h"
+#include "drive_core.h"
 
 typedef enum {
     DRIVE_COMM_OK = 0,

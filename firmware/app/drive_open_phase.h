@@ -25,7 +25,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 
-#include "drive.h"
+#include "drive_core.h"
 
 /* The ISR: what the period's faults leave after a ride-through (the faults to latch). */
 uint16_t drive_open_phase_faults(drive_t *d, uint16_t faults);

@@ -133,8 +133,9 @@ uint32_t hal_encoder_counts_per_turn(void)
 
 uint32_t hal_encoder_offset(void) { return hal_sim_bus.encoder_elec_offset; }
 
-/* The plant's encoder model computes the angle with the bus's offset (host_sim/sim_encoder.c),
- * so a new offset shows from the next period's sample on, as on the eQEP. */
+/* The plant's encoder model computes the angle with the bus's offset
+ * (host_sim/plant/sim_encoder.c), so a new offset shows from the next period's sample on, as on
+ * the eQEP. */
 void hal_encoder_set_offset(uint32_t elec_offset) { hal_sim_bus.encoder_elec_offset = elec_offset; }
 
 /* ---- hal_serial.h and its line side ---- */

@@ -33,14 +33,14 @@
 
 #include "drive.h"
 #include "drive_link.h"
-#include "fault_inject.h"
 #include "hal_board.h"
 #include "hal_sim.h"
-#include "inverter.h"
-#include "plant.h"
+#include "plant/fault_inject.h"
+#include "plant/inverter.h"
+#include "plant/plant.h"
+#include "plant/sim_adc.h"
+#include "plant/sim_encoder.h"
 #include "profile.h"
-#include "sim_adc.h"
-#include "sim_encoder.h"
 #include "sxlink.h"
 
 int LLVMFuzzerTestOneInput(const unsigned char *data, size_t size);

@@ -16,7 +16,7 @@
 
 #include <cmocka.h>
 
-#include "cli.h"
+#include "cli/cli.h"
 
 #ifndef SIXPHASE_SIM_EXE
 #error "SIXPHASE_SIM_EXE must name the sixphase-sim executable"

@@ -34,7 +34,7 @@
 
 #include <cmocka.h>
 
-#include "sim.h"
+#include "run/sim.h"
 #include "sim_run_checked.h"
 
 /* DDC variant for run_case: 0 the paper's method, every improvement off (the regression

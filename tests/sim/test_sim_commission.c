@@ -28,10 +28,10 @@
 #include "ctl_params.h"
 #include "ctl_pu.h"
 #include "hal_sim.h"
-#include "sim.h"
+#include "run/sim.h"
 #include "sim_run_checked.h"
 #include "sxlink.h"
-#include "sim_run_state.h"
+#include "run/sim_run_state.h"
 #include "sxlink_commission.h"
 
 typedef struct {

@@ -15,7 +15,7 @@
 
 #include <cmocka.h>
 
-#include "csv_format.h"
+#include "record/csv_format.h"
 
 static uint64_t rng_state = 0x1234567887654321ull;
 

@@ -20,7 +20,7 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "sim.h"
+#include "run/sim.h"
 #include "sim_run_checked.h"
 #include "sxlink.h"
 

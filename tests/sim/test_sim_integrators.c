@@ -22,9 +22,9 @@
 
 #include <cmocka.h>
 
-#include "inverter.h"
-#include "plant.h"
-#include "plant_exact.h"
+#include "plant/inverter.h"
+#include "plant/plant.h"
+#include "plant/plant_exact.h"
 
 #define RPM_TO_RAD_S (3.14159265358979323846 / 30.0)
 

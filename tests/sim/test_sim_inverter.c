@@ -9,8 +9,8 @@
 
 #include <cmocka.h>
 
-#include "inverter.h"
-#include "plant.h"
+#include "plant/inverter.h"
+#include "plant/plant.h"
 
 /* Locked rotor at theta = 0, R = 0, no harmonics: the current change over one
  * period measures the period-average voltage exactly. */

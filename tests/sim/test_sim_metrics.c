@@ -8,7 +8,7 @@
 
 #include <cmocka.h>
 
-#include "metrics.h"
+#include "record/metrics.h"
 
 #define PI 3.14159265358979323846
 #define N 20000

@@ -15,7 +15,7 @@
 
 #include <cmocka.h>
 
-#include "sim.h"
+#include "run/sim.h"
 #include "sim_run_checked.h"
 
 #define RIDE_LOAD_NM 3.5 /* within the minimum-loss limit of 8.4 / 1.803 = 4.66 N m */

@@ -9,7 +9,7 @@
 
 #include <cmocka.h>
 
-#include "plant.h"
+#include "plant/plant.h"
 
 #define PI 3.14159265358979323846
 

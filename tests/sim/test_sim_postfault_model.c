@@ -17,7 +17,7 @@
 #include "ctl.h"
 #include "ctl_postfault.h"
 #include "ctl_pu.h"
-#include "plant.h"
+#include "plant/plant.h"
 #include "test_rng.h"
 
 #define PI 3.14159265358979323846

@@ -19,7 +19,7 @@
 
 #include <cmocka.h>
 
-#include "sim.h"
+#include "run/sim.h"
 
 typedef struct {
     FILE *trace, *fine; /* the reference text, written as the rows arrive */

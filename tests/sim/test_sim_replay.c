@@ -35,12 +35,12 @@
 
 #include <cmocka.h>
 
-#include "inverter.h"
-#include "metrics.h"
-#include "plant.h"
-#include "reproduce_cases.h"
-#include "scenario.h"
-#include "sim.h"
+#include "plant/inverter.h"
+#include "plant/plant.h"
+#include "record/metrics.h"
+#include "report/reproduce_cases.h"
+#include "run/scenario.h"
+#include "run/sim.h"
 #include "sim_run_checked.h"
 
 #define MAX_SAMPLES 80000 /* 0.56 s at 100 kHz and more: the longest replay (reversal) */

@@ -16,8 +16,8 @@
 
 #include <cmocka.h>
 
-#include "reproduce_cases.h"
-#include "reproduce_report.h"
+#include "report/reproduce_cases.h"
+#include "report/reproduce_report.h"
 
 static void add_case(rep_case_t *cases, int *n, const char *name, const double phase[6],
                      double mean)

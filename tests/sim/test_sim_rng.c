@@ -1,5 +1,5 @@
 /*
- * The simulator's random numbers (host_sim/sim_rng.c): the ziggurat Gaussian against the
+ * The simulator's random numbers (host_sim/plant/sim_rng.c): the ziggurat Gaussian against the
  * standard normal distribution on 2 million draws (mean, variance, skew, kurtosis, the
  * probability of each of 12 bins from -3 to +3 sigma and of both tails beyond 3 and 4 sigma,
  * each within 5 standard errors), uniform numbers strictly inside (0, 1) with the right
@@ -13,7 +13,7 @@
 
 #include <cmocka.h>
 
-#include "sim_rng.h"
+#include "plant/sim_rng.h"
 
 #define DRAWS 2000000
 

@@ -3,7 +3,7 @@
 #ifndef SIM_RUN_CHECKED_H
 #define SIM_RUN_CHECKED_H
 
-#include "sim.h"
+#include "run/sim.h"
 
 void sim_run_checked(const sim_config_t *c, sim_result_t *r);
 /* The same without output files: c->out_dir cleared first. */
