@@ -165,7 +165,7 @@ static uint16_t handle_set_controller(drive_t *d, const sxl_frame_t *req)
 {
     ctl_params_t *p = &d->params_req; /* the drive's staging set, off the stack (drive.h) */
     const uint32_t lambda_milli = sxl_get_u32(&req->payload[SXL_SC_LAMBDA]);
-    if (req->payload[SXL_SC_CONTROLLER] > SXL_CONTROLLER_MPTC13 ||
+    if (req->payload[SXL_SC_CONTROLLER] >= (uint16_t)CTL_CONTROLLER_COUNT ||
         lambda_milli > DRIVE_LINK_MAX_LAMBDA_MILLI) {
         return SXL_ERR_VALUE;
     }
