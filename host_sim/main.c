@@ -123,6 +123,17 @@ static int cmd_plot(int argc, char **argv)
     return (sim_plot(SIM_PLOT_RUN, argv[0]) == 0) ? 0 : 1;
 }
 
+/* COMMAND --help, help COMMAND: that command's usage (exit 0), or a one-line error. */
+static int cli_command_help(const char *command)
+{
+    if (sim_cli_command_usage(stdout, command) != 0) {
+        fprintf(stderr, "sixphase-sim: no command '%s' (run, reproduce, sweep, serve or plot)\n",
+                command);
+        return 2;
+    }
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     static const struct {
@@ -140,11 +151,17 @@ int main(int argc, char **argv)
     }
     if (strcmp(argv[1], "help") == 0 || strcmp(argv[1], "--help") == 0 ||
         strcmp(argv[1], "-h") == 0) {
-        sim_cli_usage(stdout);
+        return (argc == 3) ? cli_command_help(argv[2]) : (sim_cli_usage(stdout), 0);
+    }
+    if (strcmp(argv[1], "--version") == 0) {
+        printf("sixphase-sim %s\n", SIXPHASE_VERSION);
         return 0;
     }
     for (k = 0; k < sizeof commands / sizeof commands[0]; k++) {
         if (strcmp(argv[1], commands[k].name) == 0) {
+            if (argc == 3 && (strcmp(argv[2], "--help") == 0 || strcmp(argv[2], "-h") == 0)) {
+                return cli_command_help(argv[1]);
+            }
             return commands[k].fn(argc - 2, argv + 2);
         }
     }

@@ -3,6 +3,7 @@
 #include "cli.h"
 
 #include <errno.h>
+#include <getopt.h>
 #include <math.h>
 #include <stddef.h>
 #include <stdio.h>
@@ -16,72 +17,6 @@
 #include "sxlink_commission.h"
 
 #define CLI_DEG_TO_RAD (3.14159265358979323846 / 180.0)
-
-void sim_cli_usage(FILE *f)
-{
-    fprintf(
-        f,
-        "usage:\n"
-        "  sixphase-sim run --controller {ddc,mptc49,mptc13} --scenario "
-        "{steady,load-step,accel,reversal,commission,fault-<name>}\n"
-        "                   [--lambda X] [--fs HZ] [--speed RPM] [--load NM] [--duration S]\n"
-        "                   [--arith {fixed,float}] [--seed N] [--out DIR [--out-limit-mb MB]]\n"
-        "                   [--ddc-direction {flux-error,xy-table}] [--duty-levels N] "
-        "[--ddc-torque-guard | --paper-ddc]\n"
-        "                   [--delay-angle {period-start,mid-period}] "
-        "[--pulse-pattern {by-ones,fewest-transitions,fewest-per-set}]\n"
-        "                   [--flux-tie-band LEVELS]\n"
-        "                   [--flux-ref {constant,mtpa}] [--light-load-current A] [--torque-limit "
-        "NM]\n"
-        "                   [--trip-current A] "
-        "[--lxy H] [--vdc V] [--dead-time S]\n"
-        "                   [--sensor-span A]\n"
-        "                   plant (the controller keeps the reference machine): [--motor-r OHM]\n"
-        "                   [--motor-ld H] [--motor-lq H] [--motor-lxy H] [--motor-psi-f WB]\n"
-        "                   [--motor-pole-pairs N] [--motor-j KGM2] [--motor-b NMS]\n"
-        "                   [--encoder-offset-deg DEG] [--encoder-reversed]\n"
-        "                   [--encoder-stuck]\n"
-        "                   controller (the plant stays): [--ctl-r OHM] [--ctl-ld H] [--ctl-lq H]\n"
-        "                   [--ctl-lxy H] [--ctl-psi-f WB] [--ctl-pole-pairs N]\n"
-        "                   [--ctl-encoder-offset-deg DEG] | [--ctl-params FILE]\n"
-        "                   commission: [--commission-steps MASK] [--commission-current PERMILLE]\n"
-        "                   [--psi5 WB] [--psi7 WB] [--integrator {exact,rk4}] [--plant-step S]\n"
-        "                   [--fine-rate HZ]\n"
-        "                   [--no-dead-time] [--no-harmonics] [--no-adc-offset] [--no-adc-gain]\n"
-        "                   [--no-adc-noise] [--no-encoder-quant] [--ideal] [--no-trace] "
-        "[--no-fine] "
-        "[--no-protect]\n"
-        "                   [--plot] [--quiet]\n"
-        "                   [--fault-time S]\n"
-        "                   [--ride-through] [--postfault {min-loss,max-torque}] "
-        "[--open-phase {A..F}] [--open-model {resistor,open}]\n"
-        "                   [--second-fault {A..F}] [--second-fault-time S] "
-        "[--isolate-leg {A..F}] [--isolate-time S]\n"
-        "                   [--handoff-delay S] [--torque-limited {continue,stop}] "
-        "[--torque-limited-stop S]\n"
-        "  sixphase-sim reproduce --out DIR [--jobs N] [--no-plots] [--quiet]\n"
-        "  sixphase-sim sweep --out DIR [--jobs N] [--force] [--no-plots] [--quiet] run options,\n"
-        "                   numbers and choices as lists (a,b,c) or ranges (start:stop:step);\n"
-        "                   --scenario defaults to steady, --jobs to the online processors\n"
-        "  sixphase-sim plot DIR: the figure of an earlier run --out DIR (DIR/run.png)\n"
-        "  sixphase-sim serve [run options] [--rate N | --fast] [--baud B]: the firmware on a\n"
-        "                   virtual board behind a pseudo-terminal (its path on stdout);\n"
-        "                   --scenario steady or fault-<name>, --speed the initial reference;\n"
-        "                   until --duration, a signal or `sixphase-link shutdown`\n"
-        "numbers are plain decimals (1500, -0.5, 2e-6); each option at most once\n"
-        "--duration: 0.01 to 36000 s (10 h); memory stays flat, trace.csv grows by about 1.7 MB\n"
-        "per simulated second at 10 kHz (--no-trace leaves it out)\n"
-        "--out-limit-mb: run and serve stop when their files in --out reach it (default 512 MB,\n"
-        "1 MB = 1e6 bytes; exit 1, the files kept up to there)\n"
-        "fault scenarios (rated operation, the fault at 0.25 s; docs/faults.md):\n");
-    {
-        int k;
-        for (k = 1; k < (int)SIM_FAULT_COUNT; k++) {
-            const sim_fault_info_t *fi = sim_fault_info((sim_fault_t)k);
-            fprintf(f, "  fault-%-16s %s\n", fi->name, fi->injection);
-        }
-    }
-}
 
 typedef enum {
     OPT_SET_BOOL,  /* flag: the bool field := flag_value */
@@ -110,6 +45,9 @@ typedef struct {
     double lo, hi;  /* OPT_NUMBER, OPT_INTEGER */
     int flag_value; /* OPT_SET_BOOL, OPT_SET_INT */
     const char *const *choices;
+    int section;         /* the usage's heading (cli_sections) */
+    const char *metavar; /* the value's name in the usage (NULL: a flag, or the choices) */
+    const char *help;    /* one line for the usage */
 } opt_t;
 
 #define CLI_CONTROLLER_NAME(id, number, name, what) name,
@@ -128,18 +66,44 @@ static const char *const postfault_strategies[] = {"min-loss", "max-torque", NUL
 static const char *const torque_limited_actions[] = {"continue", "stop", NULL};
 static const char *const open_models[] = {"resistor", "open", NULL};
 
+/* The usage's headings, in order (an option's section). */
+enum {
+    SEC_0, /* what runs */
+    SEC_1, /* the controller's settings */
+    SEC_2, /* faults, open phase, torque limit */
+    SEC_3, /* the plant's machine (the controller keeps the reference machine) */
+    SEC_4, /* the controller's machine (the plant stays) */
+    SEC_5, /* commissioning (--scenario commission) */
+    SEC_6, /* the board and the plant's non-idealities */
+    SEC_7, /* the plant's numerics */
+    SEC_8, /* output */
+    SEC_9, /* serve */
+    SEC_COUNT
+};
+static const char *const cli_sections[SEC_COUNT] = {
+    "what runs",
+    "the controller's settings",
+    "faults, open phase, torque limit",
+    "the plant's machine (the controller keeps the reference machine)",
+    "the controller's machine (the plant stays)",
+    "commissioning (--scenario commission)",
+    "the board and the plant's non-idealities",
+    "the plant's numerics",
+    "output",
+    "serve"};
+
 #define F(member) offsetof(sim_cli_t, member)
-#define FLAG(n, k, m, g, v)                                                                        \
+#define FLAG(n, k, m, g, v, sec, arg, help)                                                        \
     {                                                                                              \
-        n, k, OPT_RUN, F(m), g, 0.0, 0.0, v, NULL                                                  \
+        n, k, OPT_RUN, F(m), g, 0.0, 0.0, v, NULL, sec, arg, help                                  \
     }
-#define NUM(n, m, g, lo, hi)                                                                       \
+#define NUM(n, m, g, lo, hi, sec, arg, help)                                                       \
     {                                                                                              \
-        n, OPT_NUMBER, OPT_RUN, F(m), g, lo, hi, 0, NULL                                           \
+        n, OPT_NUMBER, OPT_RUN, F(m), g, lo, hi, 0, NULL, sec, arg, help                           \
     }
-#define CHOICE(n, m, g, list)                                                                      \
+#define CHOICE(n, m, g, list, sec, help)                                                           \
     {                                                                                              \
-        n, OPT_CHOICE, OPT_RUN, F(m), g, 0.0, 0.0, 0, list                                         \
+        n, OPT_CHOICE, OPT_RUN, F(m), g, 0.0, 0.0, 0, list, sec, NULL, help                        \
     }
 
 enum {
@@ -219,97 +183,161 @@ enum {
 };
 
 static const opt_t options[] = {
-    {"--quiet", OPT_SET_INT, OPT_RUN | OPT_REPRODUCE | OPT_SERVE, F(quiet), G_QUIET, 0.0, 0.0, 1,
-     NULL},
-    {"--out", OPT_DIRECTORY, OPT_RUN | OPT_REPRODUCE, F(cfg.out_dir), G_OUT, 0.0, 0.0, 0, NULL},
-    NUM("--out-limit-mb", cfg.out_limit_mb, G_OUT_LIMIT, 0.01, 1e6),
-    {"--jobs", OPT_INTEGER, OPT_REPRODUCE, F(jobs), G_JOBS, 1.0, 64.0, 0, NULL},
-    {"--rate", OPT_NUMBER, OPT_SERVE, F(serve_rate), G_PACING, 0.01, 1000.0, 0, NULL},
-    {"--plot", OPT_SET_INT, OPT_RUN, F(plot), G_RUN_PLOT, 0.0, 0.0, 1, NULL},
-    {"--fast", OPT_SET_INT, OPT_SERVE, F(serve_fast), G_PACING, 0.0, 0.0, 1, NULL},
-    {"--baud", OPT_INTEGER, OPT_SERVE, F(serve_baud), G_BAUD, 1200.0, 4000000.0, 0, NULL},
-    CHOICE("--controller", cfg.controller, G_CONTROLLER, controllers),
-    {"--scenario", OPT_SCENARIO, OPT_RUN, F(cfg.scenario), G_SCENARIO, 0.0, 0.0, 0, NULL},
-    CHOICE("--arith", cfg.arith, G_ARITH, ariths),
-    CHOICE("--ddc-direction", cfg.ddc_direction, G_DIRECTION, directions),
-    CHOICE("--flux-ref", cfg.flux_ref_mode, G_FLUX_REF, flux_refs),
-    FLAG("--ddc-torque-guard", OPT_SET_INT, cfg.ddc_torque_guard, G_GUARD, 1),
-    {"--paper-ddc", OPT_PAPER, OPT_RUN, 0u, G_GUARD, 0.0, 0.0, 0, NULL},
-    CHOICE("--delay-angle", cfg.mid_period_angle, G_DELAY_ANGLE, delay_angles),
-    CHOICE("--pulse-pattern", cfg.pulse_pattern, G_PULSE_PATTERN, pulse_patterns),
+    CHOICE("--controller", cfg.controller, G_CONTROLLER, controllers, SEC_0, "the controller"),
+    {"--scenario", OPT_SCENARIO, OPT_RUN, F(cfg.scenario), G_SCENARIO, 0.0, 0.0, 0, NULL, SEC_0,
+     "NAME", "steady, load-step, accel, reversal, commission or fault-<name> (list below)"},
+    CHOICE("--arith", cfg.arith, G_ARITH, ariths, SEC_0, "the control core's arithmetic"),
+    NUM("--lambda", cfg.lambda, G_LAMBDA, CTL_LAMBDA_MIN, CTL_LAMBDA_MAX, SEC_0, "X",
+        "the cost's flux weight, N*m/Wb"),
+    NUM("--fs", cfg.fs_hz, G_FS, 1000.0, 100000.0, SEC_0, "HZ",
+        "sampling (and switching period) frequency"),
+    NUM("--speed", cfg.speed_rpm, G_SPEED, -6000.0, 6000.0, SEC_0, "RPM",
+        "speed reference (serve: the initial one)"),
+    NUM("--load", cfg.load_nm, G_LOAD, -50.0, 50.0, SEC_0, "NM", "load torque on the shaft"),
+    NUM("--duration", cfg.duration_s, G_DURATION, 0.01, SIM_MAX_DURATION_S, SEC_0, "S",
+        "simulated time"),
+    {"--seed", OPT_SEED, OPT_RUN, F(cfg.seed), G_SEED, 0.0, 0.0, 0, NULL, SEC_0, "N",
+     "noise seed (an unsigned 64-bit integer)"},
+    CHOICE("--ddc-direction", cfg.ddc_direction, G_DIRECTION, directions, SEC_1,
+           "how the DDC reads its table 2 (flux-error: the core's default)"),
+    CHOICE("--flux-ref", cfg.flux_ref_mode, G_FLUX_REF, flux_refs, SEC_1,
+           "the flux reference: constant or MTPA"),
+    FLAG("--ddc-torque-guard", OPT_SET_INT, cfg.ddc_torque_guard, G_GUARD, 1, SEC_1, NULL,
+         "the DDC keeps a candidate only where it does not worsen the torque"),
+    {"--paper-ddc", OPT_PAPER, OPT_RUN, 0u, G_GUARD, 0.0, 0.0, 0, NULL, SEC_1, NULL,
+     "the paper's DDC: every improvement off (not with the four options it sets)"},
+    CHOICE("--delay-angle", cfg.mid_period_angle, G_DELAY_ANGLE, delay_angles, SEC_1,
+           "the angle the delay compensation rotates by"),
+    CHOICE("--pulse-pattern", cfg.pulse_pattern, G_PULSE_PATTERN, pulse_patterns, SEC_1,
+           "how the duty's zero vector is arranged in the period"),
     NUM("--flux-tie-band", cfg.flux_tie_band, G_TIE_BAND, CTL_FLUX_TIE_BAND_MIN,
-        CTL_FLUX_TIE_BAND_MAX),
-    NUM("--lambda", cfg.lambda, G_LAMBDA, CTL_LAMBDA_MIN, CTL_LAMBDA_MAX),
-    NUM("--fs", cfg.fs_hz, G_FS, 1000.0, 100000.0),
-    NUM("--speed", cfg.speed_rpm, G_SPEED, -6000.0, 6000.0),
-    NUM("--load", cfg.load_nm, G_LOAD, -50.0, 50.0),
-    NUM("--duration", cfg.duration_s, G_DURATION, 0.01, SIM_MAX_DURATION_S),
-    {"--seed", OPT_SEED, OPT_RUN, F(cfg.seed), G_SEED, 0.0, 0.0, 0, NULL},
+        CTL_FLUX_TIE_BAND_MAX, SEC_1, "LEVELS", "the flux tie band, in duty levels (0 = off)"),
     {"--duty-levels", OPT_INTEGER, OPT_RUN, F(cfg.duty_levels), G_LEVELS, CTL_DUTY_LEVELS_MIN,
-     CTL_DUTY_LEVELS_MAX, 0, NULL},
+     CTL_DUTY_LEVELS_MAX, 0, NULL, SEC_1, "N", "the DDC's duty levels"},
     NUM("--torque-limit", cfg.torque_limit_nm, G_TORQUE_LIMIT, CTL_TORQUE_LIMIT_MIN,
-        CTL_TORQUE_LIMIT_MAX),
+        CTL_TORQUE_LIMIT_MAX, SEC_1, "NM", "the speed loop's torque limit"),
     NUM("--light-load-current", cfg.light_load_current_a, G_LIGHT_LOAD_CURRENT,
-        CTL_LIGHT_LOAD_CURRENT_MIN, CTL_LIGHT_LOAD_CURRENT_MAX),
-    NUM("--fault-time", cfg.fault_time_s, G_FAULT_TIME, 0.001, SIM_MAX_DURATION_S),
-    NUM("--trip-current", cfg.trip_current_a, G_TRIP, 0.1, 1000.0),
-    NUM("--fine-rate", cfg.fine_rate_hz, G_FINE_RATE, 10000.0, 10e6),
-    NUM("--lxy", cfg.plant.lxy_h, G_LXY, 1e-4, 1.0),
-    NUM("--motor-r", cfg.plant.r_ohm, G_MOTOR_R, 1e-3, 999.0),
-    NUM("--motor-ld", cfg.plant.ld_h, G_MOTOR_LD, 1e-5, 9.0),
-    NUM("--motor-lq", cfg.plant.lq_h, G_MOTOR_LQ, 1e-5, 9.0),
-    NUM("--motor-lxy", cfg.plant.lxy_h, G_MOTOR_LXY, 1e-5, 9.0),
-    NUM("--motor-psi-f", cfg.plant.psi_f_wb, G_MOTOR_PSI_F, 1e-3, 5.0),
+        CTL_LIGHT_LOAD_CURRENT_MIN, CTL_LIGHT_LOAD_CURRENT_MAX, SEC_1, "A",
+        "the d-axis current the MTPA reference keeps at no load"),
+    FLAG("--no-protect", OPT_SET_BOOL, cfg.protect, G_PROTECT, 0, SEC_1, NULL,
+         "the drive's protection off (faults are not detected)"),
+    NUM("--fault-time", cfg.fault_time_s, G_FAULT_TIME, 0.001, SIM_MAX_DURATION_S, SEC_2, "S",
+        "when a fault-<name> scenario or --open-phase injects its fault"),
+    NUM("--trip-current", cfg.trip_current_a, G_TRIP, 0.1, 1000.0, SEC_2, "A",
+        "the board's hardware over-current trip level"),
+    FLAG("--ride-through", OPT_SET_INT, cfg.open_phase_action, G_RIDE_THROUGH, 1, SEC_2, NULL,
+         "an open phase is ridden through on five legs instead of stopping"),
+    CHOICE("--postfault", cfg.postfault_strategy, G_POSTFAULT, postfault_strategies, SEC_2,
+           "the five-leg strategy"),
+    CHOICE("--open-phase", cfg.fault_phase, G_OPEN_PHASE, phases, SEC_2,
+           "the phase that opens (fault-open-phase, or in a motion scenario)"),
+    CHOICE("--open-model", cfg.open_model, G_OPEN_MODEL, open_models, SEC_2,
+           "the open connection's model: 2 kohm in series or open"),
+    CHOICE("--second-fault", cfg.second_fault_phase, G_SECOND_FAULT, phases, SEC_2,
+           "a second phase opening later (needs --ride-through)"),
+    NUM("--second-fault-time", cfg.second_fault_s, G_SECOND_FAULT_TIME, 0.001, 100.0, SEC_2, "S",
+        "when the second phase opens (default 0.3 s after the first)"),
+    CHOICE("--isolate-leg", cfg.isolate_leg, G_ISOLATE_LEG, phases, SEC_2,
+           "the isolation command sent to a healthy drive"),
+    NUM("--isolate-time", cfg.isolate_s, G_ISOLATE_TIME, 0.001, 100.0, SEC_2, "S",
+        "when the isolation command is sent"),
+    NUM("--handoff-delay", cfg.handoff_delay_s, G_HANDOFF_DELAY, 0.0, 0.1, SEC_2, "S",
+        "delay of the post-fault set's hand-off to the ISR"),
+    CHOICE("--torque-limited", cfg.torque_limited_action, G_TORQUE_LIMITED, torque_limited_actions,
+           SEC_2, "what the drive does when the speed loop stays at its torque limit"),
+    NUM("--torque-limited-stop", cfg.torque_limited_stop_s, G_TORQUE_LIMITED_STOP, 0.001, 60.0,
+        SEC_2, "S", "time at the limit before the stop action stops"),
+    NUM("--lxy", cfg.plant.lxy_h, G_LXY, 1e-4, 1.0, SEC_3, "H",
+        "the machine's L_xy, the plant's and the controller's together (not with --motor-lxy)"),
+    NUM("--motor-r", cfg.plant.r_ohm, G_MOTOR_R, 1e-3, 999.0, SEC_3, "OHM", "stator resistance"),
+    NUM("--motor-ld", cfg.plant.ld_h, G_MOTOR_LD, 1e-5, 9.0, SEC_3, "H", "d-axis inductance"),
+    NUM("--motor-lq", cfg.plant.lq_h, G_MOTOR_LQ, 1e-5, 9.0, SEC_3, "H", "q-axis inductance"),
+    NUM("--motor-lxy", cfg.plant.lxy_h, G_MOTOR_LXY, 1e-5, 9.0, SEC_3, "H", "x-y inductance"),
+    NUM("--motor-psi-f", cfg.plant.psi_f_wb, G_MOTOR_PSI_F, 1e-3, 5.0, SEC_3, "WB",
+        "permanent-magnet flux linkage"),
     {"--motor-pole-pairs", OPT_INTEGER, OPT_RUN, F(cfg.plant.pole_pairs), G_MOTOR_POLES, 1.0, 64.0,
-     0, NULL},
-    NUM("--motor-j", cfg.plant.j_kgm2, G_MOTOR_J, 1e-5, 100.0),
-    NUM("--motor-b", cfg.plant.b_nms, G_MOTOR_B, 0.0, 10.0),
-    NUM("--encoder-offset-deg", encoder_offset_deg, G_ENC_OFFSET, -360.0, 360.0),
-    FLAG("--encoder-reversed", OPT_SET_BOOL, cfg.plant.encoder_reversed, G_ENC_REVERSED, 1),
-    FLAG("--encoder-stuck", OPT_SET_BOOL, cfg.plant.encoder_stuck, G_ENC_STUCK, 1),
-    NUM("--ctl-r", cfg.ctl.r_ohm, G_CTL_R, CTL_RESISTANCE_MIN, CTL_RESISTANCE_MAX),
-    NUM("--ctl-ld", cfg.ctl.ld_h, G_CTL_LD, CTL_INDUCTANCE_MIN, CTL_INDUCTANCE_MAX),
-    NUM("--ctl-lq", cfg.ctl.lq_h, G_CTL_LQ, CTL_INDUCTANCE_MIN, CTL_INDUCTANCE_MAX),
-    NUM("--ctl-lxy", cfg.ctl.lxy_h, G_CTL_LXY, CTL_INDUCTANCE_MIN, CTL_INDUCTANCE_MAX),
-    NUM("--ctl-psi-f", cfg.ctl.psi_f_wb, G_CTL_PSI_F, CTL_PM_FLUX_MIN, CTL_PM_FLUX_MAX),
+     0, NULL, SEC_3, "N", "pole pairs"},
+    NUM("--motor-j", cfg.plant.j_kgm2, G_MOTOR_J, 1e-5, 100.0, SEC_3, "KGM2", "inertia"),
+    NUM("--motor-b", cfg.plant.b_nms, G_MOTOR_B, 0.0, 10.0, SEC_3, "NMS", "viscous friction"),
+    NUM("--encoder-offset-deg", encoder_offset_deg, G_ENC_OFFSET, -360.0, 360.0, SEC_3, "DEG",
+        "the encoder's index offset, electrical degrees"),
+    FLAG("--encoder-reversed", OPT_SET_BOOL, cfg.plant.encoder_reversed, G_ENC_REVERSED, 1, SEC_3,
+         NULL, "the encoder counts backwards (A and B swapped)"),
+    FLAG("--encoder-stuck", OPT_SET_BOOL, cfg.plant.encoder_stuck, G_ENC_STUCK, 1, SEC_3, NULL,
+         "the count never moves (a seized coupling or a dead encoder)"),
+    NUM("--ctl-r", cfg.ctl.r_ohm, G_CTL_R, CTL_RESISTANCE_MIN, CTL_RESISTANCE_MAX, SEC_4, "OHM",
+        "stator resistance"),
+    NUM("--ctl-ld", cfg.ctl.ld_h, G_CTL_LD, CTL_INDUCTANCE_MIN, CTL_INDUCTANCE_MAX, SEC_4, "H",
+        "d-axis inductance"),
+    NUM("--ctl-lq", cfg.ctl.lq_h, G_CTL_LQ, CTL_INDUCTANCE_MIN, CTL_INDUCTANCE_MAX, SEC_4, "H",
+        "q-axis inductance"),
+    NUM("--ctl-lxy", cfg.ctl.lxy_h, G_CTL_LXY, CTL_INDUCTANCE_MIN, CTL_INDUCTANCE_MAX, SEC_4, "H",
+        "x-y inductance"),
+    NUM("--ctl-psi-f", cfg.ctl.psi_f_wb, G_CTL_PSI_F, CTL_PM_FLUX_MIN, CTL_PM_FLUX_MAX, SEC_4, "WB",
+        "permanent-magnet flux linkage"),
     {"--ctl-pole-pairs", OPT_INTEGER, OPT_RUN, F(cfg.ctl.pole_pairs), G_CTL_POLES,
-     CTL_POLE_PAIRS_MIN, CTL_POLE_PAIRS_MAX, 0, NULL},
-    NUM("--ctl-encoder-offset-deg", ctl_encoder_offset_deg, G_CTL_ENC_OFFSET, -360.0, 360.0),
-    {"--ctl-params", OPT_FILE, OPT_RUN, F(ctl_params_path), G_CTL_PARAMS, 0.0, 0.0, 0, NULL},
+     CTL_POLE_PAIRS_MIN, CTL_POLE_PAIRS_MAX, 0, NULL, SEC_4, "N",
+     "pole pairs (also the encoder HAL's)"},
+    NUM("--ctl-encoder-offset-deg", ctl_encoder_offset_deg, G_CTL_ENC_OFFSET, -360.0, 360.0, SEC_4,
+        "DEG", "the encoder HAL's offset, electrical degrees"),
+    {"--ctl-params", OPT_FILE, OPT_RUN, F(ctl_params_path), G_CTL_PARAMS, 0.0, 0.0, 0, NULL, SEC_4,
+     "FILE",
+     "a motor parameter file (sixphase-link identify --out), instead of the --ctl-* options"},
     {"--commission-steps", OPT_INTEGER, OPT_RUN, F(cfg.commission_steps), G_COMM_STEPS, 1.0, 127.0,
-     0, NULL},
+     0, NULL, SEC_5, "MASK", "the steps, bit per step (docs/commissioning.md)"},
     {"--commission-current", OPT_INTEGER, OPT_RUN, F(cfg.commission_permille), G_COMM_CURRENT,
-     100.0, 800.0, 0, NULL},
-    NUM("--vdc", cfg.plant.vdc_v, G_VDC, 50.0, 1500.0),
-    NUM("--dead-time", cfg.plant.dead_time_s, G_DEAD_TIME, 0.0, 20e-6),
-    NUM("--psi5", cfg.plant.psi5_wb, G_PSI5, 0.0, 0.1),
-    NUM("--psi7", cfg.plant.psi7_wb, G_PSI7, 0.0, 0.1),
-    NUM("--plant-step", cfg.plant.max_step_s, G_STEP, 1e-7, 1e-4),
+     100.0, 800.0, 0, NULL, SEC_5, "PERMILLE", "the test current, per mille of rated"},
+    NUM("--vdc", cfg.plant.vdc_v, G_VDC, 50.0, 1500.0, SEC_6, "V", "DC link voltage"),
+    NUM("--dead-time", cfg.plant.dead_time_s, G_DEAD_TIME, 0.0, 20e-6, SEC_6, "S",
+        "the inverter's dead time"),
+    NUM("--psi5", cfg.plant.psi5_wb, G_PSI5, 0.0, 0.1, SEC_6, "WB",
+        "the PM flux's 5th harmonic (x-y)"),
+    NUM("--psi7", cfg.plant.psi7_wb, G_PSI7, 0.0, 0.1, SEC_6, "WB",
+        "the PM flux's 7th harmonic (x-y)"),
     NUM("--sensor-span", cfg.plant.current_sensor_span_a, G_SPAN, PLANT_SENSOR_SPAN_MIN_A,
-        PLANT_SENSOR_SPAN_MAX_A),
-    CHOICE("--integrator", cfg.plant.integrator, G_INTEGRATOR, integrators),
-    FLAG("--no-protect", OPT_SET_BOOL, cfg.protect, G_PROTECT, 0),
-    FLAG("--no-trace", OPT_SET_BOOL, cfg.write_trace, G_TRACE, 0),
-    FLAG("--no-fine", OPT_SET_BOOL, cfg.write_fine, G_FINE, 0),
-    {"--no-plots", OPT_SET_INT, OPT_REPRODUCE, F(no_plots), G_PLOTS, 0.0, 0.0, 1, NULL},
-    FLAG("--no-dead-time", OPT_SET_BOOL, cfg.plant.dead_time_on, G_IDEAL + 1, 0),
-    FLAG("--no-harmonics", OPT_SET_BOOL, cfg.plant.harmonics_on, G_IDEAL + 2, 0),
-    FLAG("--no-adc-offset", OPT_SET_BOOL, cfg.plant.adc_offset_on, G_IDEAL + 3, 0),
-    FLAG("--no-adc-gain", OPT_SET_BOOL, cfg.plant.adc_gain_on, G_IDEAL + 4, 0),
-    FLAG("--no-adc-noise", OPT_SET_BOOL, cfg.plant.adc_noise_on, G_IDEAL + 5, 0),
-    FLAG("--no-encoder-quant", OPT_SET_BOOL, cfg.plant.encoder_quant_on, G_IDEAL + 6, 0),
-    {"--ideal", OPT_IDEAL, OPT_RUN, 0u, G_IDEAL, 0.0, 0.0, 0, NULL},
-    FLAG("--ride-through", OPT_SET_INT, cfg.open_phase_action, G_RIDE_THROUGH, 1),
-    CHOICE("--postfault", cfg.postfault_strategy, G_POSTFAULT, postfault_strategies),
-    CHOICE("--open-phase", cfg.fault_phase, G_OPEN_PHASE, phases),
-    CHOICE("--open-model", cfg.open_model, G_OPEN_MODEL, open_models),
-    CHOICE("--second-fault", cfg.second_fault_phase, G_SECOND_FAULT, phases),
-    NUM("--second-fault-time", cfg.second_fault_s, G_SECOND_FAULT_TIME, 0.001, 100.0),
-    CHOICE("--isolate-leg", cfg.isolate_leg, G_ISOLATE_LEG, phases),
-    NUM("--isolate-time", cfg.isolate_s, G_ISOLATE_TIME, 0.001, 100.0),
-    NUM("--handoff-delay", cfg.handoff_delay_s, G_HANDOFF_DELAY, 0.0, 0.1),
-    CHOICE("--torque-limited", cfg.torque_limited_action, G_TORQUE_LIMITED, torque_limited_actions),
-    NUM("--torque-limited-stop", cfg.torque_limited_stop_s, G_TORQUE_LIMITED_STOP, 0.001, 60.0),
+        PLANT_SENSOR_SPAN_MAX_A, SEC_6, "A", "the phase-current sensors' full span"),
+    FLAG("--no-dead-time", OPT_SET_BOOL, cfg.plant.dead_time_on, G_IDEAL + 1, 0, SEC_6, NULL,
+         "no dead time"),
+    FLAG("--no-harmonics", OPT_SET_BOOL, cfg.plant.harmonics_on, G_IDEAL + 2, 0, SEC_6, NULL,
+         "no PM flux harmonics"),
+    FLAG("--no-adc-offset", OPT_SET_BOOL, cfg.plant.adc_offset_on, G_IDEAL + 3, 0, SEC_6, NULL,
+         "no ADC offsets"),
+    FLAG("--no-adc-gain", OPT_SET_BOOL, cfg.plant.adc_gain_on, G_IDEAL + 4, 0, SEC_6, NULL,
+         "no ADC gain errors"),
+    FLAG("--no-adc-noise", OPT_SET_BOOL, cfg.plant.adc_noise_on, G_IDEAL + 5, 0, SEC_6, NULL,
+         "no ADC noise"),
+    FLAG("--no-encoder-quant", OPT_SET_BOOL, cfg.plant.encoder_quant_on, G_IDEAL + 6, 0, SEC_6,
+         NULL, "no encoder quantisation"),
+    {"--ideal", OPT_IDEAL, OPT_RUN, 0u, G_IDEAL, 0.0, 0.0, 0, NULL, SEC_6, NULL,
+     "every non-ideality above off"},
+    NUM("--fine-rate", cfg.fine_rate_hz, G_FINE_RATE, 10000.0, 10e6, SEC_7, "HZ",
+        "the plant samples' rate for the metrics"),
+    NUM("--plant-step", cfg.plant.max_step_s, G_STEP, 1e-7, 1e-4, SEC_7, "S",
+        "the integrator's largest step"),
+    CHOICE("--integrator", cfg.plant.integrator, G_INTEGRATOR, integrators, SEC_7,
+           "the plant's integrator"),
+    {"--quiet", OPT_SET_INT, OPT_RUN | OPT_REPRODUCE | OPT_SERVE, F(quiet), G_QUIET, 0.0, 0.0, 1,
+     NULL, SEC_8, NULL, "no metrics on stdout, no progress"},
+    {"--out", OPT_DIRECTORY, OPT_RUN | OPT_REPRODUCE, F(cfg.out_dir), G_OUT, 0.0, 0.0, 0, NULL,
+     SEC_8, "DIR", "write the run's files here (reproduce, sweep: the report)"},
+    NUM("--out-limit-mb", cfg.out_limit_mb, G_OUT_LIMIT, 0.01, 1e6, SEC_8, "MB",
+        "stop when the files in --out reach this (default 512; 1 MB = 1e6 bytes)"),
+    {"--jobs", OPT_INTEGER, OPT_REPRODUCE, F(jobs), G_JOBS, 1.0, 64.0, 0, NULL, SEC_8, "N",
+     "reproduce: parallel workers"},
+    {"--plot", OPT_SET_INT, OPT_RUN, F(plot), G_RUN_PLOT, 0.0, 0.0, 1, NULL, SEC_8, NULL,
+     "draw DIR/run.png from the trace (needs --out)"},
+    FLAG("--no-trace", OPT_SET_BOOL, cfg.write_trace, G_TRACE, 0, SEC_8, NULL,
+         "no trace.csv in --out"),
+    FLAG("--no-fine", OPT_SET_BOOL, cfg.write_fine, G_FINE, 0, SEC_8, NULL,
+         "no fine-rate file in --out"),
+    {"--no-plots", OPT_SET_INT, OPT_REPRODUCE, F(no_plots), G_PLOTS, 0.0, 0.0, 1, NULL, SEC_8, NULL,
+     "reproduce: leave the figures out"},
+    {"--rate", OPT_NUMBER, OPT_SERVE, F(serve_rate), G_PACING, 0.01, 1000.0, 0, NULL, SEC_9, "N",
+     "pacing: N times real time"},
+    {"--fast", OPT_SET_INT, OPT_SERVE, F(serve_fast), G_PACING, 0.0, 0.0, 1, NULL, SEC_9, NULL,
+     "pacing: as fast as possible"},
+    {"--baud", OPT_INTEGER, OPT_SERVE, F(serve_baud), G_BAUD, 1200.0, 4000000.0, 0, NULL, SEC_9,
+     "B", "the virtual line's baud"},
 };
 
 #define OPTION_COUNT ((int)(sizeof options / sizeof options[0]))
@@ -451,6 +479,117 @@ static int apply_option(const opt_t *opt, const char *v, sim_cli_t *o, char *err
         o->cfg.out_dir = v;
         return 2;
     }
+}
+
+/* One option's line: name, value (its metavar or choices), help, range, where it applies. */
+static void usage_option(FILE *f, const opt_t *o)
+{
+    char value[160] = "";
+    int k, n = 0;
+    if (o->kind == OPT_CHOICE) {
+        for (k = 0; o->choices[k] && n < (int)sizeof value; k++) {
+            n += snprintf(&value[n], sizeof value - (size_t)n, "%s%s", (k == 0) ? " {" : ",",
+                          o->choices[k]);
+        }
+        (void)snprintf(&value[n], sizeof value - (size_t)n, "}");
+    } else if (o->metavar) {
+        (void)snprintf(value, sizeof value, " %s", o->metavar);
+    }
+    fprintf(f, "  %s%s\n      %s", o->name, value, o->help);
+    if (o->kind == OPT_NUMBER || o->kind == OPT_INTEGER) {
+        fprintf(f, " (%g..%g)", o->lo, o->hi);
+    }
+    fprintf(f, "%s%s\n", (o->where & OPT_RUN) ? "" : " [",
+            (o->where & OPT_RUN)          ? ""
+            : (o->where == OPT_SERVE)     ? "serve]"
+            : (o->where == OPT_REPRODUCE) ? "reproduce]"
+                                          : "reproduce, serve]");
+}
+
+/* The options a command takes (where), under their headings. */
+static void usage_options(FILE *f, unsigned where)
+{
+    int sec, k;
+    for (sec = 0; sec < SEC_COUNT; sec++) {
+        int heading = 0;
+        for (k = 0; k < OPTION_COUNT; k++) {
+            if (options[k].section != sec || (options[k].where & where) == 0u) {
+                continue;
+            }
+            if (!heading) {
+                fprintf(f, "%s:\n", cli_sections[sec]);
+                heading = 1;
+            }
+            usage_option(f, &options[k]);
+        }
+    }
+}
+
+static void usage_notes(FILE *f)
+{
+    int k;
+    fprintf(f, "numbers are plain decimals (1500, -0.5, 2e-6); each option at most once; "
+               "--name=value or --name value\n"
+               "--duration: memory stays flat, trace.csv grows by about 1.7 MB per simulated "
+               "second at 10 kHz (--no-trace leaves it out)\n"
+               "fault scenarios (rated operation, the fault at 0.25 s; docs/faults.md):\n");
+    for (k = 1; k < (int)SIM_FAULT_COUNT; k++) {
+        const sim_fault_info_t *fi = sim_fault_info((sim_fault_t)k);
+        fprintf(f, "  fault-%-16s %s\n", fi->name, fi->injection);
+    }
+}
+
+/* The commands, one list: name, synopsis, what it does, the options it takes (0: its own). */
+static const struct {
+    const char *name, *synopsis, *what;
+    unsigned where;
+} cli_commands[] = {
+    {"run", "[options]", "one simulation; its metrics as JSON on stdout", OPT_RUN},
+    {"reproduce", "--out DIR [--jobs N] [--no-plots] [--quiet]",
+     "the paper's comparison: the report and figures in DIR", OPT_REPRODUCE},
+    {"sweep", "--out DIR [--jobs N] [--force] [--no-plots] [--quiet] [run options]",
+     "run options as lists (a,b,c) or ranges (start:stop:step), every point run; --scenario "
+     "defaults to steady, --jobs to the online processors",
+     OPT_RUN},
+    {"serve", "[run options] [--rate N | --fast] [--baud B]",
+     "the firmware on a virtual board behind a pseudo-terminal (its path on stdout); --scenario "
+     "steady, commission or fault-<name>, --speed the initial reference; until --duration, a "
+     "signal or `sixphase-link shutdown`",
+     OPT_RUN | OPT_SERVE},
+    {"plot", "DIR", "the figure of an earlier run --out DIR (DIR/run.png)", 0u},
+};
+#define CLI_COMMAND_COUNT ((int)(sizeof cli_commands / sizeof cli_commands[0]))
+
+int sim_cli_command_usage(FILE *f, const char *command)
+{
+    int k;
+    for (k = 0; k < CLI_COMMAND_COUNT; k++) {
+        if (strcmp(cli_commands[k].name, command) == 0) {
+            fprintf(f, "usage: sixphase-sim %s %s\n  %s\n", cli_commands[k].name,
+                    cli_commands[k].synopsis, cli_commands[k].what);
+            if (cli_commands[k].where != 0u) {
+                usage_options(f, cli_commands[k].where);
+                usage_notes(f);
+            }
+            return 0;
+        }
+    }
+    return -1;
+}
+
+void sim_cli_usage(FILE *f)
+{
+    int k;
+    fprintf(f, "usage:\n");
+    for (k = 0; k < CLI_COMMAND_COUNT; k++) {
+        fprintf(f, "  sixphase-sim %s %s\n      %s\n", cli_commands[k].name,
+                cli_commands[k].synopsis, cli_commands[k].what);
+    }
+    fprintf(f, "  sixphase-sim COMMAND --help: that command's options; sixphase-sim --version\n"
+               "options (run, sweep and serve take the run options; [..] names the only commands "
+               "taking one):\n");
+    usage_options(f, OPT_RUN | OPT_REPRODUCE | OPT_SERVE);
+    usage_notes(f);
 }
 
 int sim_cli_option_count(void) { return (int)(sizeof options / sizeof options[0]); }
@@ -730,51 +869,112 @@ static int cli_derive(sim_cli_t *o, const int *seen, char *err, size_t len)
     return cli_read_ctl_params(o, err, len);
 }
 
-static int cli_parse(int argc, char **argv, sim_cli_t *o, char *err, size_t len, unsigned where)
+/* getopt_long's table of the options a command takes (where): val = CLI_OPT_BASE + the option's
+ * index in options[]. */
+#define CLI_OPT_BASE 256
+#define CLI_MAX_ARGS 1024
+static void cli_long_options(struct option *lo, unsigned where)
 {
-    int seen[GROUP_LIMIT] = {0};
-    int i = 0;
-    cli_defaults(o);
-    while (i < argc) {
-        const char *a = argv[i];
-        const opt_t *opt = find_option(a, where);
-        int used;
-        if (!opt) {
-            return cli_fail(err, len, "unknown option '%s'%s", a, "");
+    int k, n = 0;
+    for (k = 0; k < OPTION_COUNT; k++) {
+        const opt_kind_t kind = options[k].kind;
+        const int flag =
+            kind == OPT_SET_BOOL || kind == OPT_SET_INT || kind == OPT_IDEAL || kind == OPT_PAPER;
+        if ((options[k].where & where) == 0u) {
+            continue;
         }
-        if (seen[opt->group]) {
+        lo[n].name = options[k].name + 2;
+        lo[n].has_arg = flag ? no_argument : required_argument;
+        lo[n].flag = NULL;
+        lo[n].val = CLI_OPT_BASE + k;
+        n++;
+    }
+    memset(&lo[n], 0, sizeof lo[n]);
+}
+
+/* The --paper-ddc and --ideal options set what other options set: one group each. */
+static int cli_claim_groups(const opt_t *opt, const char *a, int *seen, char *err, size_t len)
+{
+    if (seen[opt->group]) {
+        return cli_fail(err, len,
+                        "%s given more than once (or with an option that sets the same thing)%s", a,
+                        "");
+    }
+    seen[opt->group] = 1;
+    if (opt->kind == OPT_PAPER) { /* it also sets what these four set */
+        if (seen[G_DELAY_ANGLE] || seen[G_PULSE_PATTERN] || seen[G_TIE_BAND] ||
+            seen[G_LIGHT_LOAD_CURRENT]) {
             return cli_fail(err, len,
-                            "%s given more than once (or with an option that sets "
-                            "the same thing)%s",
+                            "%s repeats --delay-angle, --pulse-pattern, --flux-tie-band or "
+                            "--light-load-current%s",
                             a, "");
         }
-        seen[opt->group] = 1;
-        if (opt->kind == OPT_PAPER) { /* it also sets what these four set */
-            if (seen[G_DELAY_ANGLE] || seen[G_PULSE_PATTERN] || seen[G_TIE_BAND] ||
-                seen[G_LIGHT_LOAD_CURRENT]) {
-                return cli_fail(err, len,
-                                "%s repeats --delay-angle, --pulse-pattern, --flux-tie-band or "
-                                "--light-load-current%s",
-                                a, "");
+        seen[G_DELAY_ANGLE] = seen[G_PULSE_PATTERN] = seen[G_TIE_BAND] = 1;
+        seen[G_LIGHT_LOAD_CURRENT] = 1;
+    }
+    if (opt->kind == OPT_IDEAL) {
+        int g;
+        for (g = G_IDEAL + 1; g <= G_IDEAL + 6; g++) {
+            if (seen[g]) {
+                return cli_fail(err, len, "%s repeats a --no-... option given with it%s", a, "");
             }
-            seen[G_DELAY_ANGLE] = seen[G_PULSE_PATTERN] = seen[G_TIE_BAND] = 1;
-            seen[G_LIGHT_LOAD_CURRENT] = 1;
+            seen[g] = 1;
         }
-        if (opt->kind == OPT_IDEAL) {
-            int g;
-            for (g = G_IDEAL + 1; g <= G_IDEAL + 6; g++) {
-                if (seen[g]) {
-                    return cli_fail(err, len, "%s repeats a --no-... option given with it%s", a,
-                                    "");
-                }
-                seen[g] = 1;
-            }
+    }
+    return 0;
+}
+
+/* One getopt_long result: the option found (its full name given, no abbreviation), or -1
+ * after a one-line error. */
+static int cli_option_of(int c, const char *token, const opt_t **opt, char *err, size_t len)
+{
+    size_t n;
+    if (c == '?' || c < CLI_OPT_BASE || c >= CLI_OPT_BASE + OPTION_COUNT) {
+        return cli_fail(err, len, "unknown option '%s'%s", token, "");
+    }
+    *opt = &options[c - CLI_OPT_BASE];
+    n = strcspn(token, "=");
+    if (strlen((*opt)->name) != n || strncmp(token, (*opt)->name, n) != 0) {
+        return cli_fail(err, len, "unknown option '%s' (did you mean %s?)", token, (*opt)->name);
+    }
+    return 0;
+}
+
+static int cli_parse(int argc, char **argv, sim_cli_t *o, char *err, size_t len, unsigned where)
+{
+    static struct option lo[OPTION_COUNT + 1];
+    char *av[CLI_MAX_ARGS + 1];
+    int seen[GROUP_LIMIT] = {0};
+    cli_defaults(o);
+    if (argc > CLI_MAX_ARGS) {
+        return cli_fail(err, len, "too many arguments (at most %s)%s", "1024", "");
+    }
+    av[0] = (char *)"sixphase-sim";
+    memcpy(&av[1], argv, (size_t)argc * sizeof av[0]);
+    cli_long_options(lo, where);
+    optind = 0; /* getopt_long starts afresh (glibc) */
+    opterr = 0;
+    for (;;) {
+        const int first = (optind == 0) ? 1 : optind;
+        const opt_t *opt = NULL;
+        const int c = getopt_long(argc + 1, av, "+:", lo, NULL);
+        if (c == -1) {
+            break;
         }
-        used = apply_option(opt, (i + 1 < argc) ? argv[i + 1] : NULL, o, err, len);
-        if (used < 0) {
+        if (c == ':') { /* a value missing at the end: the option's own message */
+            opt = &options[optopt - CLI_OPT_BASE];
+            return (apply_option(opt, NULL, o, err, len) < 0)
+                       ? -1
+                       : cli_fail(err, len, "%s needs a value%s", opt->name, "");
+        }
+        if (cli_option_of(c, av[first], &opt, err, len) != 0 ||
+            cli_claim_groups(opt, opt->name, seen, err, len) != 0 ||
+            apply_option(opt, optarg, o, err, len) < 0) {
             return -1;
         }
-        i += used;
+    }
+    if (optind < argc + 1) {
+        return cli_fail(err, len, "unknown option '%s'%s", av[optind], "");
     }
     if (cli_derive(o, seen, err, len) != 0) {
         return -1;

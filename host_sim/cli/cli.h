@@ -36,7 +36,9 @@ int sim_cli_gridable(const char *name);
 /* serve takes the run options (none required) and its own. */
 int sim_cli_parse_serve(int argc, char **argv, sim_cli_t *out, char *err, size_t err_len);
 
+/* The whole usage (every command and option), and one command's (0; -1: no such command). */
 void sim_cli_usage(FILE *f);
+int sim_cli_command_usage(FILE *f, const char *command);
 
 /* The option table's entries (test_sim_cli: each is in the usage text). */
 int sim_cli_option_count(void);

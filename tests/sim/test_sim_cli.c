@@ -31,7 +31,7 @@ static int parse(const char *const *args, int n, sim_cli_t *o, char *err, size_t
  * table by hand; docs/simulator.md's copy is generated from it, tools/usage_doc.py). */
 static void test_usage_names_every_option(void **state)
 {
-    char text[16384];
+    static char text[65536];
     size_t n;
     int k;
     FILE *f = tmpfile();
@@ -48,7 +48,7 @@ static void test_usage_names_every_option(void **state)
         const char *name = sim_cli_option_name(k);
         (void)snprintf(bracketed, sizeof bracketed, "%s ", name);
         if (!strstr(text, bracketed)) {
-            (void)snprintf(bracketed, sizeof bracketed, "%s]", name);
+            (void)snprintf(bracketed, sizeof bracketed, "%s\n", name); /* a flag's line */
         }
         print_message("%s%s\n", name, strstr(text, bracketed) ? "" : ": missing");
         assert_non_null(strstr(text, bracketed));
@@ -559,6 +559,57 @@ static int run_exe(const char *const *args, char *err_out, size_t len)
     return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
+/* getopt_long drives the table (issue 26): --name=value is --name value; an abbreviation is
+ * refused with the full name suggested, not taken; a stray word is refused. */
+static void test_long_option_forms(void **state)
+{
+    const char *const spaced[] = {"--controller", "ddc", "--scenario", "steady",
+                                  "--lambda",     "50",  "--load",     "-2.5"};
+    const char *const joined[] = {"--controller=ddc", "--scenario=steady", "--lambda=50",
+                                  "--load=-2.5"};
+    const char *const abbreviated[] = {"--controller", "ddc",    "--scenario",
+                                       "steady",       "--lamb", "5"};
+    const char *const stray[] = {"--controller", "ddc", "--scenario", "steady", "five"};
+    sim_cli_t a, b;
+    char err[256] = "";
+    (void)state;
+    assert_int_equal(parse(spaced, 8, &a, err, sizeof err), 0);
+    assert_int_equal(parse(joined, 4, &b, err, sizeof err), 0);
+    assert_true(a.cfg.lambda == 50.0 && b.cfg.lambda == 50.0);
+    assert_true(a.cfg.load_nm == -2.5 && b.cfg.load_nm == -2.5);
+    assert_int_equal(parse(abbreviated, 6, &a, err, sizeof err), -1);
+    assert_non_null(strstr(err, "did you mean --lambda"));
+    assert_int_equal(parse(stray, 5, &a, err, sizeof err), -1);
+    assert_non_null(strstr(err, "'five'"));
+}
+
+/* Each command's --help and the program's --version (the CMake project's VERSION). */
+static void test_help_and_version(void **state)
+{
+    static const char *const commands[] = {"run", "reproduce", "sweep", "serve", "plot"};
+    char err[256];
+    size_t k;
+    (void)state;
+    for (k = 0; k < sizeof commands / sizeof commands[0]; k++) {
+        const char *const a[] = {SIXPHASE_SIM_EXE, commands[k], "--help", NULL};
+        assert_int_equal(run_exe(a, err, sizeof err), 0);
+        assert_string_equal(err, "");
+    }
+    {
+        const char *const a[] = {SIXPHASE_SIM_EXE, "help", "frobnicate", NULL};
+        assert_int_equal(run_exe(a, err, sizeof err), 2);
+        assert_non_null(strstr(err, "no command 'frobnicate'"));
+    }
+    {
+        char line[128] = "";
+        FILE *p = popen("'" SIXPHASE_SIM_EXE "' --version", "r");
+        assert_non_null(p);
+        assert_non_null(fgets(line, sizeof line, p));
+        assert_int_equal(pclose(p), 0);
+        assert_string_equal(line, "sixphase-sim " SIXPHASE_PROJECT_VERSION "\n");
+    }
+}
+
 static void test_executable_writes_nothing_on_bad_argument(void **state)
 {
     char tmpl[] = "/tmp/sixphase-cli-XXXXXX";
@@ -701,6 +752,8 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_usage_names_every_option),
+        cmocka_unit_test(test_long_option_forms),
+        cmocka_unit_test(test_help_and_version),
         cmocka_unit_test(test_good_arguments),
         cmocka_unit_test(test_plant_and_controller_apart),
         cmocka_unit_test(test_ctl_params_file),
