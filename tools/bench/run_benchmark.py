@@ -412,6 +412,14 @@ def price_table(w):
     for k, text in c28x_cost.SOURCES.items():
         w("- %s: %s." % (k, text))
     w("")
+    w("How far the figures were checked here: the stored copies of TI's documents that this")
+    w("repository's tools could reach gave SPRACN6's table 4 in full, the C28x FPU/CLA")
+    w("compare and conditional-move descriptions, and the title pages of SPRU430F and the")
+    w("IQmath guide; the other per-instruction cycles (branches, LCR/LRETR, IMPYL/QMPYL, MOV32,")
+    w("the 2p FPU operations) and IQmath's cycle counts are TI's as cited but were not re-read")
+    w("from the documents in this run's sources: check them against the PDFs before relying")
+    w("on a single price.")
+    w("")
     w("| class | cycles [low, high] | source | C28x sequence assumed |")
     w("|---|---|---|---|")
     for desc, lo, hi, src, note in c28x_cost.PRICES.values():
