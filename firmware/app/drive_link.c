@@ -593,6 +593,10 @@ static bool take_token(const drive_t *d, sxl_frame_t *req)
 /* indirect-call: drive_link_handle -> prefix on_ (the handlers of link_commands;
  * tools/stack_depth.py) */
 
+#ifdef DRIVE_LINK_EXTRA_HANDLERS_HEADER
+#include DRIVE_LINK_EXTRA_HANDLERS_HEADER /* a test build's handlers of SXL_EXTRA_COMMANDS */
+#endif
+
 /* The command list (sxlink_commands.h): code, request length, token, handler. */
 #define LINK_COMMAND_ROW(name, code, handler, armed, request, reply, notes)                        \
     {SXL_CMD_##name, (uint16_t)request##_SIZE, (armed) != 0, on_##handler},

@@ -21,6 +21,15 @@
 
 #include "sxlink_payloads.h"
 
+/* A test build appends rows to prove everything derived from the list follows them
+ * (tests/firmware/test_command_row.c): the header SXL_EXTRA_COMMANDS_HEADER names defines
+ * SXL_EXTRA_COMMANDS(X). The product has none. */
+#ifdef SXL_EXTRA_COMMANDS_HEADER
+#include SXL_EXTRA_COMMANDS_HEADER
+#else
+#define SXL_EXTRA_COMMANDS(X)
+#endif
+
 #define SXL_COMMAND_LIST(X)                                                                        \
     X(PING, 0x01, ping, 0, SXL_NONE, SXL_PG, "")                                                   \
     X(GET_STATUS, 0x02, get_status, 0, SXL_NONE, SXL_ST, "")                                       \
@@ -72,7 +81,8 @@
       "2 for a leg above 5; 4 unless READY or RUN with no leg isolated; the leg stays off, the "   \
       "drive runs on five")                                                                        \
     X(RESTORE_LEGS, 0x53, restore_legs, 1, SXL_NONE, SXL_NONE,                                     \
-      "4 unless READY with a leg isolated; the healthy parameter set follows")
+      "4 unless READY with a leg isolated; the healthy parameter set follows")                     \
+    SXL_EXTRA_COMMANDS(X)
 
 /* The virtual board's (sixphase-sim serve) own commands, answered by its link service before
  * the drive sees the frame; a board answers them SXL_ERR_UNKNOWN. */
