@@ -6,28 +6,15 @@
 
 void ctl_params_default(ctl_params_t *p)
 {
-    p->resistance_ohm = CTL_FLOAT_LITERAL(CTL_MACHINE_R_OHM);
-    p->ld_h = CTL_FLOAT_LITERAL(CTL_MACHINE_LD_H);
-    p->lq_h = CTL_FLOAT_LITERAL(CTL_MACHINE_LQ_H);
-    p->l_xy_h = CTL_FLOAT_LITERAL(CTL_MACHINE_LXY_H);
-    p->pm_flux_wb = CTL_FLOAT_LITERAL(CTL_MACHINE_PSI_F_WB);
-    p->pole_pairs = CTL_MACHINE_POLE_PAIRS;
-    p->inertia_kg_m2 = CTL_FLOAT_LITERAL(CTL_MACHINE_INERTIA_KG_M2);
-    p->sample_time_s = 1.0e-4f;
+#define CTL_SET_DEFAULT(row, field, error, lo, hi, unit, what, value) p->field = value;
+    CTL_PARAM_RANGES(CTL_SET_DEFAULT) /* the numbers: the one list, ctl_param_ranges.h */
+#undef CTL_SET_DEFAULT
     p->controller = CTL_CONTROLLER_DDC;
-    p->lambda_nm_per_wb = 100.0f;
-    p->duty_levels = 6;
     p->ddc_direction = CTL_DDC_DIRECTION_FLUX_ERROR;
     p->ddc_torque_guard = true;  /* improvements (docs/improvements.md); false = the paper */
     p->mid_period_angle = false; /* measured: no closed-loop gain (docs/improvements.md) */
     p->pulse_pattern = CTL_PULSE_FEWEST_PER_SET;
-    p->ddc_flux_tie_band = 0.5f; /* measured over lambda 20..200 (docs/improvements.md) */
     p->flux_ref_mode = CTL_FLUX_REF_MTPA;
-    p->flux_ref_wb = 0.26f;
-    p->light_load_current_a = 0.5f; /* measured: docs/faults.md, "A current to judge at no load" */
-    p->speed_kp_nm_per_rad_s = 1.5f;
-    p->speed_ki_nm_per_rad = 60.0f;
-    p->torque_limit_nm = 7.0f;
     ctl_protect_settings_default(&p->protect);
     p->open_phase = CTL_POSTFAULT_NO_LEG; /* all six phases healthy */
     p->postfault_strategy = (int16_t)CTL_POSTFAULT_MIN_LOSS;

@@ -25,7 +25,7 @@ typedef struct {
     const char *lo_text, *hi_text;
 } range_row_t;
 
-#define ROW(row, field, error, lo, hi, unit, what)                                                 \
+#define ROW(row, field, error, lo, hi, unit, what, value)                                          \
     {#row,                                                                                         \
      offsetof(ctl_params_t, field),                                                                \
      sizeof(((ctl_params_t *)0)->field),                                                           \

@@ -6,14 +6,16 @@
 
 #include "ctl_params.h"
 
-#define PRINT_ROW(row, field, error, lo, hi, unit, what)                                           \
-    printf("| %s | `%s` | %s | %s | %s | %s |\n", what, #field, CTL_RANGE_STR(lo),                 \
-           CTL_RANGE_STR(hi), (unit)[0] ? (unit) : "-", ctl_param_error_text(error));
+#define PRINT_ROW(row, field, error, lo, hi, unit, what, value)                                    \
+    printf("| %s | `%s` | %g | %s | %s | %s | %s |\n", what, #field, (double)(value),              \
+           CTL_RANGE_STR(lo), CTL_RANGE_STR(hi), (unit)[0] ? (unit) : "-",                         \
+           ctl_param_error_text(error));
 
 int main(void)
 {
-    printf("| parameter | field of `ctl_params_t` | minimum | maximum | unit | refused with |\n");
-    printf("|---|---|---|---|---|---|\n");
+    printf("| parameter | field of `ctl_params_t` | default | minimum | maximum | unit | refused "
+           "with |\n");
+    printf("|---|---|---|---|---|---|---|\n");
     CTL_PARAM_RANGES(PRINT_ROW)
     return 0;
 }
