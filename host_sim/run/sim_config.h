@@ -161,6 +161,9 @@ typedef struct {
                                     window */
     long adc_clipped;    /* phase-current conversions at 0 or 4095 counts (sensor range +-20 A) */
     double transient_ms; /* < 0: null */
+    /* motion scenarios: the speed's last exit from 2 % of its final reference after the event,
+     * and its largest error once it first came within that band; < 0: null */
+    double speed_settle_ms, speed_peak_error_rpm;
     /* host timing: machine-dependent, kept out of the committed reproduce report */
     double realtime_factor;
     double wall_s;

@@ -152,6 +152,8 @@ static void sim_print_results_json(FILE *f, const sim_config_t *c, const sim_res
     json_num(f, "phase_current_peak_a", r->phase_current_peak_a, true);
     fprintf(f, "  \"adc_clipped_samples\": %ld,\n", r->adc_clipped);
     json_num(f, "transient_ms", json_or_null(r->transient_ms), true);
+    json_num(f, "speed_settle_ms", json_or_null(r->speed_settle_ms), true);
+    json_num(f, "speed_peak_error_rpm", json_or_null(r->speed_peak_error_rpm), true);
     if (host_timings) {
         json_num(f, "realtime_factor", r->realtime_factor, true);
         json_num(f, "wall_s", r->wall_s, true);

@@ -255,6 +255,10 @@ int sim_loop_run(sim_run_t *rs, sim_result_t *r, char *err, size_t err_len)
     } else if (rs->cfg->scenario == SIM_SCEN_LOAD_STEP) {
         sim_metrics_track_reach(&rs->metrics, pl->t_event, 0.9 * pl->load);
     }
+    if (rs->cfg->scenario == SIM_SCEN_ACCEL || rs->cfg->scenario == SIM_SCEN_REVERSAL ||
+        rs->cfg->scenario == SIM_SCEN_LOAD_STEP) {
+        sim_metrics_track_speed(&rs->metrics, pl->t_event, pl->speed, 0.02 * fabs(pl->speed));
+    }
     rs->wall0_s = sim_wall_now();
     for (k = 0; k < rs->n_periods; k++) {
         if (sim_loop_period(rs, r, k) != 0) {

@@ -53,6 +53,27 @@ void sim_metrics_track_reach(sim_metrics_t *m, double t_event, double level)
     metrics_reach_begin(&m->reach, t_event, level);
 }
 
+void sim_metrics_track_speed(sim_metrics_t *m, double t_event, double target, double tol)
+{
+    m->track_speed = true;
+    m->speed_reached = false;
+    m->speed_peak_error = 0.0;
+    metrics_settle_begin(&m->speed_settle, t_event, target, tol);
+}
+
+static void track_speed_add(sim_metrics_t *m, double t, double speed_rpm)
+{
+    const double err = fabs(speed_rpm - m->speed_settle.final_value);
+    if (t < m->speed_settle.t_from) {
+        return;
+    }
+    metrics_settle_add(&m->speed_settle, t, speed_rpm);
+    m->speed_reached = m->speed_reached || err <= m->speed_settle.tol_abs;
+    if (m->speed_reached && err > m->speed_peak_error) {
+        m->speed_peak_error = err;
+    }
+}
+
 void sim_metrics_add_fine(sim_metrics_t *m, const sim_fine_row_t *row, const double i_phase[6])
 {
     size_t i;
@@ -79,6 +100,9 @@ void sim_metrics_add_period(sim_metrics_t *m, const sim_trace_row_t *row, bool i
     }
     if (m->track_reach) {
         metrics_reach_add(&m->reach, row->t, row->te_avg);
+    }
+    if (m->track_speed) {
+        track_speed_add(m, row->t, row->speed_rpm);
     }
     if (in_window && m->n_ctl < m->cap_ctl) {
         int k;
@@ -163,5 +187,12 @@ void sim_metrics_finish(const sim_metrics_t *m, sim_result_t *r)
         r->transient_ms = 1e3 * (metrics_settle_result(&m->settle) - m->t_event);
     } else if (m->track_reach && metrics_reach_result(&m->reach) >= 0.0) {
         r->transient_ms = 1e3 * (metrics_reach_result(&m->reach) - m->t_event);
+    }
+    r->speed_settle_ms = r->speed_peak_error_rpm = -1.0;
+    if (m->track_speed && metrics_settle_result(&m->speed_settle) >= 0.0) {
+        r->speed_settle_ms = 1e3 * (metrics_settle_result(&m->speed_settle) - m->t_event);
+    }
+    if (m->track_speed && m->speed_reached) {
+        r->speed_peak_error_rpm = m->speed_peak_error;
     }
 }

@@ -30,6 +30,11 @@ typedef struct {
     double t_event;
     metrics_settle_t settle;
     metrics_reach_t reach;
+    /* the speed after the event of a motion scenario: settling into its band, and the largest
+     * error once it first came within the band (the load step's dip, the reversal's overshoot) */
+    bool track_speed, speed_reached;
+    metrics_settle_t speed_settle;
+    double speed_peak_error;
     double *block; /* one allocation holds every array */
 } sim_metrics_t;
 
@@ -41,6 +46,8 @@ void sim_metrics_close(sim_metrics_t *m);
  * (acceleration, reversal), or the period-average torque first reaching level (load step). */
 void sim_metrics_track_settle(sim_metrics_t *m, double t_event, double target, double tol);
 void sim_metrics_track_reach(sim_metrics_t *m, double t_event, double level);
+/* The speed after t_event against target within tol (every motion scenario). */
+void sim_metrics_track_speed(sim_metrics_t *m, double t_event, double target, double tol);
 
 void sim_metrics_add_fine(sim_metrics_t *m, const sim_fine_row_t *row, const double i_phase[6]);
 void sim_metrics_add_period(sim_metrics_t *m, const sim_trace_row_t *row, bool in_window);

@@ -78,6 +78,7 @@ void sim_result_fill(sim_run_t *rs, sim_result_t *r)
         r->wall_s = rs->wall1_s - rs->wall0_s;
         r->realtime_factor = (r->wall_s > 0.0) ? r->duration_s / r->wall_s : 0.0;
         r->thd_percent = r->thd50_percent = r->transient_ms = -1.0;
+        r->speed_settle_ms = r->speed_peak_error_rpm = -1.0;
         return;
     }
     r->wall_s = rs->wall1_s - rs->wall0_s;

@@ -189,6 +189,16 @@ static void test_transients_in_bands(void **state)
         assert_true(v.transient_ms >= 220.0 && v.transient_ms <= 380.0);
         run_case(ctl, 0, SIM_SCEN_LOAD_STEP, 100.0, &l);
         assert_true(l.transient_ms >= 1.0 && l.transient_ms <= 40.0);
+        /* the speed's own transient (issue 27): the load step's dip and its recovery, the
+         * reversal's overshoot beyond -800 r/min and its settling (the DDC's; MPTC-49 on the
+         * board's clipping sensors dips further and may not settle in the run) */
+        assert_true(l.speed_peak_error_rpm > 5.0);
+        assert_true(v.speed_settle_ms >= v.transient_ms - 1e-9);
+        if (ctl == 0) {
+            assert_true(l.speed_peak_error_rpm < 100.0);
+            assert_true(l.speed_settle_ms >= 0.0 && l.speed_settle_ms < 100.0);
+            assert_true(v.speed_peak_error_rpm >= 0.0 && v.speed_peak_error_rpm < 80.0);
+        }
     }
 }
 
