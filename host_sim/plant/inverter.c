@@ -30,6 +30,7 @@ void inverter_init(inverter_t *inv, const plant_params_t *p, double ts)
     inv->off = true;
     inv->counting = false;
     inv->transitions = 0u;
+    inv->switched_amps = 0.0;
     inv->intervals = 0;
     for (st = 0u; st < 64u; st++) {
         plant_vector_voltage(st, 1.0, inv->u_table[st]);
@@ -243,6 +244,22 @@ static unsigned inv_effective_legs(unsigned nominal, unsigned dead, const plant_
     return eff;
 }
 
+/* The phase currents' magnitudes summed over the legs that switch (the switching loss's
+ * measure: each transition's energy grows with the current it commutates). */
+static double inv_switched_current(const plant_state_t *s, unsigned changed)
+{
+    const double i_alpha = s->i_d * s->cos_e - s->i_q * s->sin_e;
+    const double i_beta = s->i_d * s->sin_e + s->i_q * s->cos_e;
+    double sum = 0.0;
+    int k;
+    for (k = 0; k < PLANT_PHASES; k++) {
+        if ((changed & INV_LEG_BIT(k)) != 0u) {
+            sum += fabs(inv_phase_current(s, k, i_alpha, i_beta));
+        }
+    }
+    return sum;
+}
+
 /* An interval's start: the effective legs (returned), the transition count, the caller's
  * sample. */
 static INV_INLINE unsigned inv_interval_start(inverter_t *inv, plant_state_t *s,
@@ -250,8 +267,9 @@ static INV_INLINE unsigned inv_interval_start(inverter_t *inv, plant_state_t *s,
 {
     const unsigned eff =
         (iv->dead != 0u) ? inv_effective_legs(iv->nominal, iv->dead, s) : iv->nominal;
-    if (inv->counting) {
+    if (inv->counting && eff != inv->eff) {
         inv->transitions += popcount6(eff ^ inv->eff);
+        inv->switched_amps += inv_switched_current(s, eff ^ inv->eff);
     }
     inv->eff = eff;
     if (iv->sample && smp->cb != 0) {

@@ -41,6 +41,7 @@ typedef struct {
     bool off;                      /* outputs forced off in the last period */
     bool counting;                 /* count effective transitions */
     uint64_t transitions;          /* effective leg transitions while counting */
+    double switched_amps;          /* sum of |phase current| over those transitions, A */
     double u_table[64][4];         /* per-unit-of-Vdc VSD voltage of each state */
     double u_vdc[64][4];           /* u_table times the DC link voltage u_vdc_of */
     double u_vdc_of;               /* the voltage u_vdc was built for (V) */

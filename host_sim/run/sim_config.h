@@ -157,6 +157,8 @@ typedef struct {
     double xy_current_rms_a;
     double phase_current_rms_a; /* six-phase mean, without DC */
     double switching_freq_hz;
+    /* the inverter's semiconductor losses over the window, estimated (plant/inverter_loss.h) */
+    double switching_loss_w, inverter_loss_w;
     double phase_current_peak_a; /* max |i| of the six phases at the control samples, analysis
                                     window */
     long adc_clipped;    /* phase-current conversions at 0 or 4095 counts (sensor range +-20 A) */

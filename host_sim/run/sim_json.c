@@ -149,6 +149,8 @@ static void sim_print_results_json(FILE *f, const sim_config_t *c, const sim_res
     json_num(f, "xy_current_rms_a", r->xy_current_rms_a, true);
     json_num(f, "phase_current_rms_a", r->phase_current_rms_a, true);
     json_num(f, "switching_freq_hz", r->switching_freq_hz, true);
+    json_num(f, "switching_loss_w", r->switching_loss_w, true);
+    json_num(f, "inverter_loss_w", r->inverter_loss_w, true);
     json_num(f, "phase_current_peak_a", r->phase_current_peak_a, true);
     fprintf(f, "  \"adc_clipped_samples\": %ld,\n", r->adc_clipped);
     json_num(f, "transient_ms", json_or_null(r->transient_ms), true);

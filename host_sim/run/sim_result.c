@@ -1,6 +1,7 @@
 /* A finished run's result record, see sim_run_state.h. */
 #include <stdio.h>
 
+#include "plant/inverter_loss.h"
 #include "sim_open_phase.h"
 #include "sim_run_state.h"
 
@@ -88,5 +89,8 @@ void sim_result_fill(sim_run_t *rs, sim_result_t *r)
     r->switching_freq_hz =
         (double)rs->inv.transitions / 2.0 / 6.0 / (r->window_end_s - r->window_start_s);
     sim_metrics_finish(&rs->metrics, r);
+    r->switching_loss_w = inv_loss_switching_w(rs->inv.switched_amps, rs->cfg->plant.vdc_v,
+                                               r->window_end_s - r->window_start_s);
+    r->inverter_loss_w = inv_loss_conduction_w(r->phase_current_rms_a) + r->switching_loss_w;
     sim_open_phase_finish(rs, r);
 }
