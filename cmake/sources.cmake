@@ -28,29 +28,29 @@ set(SIXPHASE_CTL_SOURCES
 # Commissioning, the motor identification: the drive's side, the sequence, its steps, their
 # excitation and statistics (the tests build from this list too).
 set(SIXPHASE_COMMISSION_SOURCES
-    firmware/app/drive_commission.c
-    firmware/app/commission.c
-    firmware/app/ident_ctx.c
-    firmware/app/ident_excite.c
-    firmware/app/ident_stats.c
-    firmware/app/ident_phase.c
-    firmware/app/ident_encoder.c
-    firmware/app/ident_resistance.c
-    firmware/app/ident_inductance.c
-    firmware/app/ident_flux.c
-    firmware/app/ident_mech.c
-    firmware/app/ident_xy_harmonics.c)
+    firmware/app/drive/drive_commission.c
+    firmware/app/commission/commission.c
+    firmware/app/commission/ident_ctx.c
+    firmware/app/commission/ident_excite.c
+    firmware/app/commission/ident_stats.c
+    firmware/app/commission/ident_phase.c
+    firmware/app/commission/ident_encoder.c
+    firmware/app/commission/ident_resistance.c
+    firmware/app/commission/ident_inductance.c
+    firmware/app/commission/ident_flux.c
+    firmware/app/commission/ident_mech.c
+    firmware/app/commission/ident_xy_harmonics.c)
 
 # Drive application: control ISR body, state machine, stage profiler, capture, and the
 # commissioning above.
 set(SIXPHASE_DRIVE_SOURCES
-    firmware/app/drive.c
-    firmware/app/drive_open_phase.c
-    firmware/app/drive_background.c
-    firmware/app/drive_capture.c
-    firmware/app/capture.c
-    firmware/app/profile.c
-    firmware/app/stack_watch.c
+    firmware/app/drive/drive.c
+    firmware/app/drive/drive_open_phase.c
+    firmware/app/drive/drive_background.c
+    firmware/app/drive/drive_capture.c
+    firmware/app/capture/capture.c
+    firmware/app/measure/profile.c
+    firmware/app/measure/stack_watch.c
     ${SIXPHASE_COMMISSION_SOURCES})
 
 # Serial protocol framing shared by the firmware and the host tool.
@@ -62,8 +62,8 @@ set(SIXPHASE_SXLINK_NAMES_SOURCES
 
 # Serial commands of the drive.
 set(SIXPHASE_DRIVE_LINK_SOURCES
-    firmware/app/drive_link.c
-    firmware/app/link_service.c)
+    firmware/app/service/drive_link.c
+    firmware/app/service/link_service.c)
 
 # F28335 register-level HAL.
 set(SIXPHASE_HAL_F28335_SOURCES

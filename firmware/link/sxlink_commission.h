@@ -7,7 +7,7 @@
 #ifndef SXLINK_COMMISSION_H
 #define SXLINK_COMMISSION_H
 
-#include "commission_lists.h"
+#include "lists/commission_lists.h"
 
 /* The application's lists (commission_lists.h) under the link's names. */
 #define SXL_COMM_CURRENT_DEFAULT_PERMILLE COMM_CURRENT_DEFAULT_PERMILLE

@@ -5,7 +5,7 @@
 #ifndef SXLINK_FAULTS_H
 #define SXLINK_FAULTS_H
 
-#include "drive_faults.h"
+#include "lists/drive_faults.h"
 
 #define SXL_FAULT_LIST(X) DRIVE_FAULT_LIST(X)
 #define SXL_FAULT_CODE_COUNT DRIVE_FAULT_CODE_COUNT

@@ -8,7 +8,7 @@
 
 #include <stdint.h>
 
-#include "drive_states.h"
+#include "lists/drive_states.h"
 
 #define SXL_STATE_LIST(X) DRIVE_STATE_LIST(X)
 #define SXL_RUN_REFUSAL_LIST(X) DRIVE_RUN_REFUSAL_LIST(X)

@@ -13,7 +13,7 @@
 
 #include <cmocka.h>
 
-#include "capture.h"
+#include "capture/capture.h"
 
 static capture_t cap;
 

@@ -16,8 +16,8 @@
 #include "hal_board.h"
 
 #include "ctl_pu.h"
-#include "drive.h"
-#include "drive_commission.h"
+#include "drive/drive.h"
+#include "drive/drive_commission.h"
 #include "drive_fixture.h"
 
 static drive_t d;

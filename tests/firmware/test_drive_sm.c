@@ -9,8 +9,8 @@
 #include "hal_board.h"
 
 #include "ctl_pu.h"
-#include "drive.h"
-#include "drive_open_phase.h"
+#include "drive/drive.h"
+#include "drive/drive_open_phase.h"
 #include "drive_fixture.h"
 #include "test_support.h"
 #include "vsd_reference.h"

@@ -12,8 +12,8 @@
 
 #include <cmocka.h>
 
-#include "ident_excite.h"
-#include "ident_stats.h"
+#include "commission/ident_excite.h"
+#include "commission/ident_stats.h"
 
 /* Half a million samples of a large mean with a small alternating part: the block mean keeps
  * the small part (a float running sum would have lost it), and the spread of the blocks is

@@ -21,9 +21,9 @@
 
 #include "hal_board.h"
 
-#include "ident.h"
-#include "ident_inductance.h"
-#include "ident_xy_harmonics.h"
+#include "commission/ident.h"
+#include "commission/ident_inductance.h"
+#include "commission/ident_xy_harmonics.h"
 
 #define TS (1.0 / HAL_BOARD_PWM_HZ) /* the board's control period */
 #define CPE 3333.3333 /* counts per electrical turn: 10,000 lines x 4 / 3 pole pairs / 4 */

@@ -9,7 +9,7 @@
 
 #include "ctl.h"
 #include "hal_cycles.h"
-#include "profile.h"
+#include "measure/profile.h"
 #include "test_rng.h"
 
 /* Each reading advances the counter by `step`, plus `extra` once when armed. */

@@ -7,7 +7,7 @@
 
 #include <cmocka.h>
 
-#include "stack_watch.h"
+#include "measure/stack_watch.h"
 
 #define WORDS 64u
 

@@ -8,7 +8,7 @@
 
 #include <stdint.h>
 
-#include "drive.h"
+#include "drive/drive.h"
 #include "mock_hal_ctl.h"
 
 /* Called before each period fixture_run_isr runs, to set the ADC words (mock_adc); NULL (the
