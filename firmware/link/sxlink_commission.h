@@ -1,7 +1,7 @@
 /*
  * Commissioning on the link (docs/commissioning.md, docs/serial-protocol.md): the application's
- * lists (firmware/app/commission_lists.h: steps, quantities, qualities, reasons, states) under
- * the link's names, their numbers by name for host programs, and the commands' payloads. The
+ * lists (firmware/app/lists/commission_lists.h: steps, quantities, qualities, reasons, states)
+ * under the link's names, their numbers by name for host programs, and the commands' payloads. The
  * protocol's name tables and the host tool's printing come from these lists.
  */
 #ifndef SXLINK_COMMISSION_H

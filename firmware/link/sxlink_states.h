@@ -1,7 +1,7 @@
 /*
  * The drive's states and run refusals on the link: the application's lists
- * (firmware/app/drive_states.h), numbered as the wire carries them and named as the tools print
- * them (sxlink_names.c).
+ * (firmware/app/lists/drive_states.h), numbered as the wire carries them and named as the tools
+ * print them (sxlink_names.c).
  */
 #ifndef SXLINK_STATES_H
 #define SXLINK_STATES_H

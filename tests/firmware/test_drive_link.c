@@ -1,4 +1,4 @@
-/* Serial commands of the drive (firmware/app/drive_link.c), mocked HAL/core. */
+/* Serial commands of the drive (firmware/app/service/drive_link.c), mocked HAL/core. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>

@@ -1,4 +1,4 @@
-/* Drive state machine (firmware/app/drive.c) against the mocked HAL and core. */
+/* Drive state machine (firmware/app/drive/drive.c) against the mocked HAL and core. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>

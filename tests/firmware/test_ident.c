@@ -1,6 +1,6 @@
 /*
- * The identification's building blocks (firmware/app/ident_excite.c, ident_stats.c): block
- * statistics keep their precision over many samples and give the standard error; the VSD and
+ * The identification's building blocks (firmware/app/commission/ident_excite.c, ident_stats.c):
+ * block statistics keep their precision over many samples and give the standard error; the VSD and
  * its inverse are one another's inverse; the modulator's duties; the commanded angle's ramp;
  * the regulator's hold and its conditional integration at the voltage limit.
  */

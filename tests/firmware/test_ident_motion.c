@@ -1,6 +1,6 @@
 /*
- * The identification's judgement of rotor motion (firmware/app/ident_inductance.c) and its x-y
- * harmonic regulator (ident_xy_harmonics.c), each against a small model written here: the
+ * The identification's judgement of rotor motion (firmware/app/commission/ident_inductance.c) and
+ * its x-y harmonic regulator (ident_xy_harmonics.c), each against a small model written here: the
  * machine at standstill in its rotor frame (R, L_d, L_q, L_xy, the magnet's back-EMF), the rotor's
  * angle imposed by the test, the voltage computed in period k acting over period k + 1 (from
  * its end: the PWM takes it at the next period's start).
