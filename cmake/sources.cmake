@@ -25,32 +25,33 @@ set(SIXPHASE_CTL_SOURCES
     control/src/ctl.c
     control/src/ctl_step.c)
 
-# Commissioning, the motor identification: the drive's side, the sequence, its steps, their
-# excitation and statistics (the tests build from this list too).
+# Commissioning, the motor identification: the drive's side (drive/), the sequence, its steps,
+# their excitation and statistics (commission/). The tests build from this list too.
 set(SIXPHASE_COMMISSION_SOURCES
-    firmware/app/drive_commission.c
-    firmware/app/commission.c
-    firmware/app/ident_ctx.c
-    firmware/app/ident_excite.c
-    firmware/app/ident_stats.c
-    firmware/app/ident_phase.c
-    firmware/app/ident_encoder.c
-    firmware/app/ident_resistance.c
-    firmware/app/ident_inductance.c
-    firmware/app/ident_flux.c
-    firmware/app/ident_mech.c
-    firmware/app/ident_xy_harmonics.c)
+    firmware/app/drive/drive_commission.c
+    firmware/app/commission/commission.c
+    firmware/app/commission/ident_ctx.c
+    firmware/app/commission/ident_excite.c
+    firmware/app/commission/ident_stats.c
+    firmware/app/commission/ident_phase.c
+    firmware/app/commission/ident_encoder.c
+    firmware/app/commission/ident_resistance.c
+    firmware/app/commission/ident_inductance.c
+    firmware/app/commission/ident_flux.c
+    firmware/app/commission/ident_mech.c
+    firmware/app/commission/ident_xy_harmonics.c)
 
-# Drive application: control ISR body, state machine, stage profiler, capture, and the
-# commissioning above.
+# Drive application (firmware/app, a folder per concept): control ISR body, state machine
+# (drive/), capture (capture/), stage profiler and stack watch (measure/), and the
+# commissioning above. The drive's tests build from this list with the HAL and core mocked.
 set(SIXPHASE_DRIVE_SOURCES
-    firmware/app/drive.c
-    firmware/app/drive_open_phase.c
-    firmware/app/drive_background.c
-    firmware/app/drive_capture.c
-    firmware/app/capture.c
-    firmware/app/profile.c
-    firmware/app/stack_watch.c
+    firmware/app/drive/drive.c
+    firmware/app/drive/drive_open_phase.c
+    firmware/app/drive/drive_background.c
+    firmware/app/drive/drive_capture.c
+    firmware/app/capture/capture.c
+    firmware/app/measure/profile.c
+    firmware/app/measure/stack_watch.c
     ${SIXPHASE_COMMISSION_SOURCES})
 
 # Serial protocol framing shared by the firmware and the host tool.
@@ -60,10 +61,10 @@ set(SIXPHASE_SXLINK_SOURCES
 set(SIXPHASE_SXLINK_NAMES_SOURCES
     firmware/link/sxlink_names.c)
 
-# Serial commands of the drive.
+# Serial commands of the drive and the background loop's link service (service/).
 set(SIXPHASE_DRIVE_LINK_SOURCES
-    firmware/app/drive_link.c
-    firmware/app/link_service.c)
+    firmware/app/service/drive_link.c
+    firmware/app/service/link_service.c)
 
 # F28335 register-level HAL.
 set(SIXPHASE_HAL_F28335_SOURCES
@@ -89,11 +90,17 @@ set(SIXPHASE_FW_F28335_SOURCES
 set(SIXPHASE_FW_F28335_ASM_SOURCES
     firmware/f28335/codestart.asm)
 
+# Include directories of the drive application: the one root of firmware/app's folders (an
+# include names the folder, "drive/drive.h"; firmware/app/README.md) and the protocol's lists
+# the application shares (firmware/link). The host libraries and the tests take them from here.
+set(SIXPHASE_APP_INCLUDE_DIRS
+    firmware/app
+    firmware/link)
+
 # Include directories of the target image.
 set(SIXPHASE_TARGET_INCLUDE_DIRS
     firmware/f28335
-    firmware/app
-    firmware/link
+    ${SIXPHASE_APP_INCLUDE_DIRS}
     hal/include
     hal/f28335/include
     hal/f28335/src
@@ -120,6 +127,27 @@ function(sixphase_sources out)
     foreach(f ${${list_var}})
       list(APPEND result ${SIXPHASE_REPO_ROOT}/${f})
     endforeach()
+  endforeach()
+  set(${out} ${result} PARENT_SCOPE)
+endfunction()
+
+# sixphase_sources_pick(<out_var> <list_var> <file name>...): absolute paths of the named files of
+# one list (a unit test's share of it, by file name); a name the list does not hold stops the
+# configuration, so a test cannot build a file the product no longer does.
+function(sixphase_sources_pick out list_var)
+  set(result)
+  foreach(name ${ARGN})
+    set(found)
+    foreach(f ${${list_var}})
+      get_filename_component(base ${f} NAME)
+      if(base STREQUAL name)
+        set(found ${SIXPHASE_REPO_ROOT}/${f})
+      endif()
+    endforeach()
+    if(NOT found)
+      message(FATAL_ERROR "sixphase_sources_pick: ${name} is not in ${list_var} (cmake/sources.cmake)")
+    endif()
+    list(APPEND result ${found})
   endforeach()
   set(${out} ${result} PARENT_SCOPE)
 endfunction()

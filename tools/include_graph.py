@@ -25,7 +25,8 @@ import re
 import sys
 
 # The include folders of the build (CMakeLists.txt files), in the order a compiler sees them;
-# host_sim's folders are reached from host_sim itself ("plant/plant.h").
+# host_sim's and firmware/app's folders are reached from host_sim and firmware/app themselves
+# ("plant/plant.h", "drive/drive.h").
 DEFAULT_INCLUDES = ["control/include", "control/platform", "control/src", "hal/include",
                     "hal/sim", "hal/f28335/include", "firmware/app", "firmware/link",
                     "firmware/tools", "firmware/f28335", "host_sim", "tools/bench"]

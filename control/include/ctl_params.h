@@ -59,7 +59,7 @@ typedef struct {
     int16_t pole_pairs;
     int16_t open_phase;  /* open-phase operation (docs/design.md): the phase (0..5, A..F) that
                           * carries no current, -1 when all six do; the drive sets it when it
-                          * isolates a leg (firmware/app/drive.h). (Beside pole_pairs: the two
+                          * isolates a leg (firmware/app/drive/drive.h). (Beside pole_pairs: the two
                           * 16-bit fields keep the set's size and the healthy step's code.) */
     float inertia_kg_m2; /* used by the protection's stopped-encoder check */
     /* control */

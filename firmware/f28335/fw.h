@@ -10,10 +10,10 @@
 #include <stdbool.h>
 #include <stdint.h>
 
-#include "drive.h"
+#include "drive/drive.h"
 #include "f28335_hal.h"
 #include "hal_board.h"
-#include "link_service.h"
+#include "service/link_service.h"
 #include "sxlink.h"
 
 #define FW_PWM_HZ HAL_BOARD_PWM_HZ

@@ -1,5 +1,5 @@
 /*
- * Background loop: services the watchdog, the serial link (firmware/app/link_service.c,
+ * Background loop: services the watchdog, the serial link (firmware/app/service/link_service.c,
  * the same service the virtual board runs) and the drive's background share (drive_background).
  */
 #include "fw.h"

@@ -14,8 +14,8 @@
 #include <stdint.h>
 
 #include "fw.h"
-#include "profile.h"
-#include "stack_watch.h"
+#include "measure/profile.h"
+#include "measure/stack_watch.h"
 #include "hal_adc.h"
 #include "hal_cycles.h"
 #include "hal_encoder.h"

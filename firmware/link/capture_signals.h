@@ -1,6 +1,6 @@
 /*
  * The signals the drive's capture buffer can record: one list, shared by the firmware
- * (firmware/app/capture.c), the serial protocol and the host tool (sixphase-link capture).
+ * (firmware/app/capture/capture.c), the serial protocol and the host tool (sixphase-link capture).
  *
  * X(id, name, unit, base, exponent): a sample is the signal in per unit of `base` (SI units
  * per unit) scaled by 2^(15 - exponent) into a signed 16-bit word, so |value| < 2^exponent

@@ -1,7 +1,7 @@
 /*
  * The commands of the serial link, one list: X(NAME, code, handler, armed, REQUEST, REPLY, notes).
  *   NAME     SXL_CMD_<NAME> is the code
- *   handler  the drive's handler is on_<handler> (firmware/app/drive_link.c)
+ *   handler  the drive's handler is on_<handler> (firmware/app/service/drive_link.c)
  *   armed    1: moves the motor, taken only with the armed session's token in front of the
  *            request (SXL_TOKEN_BYTES, uint32 little-endian)
  *   REQUEST  the request payload's field list (sxlink_payloads.h; SXL_NONE: none): its size is

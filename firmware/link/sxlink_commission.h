@@ -1,13 +1,13 @@
 /*
  * Commissioning on the link (docs/commissioning.md, docs/serial-protocol.md): the application's
- * lists (firmware/app/commission_lists.h: steps, quantities, qualities, reasons, states) under
- * the link's names, their numbers by name for host programs, and the commands' payloads. The
+ * lists (firmware/app/lists/commission_lists.h: steps, quantities, qualities, reasons, states)
+ * under the link's names, their numbers by name for host programs, and the commands' payloads. The
  * protocol's name tables and the host tool's printing come from these lists.
  */
 #ifndef SXLINK_COMMISSION_H
 #define SXLINK_COMMISSION_H
 
-#include "commission_lists.h"
+#include "lists/commission_lists.h"
 
 /* The application's lists (commission_lists.h) under the link's names. */
 #define SXL_COMM_CURRENT_DEFAULT_PERMILLE COMM_CURRENT_DEFAULT_PERMILLE

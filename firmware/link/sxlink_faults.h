@@ -1,11 +1,11 @@
 /*
- * The faults on the link: the drive's one list (firmware/app/drive_faults.h), its codes and bit
- * numbers as the wire carries them and the tools name them (sxlink_names.c).
+ * The faults on the link: the drive's one list (firmware/app/lists/drive_faults.h), its codes and
+ * bit numbers as the wire carries them and the tools name them (sxlink_names.c).
  */
 #ifndef SXLINK_FAULTS_H
 #define SXLINK_FAULTS_H
 
-#include "drive_faults.h"
+#include "lists/drive_faults.h"
 
 #define SXL_FAULT_LIST(X) DRIVE_FAULT_LIST(X)
 #define SXL_FAULT_CODE_COUNT DRIVE_FAULT_CODE_COUNT

@@ -81,7 +81,8 @@ enum {
 };
 #define SXL_STACK_NOT_MEASURED 0u /* SXL_ST_STACK_WORDS of a platform that does not paint it */
 
-/* GET_PROFILE request, and its reply in cycles of the ISR's counter (firmware/app/profile.h). */
+/* GET_PROFILE request, and its reply in cycles of the ISR's counter
+ * (firmware/app/measure/profile.h). */
 #define SXL_PQ_FIELDS(X) X(SXL_PQ_STAGE, U8, 1, "stage, 0 .. 7")
 enum { SXL_PQ_FIELDS(SXL_PAYLOAD_OFFSET) SXL_PQ_SIZE };
 #define SXL_PF_FIELDS(X)                                                                           \

@@ -9,11 +9,11 @@
 
 #include "ctl.h"
 #include "ctl_pu.h"
-#include "drive.h"
-#include "drive_commission.h"
+#include "drive/drive.h"
+#include "drive/drive_commission.h"
 #include "hal_cycles.h"
-#include "link_service.h"
-#include "profile.h"
+#include "service/link_service.h"
+#include "measure/profile.h"
 #include "sim_ctl.h"
 
 #if SIM_BRIDGE_FLOAT

@@ -106,7 +106,7 @@ typedef struct {
     void (*report_overrun)(void); /* the platform's overrun detection fired */
     /* oldest unread fault record: 1 and removed from the log, or 0 when the log is empty */
     int (*read_fault_record)(sim_fault_record_t *r);
-    /* the background loop's serial link (firmware/app/link_service.c) over hal_serial:
+    /* the background loop's serial link (firmware/app/service/link_service.c) over hal_serial:
      * link_init once after init, link_step as often as the background loop would run */
     void (*link_init)(double gap_s); /* gap_s: host seconds after which a partial frame is
                                       * dropped (20 ms of the line's time, at the pacing rate) */

@@ -3,7 +3,7 @@
 
 #include <string.h>
 
-#include "drive.h"
+#include "drive/drive.h"
 
 /* Injection magnitudes: each well past its threshold (docs/faults.md), none absurd. */
 #define FAULT_OVERVOLTAGE_V 760.0    /* regenerative surge, limit 720 V */

@@ -4,7 +4,7 @@
 #include <math.h>
 
 #include "plant/sim_rng.h"
-#include "commission.h"
+#include "commission/commission.h"
 
 /* Speeds, load, length and window of each scenario (docs/simulator.md, Scenarios). */
 static void sim_plan_scenario(const sim_config_t *c, sim_plan_t *pl)

@@ -1,7 +1,7 @@
 /*
  * `sixphase-sim serve`: the virtual board. The firmware application runs as on the board -
  * the drive's control ISR every period against the plant, and the background loop's serial
- * link (firmware/app/link_service.c) - with the SCI modelled at its baud rate (10 bits per
+ * link (firmware/app/service/link_service.c) - with the SCI modelled at its baud rate (10 bits per
  * byte, 16-byte FIFOs) and its line connected to a pseudo-terminal, whose path is printed on
  * stdout. sixphase-link talks to it as to a board (`sixphase-link --port PATH ...`).
  *

@@ -1,5 +1,5 @@
 /*
- * The capture buffer (firmware/app/capture.c) on synthetic signals: the immediate trigger
+ * The capture buffer (firmware/app/capture/capture.c) on synthetic signals: the immediate trigger
  * records from the next period; a rising or falling level trigger keeps the pre-trigger share
  * before the crossing and the rest after it, samples in order; decimation keeps every Nth
  * period; the fault trigger freezes the last samples before a trip (post-mortem), also when
@@ -13,7 +13,7 @@
 
 #include <cmocka.h>
 
-#include "capture.h"
+#include "capture/capture.h"
 
 static capture_t cap;
 

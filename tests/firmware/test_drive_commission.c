@@ -1,5 +1,5 @@
 /*
- * The drive's COMMISSION state and the phase check before RUN (firmware/app/drive.c,
+ * The drive's COMMISSION state and the phase check before RUN (firmware/app/drive/drive.c,
  * drive_commission.c), against the mocked HAL and core of test_drive_sm: entered from READY
  * only, by a request that is checked; refused elsewhere, below the under-voltage limit and
  * with an encoder error; left to READY (outputs off) on stop, to FAULT on a protection trip;
@@ -16,8 +16,8 @@
 #include "hal_board.h"
 
 #include "ctl_pu.h"
-#include "drive.h"
-#include "drive_commission.h"
+#include "drive/drive.h"
+#include "drive/drive_commission.h"
 #include "drive_fixture.h"
 
 static drive_t d;

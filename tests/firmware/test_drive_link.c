@@ -1,4 +1,4 @@
-/* Serial commands of the drive (firmware/app/drive_link.c), mocked HAL/core. */
+/* Serial commands of the drive (firmware/app/service/drive_link.c), mocked HAL/core. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -8,9 +8,9 @@
 #include <cmocka.h>
 
 #include "ctl_pu.h"
-#include "drive_link.h"
-#include "profile.h"
-#include "stack_watch.h"
+#include "service/drive_link.h"
+#include "measure/profile.h"
+#include "measure/stack_watch.h"
 #include "drive_fixture.h"
 
 static drive_t d;

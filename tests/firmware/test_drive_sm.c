@@ -1,4 +1,4 @@
-/* Drive state machine (firmware/app/drive.c) against the mocked HAL and core. */
+/* Drive state machine (firmware/app/drive/drive.c) against the mocked HAL and core. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -9,8 +9,8 @@
 #include "hal_board.h"
 
 #include "ctl_pu.h"
-#include "drive.h"
-#include "drive_open_phase.h"
+#include "drive/drive.h"
+#include "drive/drive_open_phase.h"
 #include "drive_fixture.h"
 #include "test_support.h"
 #include "vsd_reference.h"

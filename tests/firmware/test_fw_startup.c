@@ -12,8 +12,8 @@
 
 #include "ctl_pu.h"
 #include "fw.h"
-#include "profile.h"
-#include "stack_watch.h"
+#include "measure/profile.h"
+#include "measure/stack_watch.h"
 #include "test_support.h"
 
 #define R (f28335_host_regs)

@@ -1,6 +1,6 @@
 /*
- * The identification's building blocks (firmware/app/ident_excite.c, ident_stats.c): block
- * statistics keep their precision over many samples and give the standard error; the VSD and
+ * The identification's building blocks (firmware/app/commission/ident_excite.c, ident_stats.c):
+ * block statistics keep their precision over many samples and give the standard error; the VSD and
  * its inverse are one another's inverse; the modulator's duties; the commanded angle's ramp;
  * the regulator's hold and its conditional integration at the voltage limit.
  */
@@ -12,8 +12,8 @@
 
 #include <cmocka.h>
 
-#include "ident_excite.h"
-#include "ident_stats.h"
+#include "commission/ident_excite.h"
+#include "commission/ident_stats.h"
 
 /* Half a million samples of a large mean with a small alternating part: the block mean keeps
  * the small part (a float running sum would have lost it), and the spread of the blocks is

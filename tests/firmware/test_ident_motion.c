@@ -1,6 +1,6 @@
 /*
- * The identification's judgement of rotor motion (firmware/app/ident_inductance.c) and its x-y
- * harmonic regulator (ident_xy_harmonics.c), each against a small model written here: the
+ * The identification's judgement of rotor motion (firmware/app/commission/ident_inductance.c) and
+ * its x-y harmonic regulator (ident_xy_harmonics.c), each against a small model written here: the
  * machine at standstill in its rotor frame (R, L_d, L_q, L_xy, the magnet's back-EMF), the rotor's
  * angle imposed by the test, the voltage computed in period k acting over period k + 1 (from
  * its end: the PWM takes it at the next period's start).
@@ -21,9 +21,9 @@
 
 #include "hal_board.h"
 
-#include "ident.h"
-#include "ident_inductance.h"
-#include "ident_xy_harmonics.h"
+#include "commission/ident.h"
+#include "commission/ident_inductance.h"
+#include "commission/ident_xy_harmonics.h"
 
 #define TS (1.0 / HAL_BOARD_PWM_HZ) /* the board's control period */
 #define CPE 3333.3333 /* counts per electrical turn: 10,000 lines x 4 / 3 pole pairs / 4 */

@@ -1,4 +1,4 @@
-/* Stage profiler (firmware/app/profile.c) against a scripted cycle counter, and the control
+/* Stage profiler (firmware/app/measure/profile.c) against a scripted cycle counter, and the control
  * core's stage hook driving it through a real control step. */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -9,7 +9,7 @@
 
 #include "ctl.h"
 #include "hal_cycles.h"
-#include "profile.h"
+#include "measure/profile.h"
 #include "test_rng.h"
 
 /* Each reading advances the counter by `step`, plus `extra` once when armed. */

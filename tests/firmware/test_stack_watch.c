@@ -1,5 +1,5 @@
-/* The stack's paint and high-water mark (firmware/app/stack_watch.c) on a word array standing
- * for the C28x stack, which grows upward from its first word. */
+/* The stack's paint and high-water mark (firmware/app/measure/stack_watch.c) on a word array
+ * standing for the C28x stack, which grows upward from its first word. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -7,7 +7,7 @@
 
 #include <cmocka.h>
 
-#include "stack_watch.h"
+#include "measure/stack_watch.h"
 
 #define WORDS 64u
 

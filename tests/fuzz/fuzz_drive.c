@@ -31,8 +31,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "drive.h"
-#include "drive_link.h"
+#include "drive/drive.h"
+#include "service/drive_link.h"
 #include "hal_board.h"
 #include "hal_sim.h"
 #include "plant/fault_inject.h"
@@ -40,7 +40,7 @@
 #include "plant/plant.h"
 #include "plant/sim_adc.h"
 #include "plant/sim_encoder.h"
-#include "profile.h"
+#include "measure/profile.h"
 #include "sxlink.h"
 
 int LLVMFuzzerTestOneInput(const unsigned char *data, size_t size);

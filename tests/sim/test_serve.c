@@ -35,7 +35,7 @@
 #include <cmocka.h>
 
 #include "capture_signals.h"
-#include "drive.h"
+#include "drive/drive.h"
 #include "link_bytes.h"
 #include "sxlink.h"
 

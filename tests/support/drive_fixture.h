@@ -1,5 +1,5 @@
 /*
- * The drive application (firmware/app/drive.c) on the mocked HAL and control core
+ * The drive application (firmware/app/drive/drive.c) on the mocked HAL and control core
  * (mock_hal_ctl.h): a drive initialised with the default parameters, run period by period,
  * calibrated, or running. The test keeps its drive_t and passes it in. Include after cmocka.h.
  */
@@ -8,7 +8,7 @@
 
 #include <stdint.h>
 
-#include "drive.h"
+#include "drive/drive.h"
 #include "mock_hal_ctl.h"
 
 /* Called before each period fixture_run_isr runs, to set the ADC words (mock_adc); NULL (the

@@ -18,7 +18,7 @@
 #include "ident_excite.h"
 #include "ident_stats.h"
 #include "ident_xy_harmonics.h"
-#include "commission_lists.h"
+#include "lists/commission_lists.h"
 
 /* The lists of commission_lists.h as enums. */
 #define IDENT_ENUM_STEP(id, number, name, text) COMM_STEP_##id = number,

@@ -11,7 +11,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 
-#include "drive.h"
+#include "drive/drive.h"
 #include "sxlink.h"
 
 /* A platform's own commands, answered before the drive's: true when it filled reply. The board

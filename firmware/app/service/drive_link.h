@@ -9,7 +9,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 
-#include "drive.h"
+#include "drive/drive.h"
 #include "sxlink.h"
 
 #define DRIVE_LINK_MAX_SPEED_01RPM ((int32_t)SXL_SPEED_REF_MAX) /* |speed reference|, 0.1 r/min */

@@ -7,7 +7,7 @@
 #include "hal_board.h"
 #include "hal_cycles.h"
 #include "hal_pwm.h"
-#include "profile.h"
+#include "measure/profile.h"
 #include "sixphase_placement.h"
 
 /* The control core's fault bits are the fault list's (drive_faults.h). */

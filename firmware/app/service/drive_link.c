@@ -2,11 +2,11 @@
 
 #include "ctl_barrier.h"
 #include "ctl_pu.h"
-#include "drive_commission.h"
-#include "drive_open_phase.h"
+#include "drive/drive_commission.h"
+#include "drive/drive_open_phase.h"
 #include "hal_pwm.h"
-#include "profile.h"
-#include "stack_watch.h"
+#include "measure/profile.h"
+#include "measure/stack_watch.h"
 
 /* The link's numbers that are the drive's own, checked where both are visible (C99 has no
  * static_assert; a false condition gives an array of size -1). States, refusals and faults

@@ -11,14 +11,14 @@
 #include <stdbool.h>
 #include <stdint.h>
 
-#include "capture.h"
-#include "commission.h"
+#include "capture/capture.h"
+#include "commission/commission.h"
 #include "ctl.h"
 #include "ctl_protect.h"
 #include "hal_adc.h"
 #include "hal_encoder.h"
-#include "drive_faults.h"
-#include "drive_states.h"
+#include "lists/drive_faults.h"
+#include "lists/drive_states.h"
 
 #define DRIVE_CALIBRATION_SAMPLES 1024
 /* Offsets further than this from mid scale mean a broken sensor or front end. */
