@@ -15,7 +15,7 @@
 #include <cmocka.h>
 
 #include "drive_fixture.h"
-#include "drive_link.h"
+#include "service/drive_link.h"
 
 static drive_t d;
 
