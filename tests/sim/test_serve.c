@@ -69,7 +69,7 @@ static int request_frame(uint16_t cmd, const uint16_t *payload, uint16_t len, sx
 {
     uint16_t frame[SXL_MAX_FRAME];
     const uint16_t n = sxl_encode(cmd, payload, len, frame, (uint16_t)SXL_MAX_FRAME);
-    const double deadline = now_s() + 5.0; /* a loaded host may answer late */
+    const double deadline = now_s() + 15.0; /* a loaded host (CI beside other jobs) answers late */
     link_send_bytes(port, frame, n);
     while (now_s() < deadline) {
         struct pollfd p = {port, POLLIN, 0};
