@@ -22,7 +22,7 @@ void sim_cli_usage(FILE *f)
     fprintf(
         f,
         "usage:\n"
-        "  sixphase-sim run --controller {ddc,mptc49,mptc13} --scenario "
+        "  sixphase-sim run --controller {ddc,mptc49,mptc13,vvmptc} --scenario "
         "{steady,load-step,accel,reversal,commission,fault-<name>}\n"
         "                   [--lambda X] [--fs HZ] [--speed RPM] [--load NM] [--duration S]\n"
         "                   [--arith {fixed,float}] [--seed N] [--out DIR [--out-limit-mb MB]]\n"
