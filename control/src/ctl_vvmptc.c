@@ -11,12 +11,14 @@ CTL_RAMFUNC_FLOAT int16_t ctl_vvmptc_select(const ctl_horizon_t *h, int16_t vect
     out->vector = CTL_VV_NONE;
     out->torque = CTL_Q(0.0);
     out->flux = CTL_Q(0.0);
-    /* the zero candidate first (as MPTC's sets): no forced response */
-    ctl_choice_consider(h, CTL_Q(0.0), CTL_Q(0.0), CTL_VV_NONE, out);
-    for (k = 0; k < CTL_VV_COUNT; k++) {
-        ctl_q did;
-        ctl_q diq;
-        ctl_horizon_forced(h, &ctl_vv_vsd[k], &did, &diq);
+    /* the zero candidate first (as MPTC's sets, no forced response), then the virtual vectors;
+     * one call of the (inline) candidate test, so that it is inlined here */
+    for (k = CTL_VV_NONE; k < CTL_VV_COUNT; k++) {
+        ctl_q did = CTL_Q(0.0);
+        ctl_q diq = CTL_Q(0.0);
+        if (k != CTL_VV_NONE) {
+            ctl_horizon_forced(h, &ctl_vv_vsd[k], &did, &diq);
+        }
         ctl_choice_consider(h, did, diq, k, out);
     }
     k = out->vector;
