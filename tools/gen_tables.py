@@ -104,6 +104,8 @@ CONSTANTS = [
     ("CTL_K_TAN_30_DEG", math.tan(math.radians(30.0)), "tan 30 deg"),
     ("CTL_K_TAN_60_DEG", math.tan(math.radians(60.0)), "tan 60 deg"),
     ("CTL_K_TAN_75_DEG", math.tan(math.radians(75.0)), "tan 75 deg"),
+    ("CTL_K_VV_LARGE_SHARE", math.sqrt(3.0) - 1.0,
+     "sqrt(3) - 1: a virtual vector's large-vector share of the period (ctl_vvmptc.h)"),
 ]
 
 
@@ -116,6 +118,36 @@ def constants_header():
         out.append("#define %s %s /* %s */" % (name, q(value), what))
     out += ["", "#endif /* CTL_CONSTANTS_H */"]
     return "\n".join(out) + "\n"
+
+
+VV_LARGE_SHARE = math.sqrt(3.0) - 1.0  # G4 for this share of the period, G3 for the rest
+
+
+def virtual_vectors():
+    """The 12 virtual vectors, direction 15 + 30 k deg: (G4 state, G3 state, their average
+    VSD voltage with the G4 state for VV_LARGE_SHARE of the period). The two states' x-y
+    voltages point in opposite directions, 0.173 and 0.471 Vdc: the share cancels them."""
+    vv = []
+    for k in range(12):
+        large = state_at(4, 15.0 + 30.0 * k)
+        medium = state_at(3, 15.0 + 30.0 * k)
+        avg = [VV_LARGE_SHARE * a + (1.0 - VV_LARGE_SHARE) * b
+               for a, b in zip(VSD[large], VSD[medium])]
+        assert abs(avg[2]) < 1e-12 and abs(avg[3]) < 1e-12, (k, avg)
+        vv.append((large, medium, [0.0 if abs(c) < 1e-12 else c for c in avg]))
+    return vv
+
+
+def write_virtual_vectors(w):
+    vv = virtual_vectors()
+    w("SIXPHASE_RAMCONST const ctl_vsd_t ctl_vv_vsd[CTL_VV_COUNT] = {")
+    for k, (large, medium, (a, b, x, y)) in enumerate(vv):
+        w("    {%s, %s, %s, %s}, /* %d deg: u%02o + u%02o */" % (q(a), q(b), q(x), q(y),
+                                                              15 + 30 * k, large, medium))
+    w("};")
+    w("SIXPHASE_RAMCONST const int16_t ctl_vv_states[CTL_VV_COUNT][2] = {")
+    w("    " + ", ".join("{0%02o, 0%02o}" % (large, medium) for large, medium, _ in vv) + "};")
+    w("")
 
 
 def angdiff(a, b):
@@ -150,6 +182,7 @@ def main():
     assert len(c49) == 49, len(c49)
     c13 = [0] + [v for v in c49 if group(v) == 4]
     assert len(c13) == 13
+    write_virtual_vectors(w)
     w("SIXPHASE_RAMCONST const int16_t ctl_mptc49_vectors[CTL_MPTC49_CANDIDATES] = {")
     w("    " + ", ".join("0%02o" % v for v in c49) + "};")
     w("SIXPHASE_RAMCONST const int16_t ctl_mptc13_vectors[CTL_MPTC13_CANDIDATES] = {")

@@ -105,6 +105,9 @@ typedef struct {
     int16_t applied_vector; /* command in force during the current period */
     ctl_q applied_duty;
     int16_t applied_edges; /* its legs' states at the period boundary (S_A = bit 5) */
+    /* the virtual vector in force (VV-MPTC, 0..CTL_VV_COUNT - 1; applied_vector is then its
+     * large state, applied_duty 1), CTL_VV_NONE for a switching state with a duty */
+    int16_t applied_virtual;
     ctl_diag_t diag;
     ctl_stage_hook_t stage_hook; /* 0: none */
     /* the open-phase part of each configuration (ctl_postfault_config.h), built and taken with

@@ -16,5 +16,8 @@
 #define CTL_K_TAN_30_DEG CTL_QK(9686330, 0.57735026918962573f)   /* tan 30 deg */
 #define CTL_K_TAN_60_DEG CTL_QK(29058991, 1.7320508075688767f)   /* tan 60 deg */
 #define CTL_K_TAN_75_DEG CTL_QK(62613423, 3.7320508075688776f)   /* tan 75 deg */
+#define CTL_K_VV_LARGE_SHARE                                                                       \
+    CTL_QK(12281775, 0.73205080756887719f) /* sqrt(3) - 1: a virtual vector's large-vector share   \
+                                              of the period (ctl_vvmptc.h) */
 
 #endif /* CTL_CONSTANTS_H */

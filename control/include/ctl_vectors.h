@@ -20,6 +20,8 @@
 #define CTL_VECTOR_COUNT 64
 #define CTL_MPTC49_CANDIDATES 49
 #define CTL_MPTC13_CANDIDATES 13
+#define CTL_VV_COUNT 12  /* virtual vectors (ctl_vvmptc.h) */
+#define CTL_VV_NONE (-1) /* no virtual vector: a switching state with a duty */
 
 /* Voltage of every switching state, per unit of Vdc. */
 extern const ctl_vsd_t ctl_vector_vsd[CTL_VECTOR_COUNT];
@@ -27,6 +29,12 @@ extern const ctl_vsd_t ctl_vector_vsd[CTL_VECTOR_COUNT];
 /* Conventional MPTC candidate sets; the zero vector (state 0) is first. */
 extern const int16_t ctl_mptc49_vectors[CTL_MPTC49_CANDIDATES];
 extern const int16_t ctl_mptc13_vectors[CTL_MPTC13_CANDIDATES];
+
+/* The virtual vectors of VV-MPTC (ctl_vvmptc.h), direction 15 + 30 k deg: their period-average
+ * voltage per unit of Vdc (x-y zero), and their two states, [k][0] the G4 (large) state applied
+ * for CTL_K_VV_LARGE_SHARE of the period, [k][1] the G3 (medium-large) state for the rest. */
+extern const ctl_vsd_t ctl_vv_vsd[CTL_VV_COUNT];
+extern const int16_t ctl_vv_states[CTL_VV_COUNT][2];
 
 /* Upper switches on in each state (tools/gen_tables.py). */
 extern const int16_t ctl_vector_ones_table[CTL_VECTOR_COUNT];

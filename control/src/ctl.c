@@ -9,6 +9,7 @@
 #include "ctl_search.h"
 #include "ctl_vectors.h"
 #include "ctl_vsd.h"
+#include "ctl_vvmptc.h"
 #include "ctl_placement.h"
 
 SIXPHASE_RAMFUNC void ctl_reset(ctl_t *c)
@@ -22,6 +23,7 @@ SIXPHASE_RAMFUNC void ctl_reset_command(ctl_t *c)
     c->applied_vector = 0;
     c->applied_duty = CTL_Q(0.0);
     c->applied_edges = 0;
+    c->applied_virtual = CTL_VV_NONE;
 }
 
 /* The speed loop's gains follow the configuration in force; its integrator is kept across a
@@ -154,6 +156,29 @@ SIXPHASE_RAMFUNC static void command_from_choice(int16_t vector, ctl_q duty, con
     *edges = ctl_pulse_edges(kind, &p);
 }
 
+/* A virtual vector's command (ctl_vvmptc.h): each leg on for its share of the two states, the
+ * large state's for CTL_K_VV_LARGE_SHARE of the period and the medium-large state's for the
+ * rest, one pulse centred in the period. Within each three-phase set the two states' legs are
+ * nested (the one set's legs on in one state are on in the other), so each set applies its part
+ * of the one state in the middle and of the other at the edges, for exactly its share; the period
+ * average is the virtual vector's, x-y zero. The legs' states at the period boundary: those on
+ * in both states. */
+SIXPHASE_RAMFUNC static void command_from_virtual(int16_t k, ctl_cmd_t *cmd, int16_t *edges)
+{
+    int16_t leg;
+    const int16_t large = ctl_vv_states[k][0];
+    const int16_t medium = ctl_vv_states[k][1];
+    const ctl_q medium_share = ctl_sub(CTL_Q(1.0), CTL_K_VV_LARGE_SHARE);
+    for (leg = 0; leg < CTL_PHASES; leg++) {
+        const ctl_q on = (ctl_vector_leg(large, leg) != 0) ? CTL_K_VV_LARGE_SHARE : CTL_Q(0.0);
+        cmd->leg_duty[leg] = (ctl_vector_leg(medium, leg) != 0) ? ctl_add(on, medium_share) : on;
+    }
+    cmd->vector = large;
+    cmd->duty = CTL_Q(1.0);
+    cmd->enable = true;
+    *edges = (int16_t)(large & medium);
+}
+
 /* The sample angle advanced by delta (rad). For |delta| <= 0.5 rad (7 times rated speed at
  * 10 kHz) rotate its sine and cosine by short series of sin/cos delta (error < 2e-5 there,
  * < 1e-8 at rated speed); beyond that look the angle up again. */
@@ -196,7 +221,9 @@ SIXPHASE_RAMFUNC static void predict(const ctl_t *c, const ctl_config_t *cfg, co
                                      const ctl_sample_t *smp, ctl_horizon_t *h, ctl_q *ix1,
                                      ctl_q *iy1, ctl_q *id1, ctl_q *iq1)
 {
-    const ctl_vsd_t *applied = &ctl_vector_vsd[c->applied_vector];
+    const ctl_vsd_t *applied = (c->applied_virtual != CTL_VV_NONE)
+                                   ? &ctl_vv_vsd[c->applied_virtual]
+                                   : &ctl_vector_vsd[c->applied_vector];
     const ctl_q delta = ctl_mul(m->omega_e, cfg->model.ts); /* rotation over one period */
     ctl_vsd_t u0 = {CTL_Q(0.0), CTL_Q(0.0), CTL_Q(0.0), CTL_Q(0.0)};
     ctl_q ud0 = CTL_Q(0.0);
@@ -254,6 +281,7 @@ SIXPHASE_RAMFUNC void ctl_healthy_step(ctl_t *c, const ctl_meas_t *m, ctl_cmd_t 
     ctl_sample_t smp;
     ctl_horizon_t h;
     ctl_choice_t choice;
+    int16_t virtual_vector;
     ctl_q id1;
     ctl_q iq1;
     ctl_q ix1;
@@ -274,8 +302,12 @@ SIXPHASE_RAMFUNC void ctl_healthy_step(ctl_t *c, const ctl_meas_t *m, ctl_cmd_t 
     predict(c, cfg, m, &smp, &h, &ix1, &iy1, &id1, &iq1);
     CTL_STAGE_MARK(c->stage_hook, CTL_STAGE_PREDICT);
 
+    virtual_vector = CTL_VV_NONE;
     if (cfg->params.controller == CTL_CONTROLLER_DDC) {
         select_ddc(c, cfg, &h, id1, iq1, ix1, iy1, &choice);
+    } else if (cfg->params.controller == CTL_CONTROLLER_VVMPTC) {
+        CTL_STAGE_MARK(c->stage_hook, CTL_STAGE_TABLE); /* no tables: the stage is empty */
+        virtual_vector = ctl_vvmptc_select(&h, c->applied_vector, &choice);
     } else {
         const bool all = cfg->params.controller == CTL_CONTROLLER_MPTC49;
         CTL_STAGE_MARK(c->stage_hook, CTL_STAGE_TABLE); /* no tables: the stage is empty */
@@ -284,8 +316,13 @@ SIXPHASE_RAMFUNC void ctl_healthy_step(ctl_t *c, const ctl_meas_t *m, ctl_cmd_t 
                         &choice);
     }
 
-    command_from_choice(choice.vector, choice.duty, c, cfg->params.pulse_pattern, cmd,
-                        &c->applied_edges);
+    if (virtual_vector != CTL_VV_NONE) {
+        command_from_virtual(virtual_vector, cmd, &c->applied_edges);
+    } else {
+        command_from_choice(choice.vector, choice.duty, c, cfg->params.pulse_pattern, cmd,
+                            &c->applied_edges);
+    }
+    c->applied_virtual = virtual_vector;
     c->applied_vector = cmd->vector;
     c->applied_duty = cmd->duty;
     ctl_diag_record(&c->diag, cfg, smp.id, smp.iq, smp.vsd.x, smp.vsd.y, &h, &choice);

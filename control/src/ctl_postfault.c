@@ -81,7 +81,10 @@ static void pf_predict_k1(const ctl_t *c, const ctl_config_t *cfg, const ctl_mea
                           const pf_currents_t *i0, ctl_q s0, ctl_q c0, pf_horizon_t *p)
 {
     const ctl_model_t *mdl = &cfg->model;
-    const ctl_vsd_t *applied = &ctl_vector_vsd[c->applied_vector];
+    /* a virtual vector still in force when the phase opened (VV-MPTC's last healthy period) */
+    const ctl_vsd_t *applied = (c->applied_virtual != CTL_VV_NONE)
+                                   ? &ctl_vv_vsd[c->applied_virtual]
+                                   : &ctl_vector_vsd[c->applied_vector];
     const ctl_q delta = ctl_mul(m->omega_e, mdl->ts);
     const bool mid = cfg->params.mid_period_angle;
     ctl_vsd_t u0 = {CTL_Q(0.0), CTL_Q(0.0), CTL_Q(0.0), CTL_Q(0.0)};
@@ -331,6 +334,7 @@ static void pf_command(ctl_t *c, const ctl_config_t *cfg, const ctl_postfault_co
     c->applied_edges = ctl_pulse_edges(kind, &p);
     c->applied_vector = cmd->vector;
     c->applied_duty = cmd->duty;
+    c->applied_virtual = CTL_VV_NONE;
 }
 
 /* All switches off: no valid parameter set was ever in force. */

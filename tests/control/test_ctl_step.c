@@ -7,6 +7,7 @@
 #include <cmocka.h>
 
 #include "ctl.h"
+#include "ctl_constants.h"
 #include "ctl_pu.h"
 #include "ctl_vectors.h"
 #include "q24_exact.h" /* test_lcg_q */
@@ -252,21 +253,60 @@ static void check_command(const ctl_cmd_t *cmd)
     }
 }
 
+/* A virtual vector's command (VV-MPTC): reported as its large state with duty 1, each leg on for
+ * its share of the large and the medium-large state, and the period-average phase voltages of
+ * those leg duties (each set's mean removed: isolated neutrals) have no x-y part. */
+static void check_virtual_command(const ctl_cmd_t *cmd)
+{
+    const ctl_q medium_share = ctl_sub(CTL_Q(1.0), CTL_K_VV_LARGE_SHARE);
+    ctl_q v[6];
+    ctl_vsd_t u;
+    int16_t k = 0;
+    int16_t leg;
+    assert_true(cmd->enable);
+    assert_true(cmd->duty == CTL_Q(1.0));
+    while (k < CTL_VV_COUNT && ctl_vv_states[k][0] != cmd->vector) {
+        k++;
+    }
+    assert_true(k < CTL_VV_COUNT);
+    for (leg = 0; leg < 6; leg++) {
+        const bool in_large = ctl_vector_leg(ctl_vv_states[k][0], leg) != 0;
+        const bool in_medium = ctl_vector_leg(ctl_vv_states[k][1], leg) != 0;
+        const ctl_q want = ctl_add(in_large ? CTL_K_VV_LARGE_SHARE : CTL_Q(0.0),
+                                   in_medium ? medium_share : CTL_Q(0.0));
+        assert_true(cmd->leg_duty[leg] == want);
+    }
+    for (leg = 0; leg < 6; leg++) {
+        const int16_t first = (int16_t)(leg - leg % 3);
+        const ctl_q mean = ctl_mul(ctl_add(ctl_add(cmd->leg_duty[first], cmd->leg_duty[first + 1]),
+                                           cmd->leg_duty[first + 2]),
+                                   CTL_K_ONE_THIRD);
+        v[leg] = ctl_sub(cmd->leg_duty[leg], mean);
+    }
+    ctl_vsd_forward(v, &u);
+    assert_near((double)ctl_to_float(u.x), 0.0, 1e-6);
+    assert_near((double)ctl_to_float(u.y), 0.0, 1e-6);
+    assert_near((double)ctl_to_float(ctl_abs(u.alpha)) + (double)ctl_to_float(ctl_abs(u.beta)),
+                fabs((double)ctl_to_float(ctl_vv_vsd[k].alpha)) +
+                    fabs((double)ctl_to_float(ctl_vv_vsd[k].beta)),
+                1e-6);
+}
+
 /* Whatever the measurements (saturated currents, zero or negative DC link, any angle and
  * speed), every controller returns a valid command, whatever the pulse pattern. */
 static void test_command_invariants_for_any_input(void **state)
 {
-    static const ctl_controller_t controllers[3] = {CTL_CONTROLLER_DDC, CTL_CONTROLLER_MPTC49,
-                                                    CTL_CONTROLLER_MPTC13};
+    static const ctl_controller_t controllers[4] = {CTL_CONTROLLER_DDC, CTL_CONTROLLER_MPTC49,
+                                                    CTL_CONTROLLER_MPTC13, CTL_CONTROLLER_VVMPTC};
     int16_t which;
     (void)state;
-    for (which = 0; which < 9; which++) { /* every controller with every pulse pattern */
+    for (which = 0; which < 12; which++) { /* every controller with every pulse pattern */
         ctl_params_t p;
         ctl_t c;
         int32_t n;
         ctl_params_default(&p);
-        p.controller = controllers[which % 3];
-        p.pulse_pattern = (ctl_pulse_pattern_t)(which / 3);
+        p.controller = controllers[which % 4];
+        p.pulse_pattern = (ctl_pulse_pattern_t)(which / 4);
         assert_true(ctl_init(&c, &p));
         ctl_set_speed_ref(&c, CTL_Q(0.5));
         for (n = 0; n < 3000; n++) {
@@ -291,6 +331,10 @@ static void test_command_invariants_for_any_input(void **state)
             }
 #endif
             ctl_step(&c, &m, &cmd);
+            if (p.controller == CTL_CONTROLLER_VVMPTC && c.applied_virtual != CTL_VV_NONE) {
+                check_virtual_command(&cmd);
+                continue;
+            }
             check_command(&cmd);
             if (p.controller == CTL_CONTROLLER_DDC) {
                 const int32_t fifths = ctl_to_qn(ctl_mul_int(cmd.duty, 5), 0);

@@ -13,6 +13,7 @@
 
 #include <cmocka.h>
 
+#include "ctl_params.h"
 #include "fvf.h"
 #include "test_rng.h"
 #include "test_support.h"
@@ -83,6 +84,18 @@ static double reference_cost(const fvf_point_t *p, double flux_ref, int16_t v, d
     return fabs(te - p->torque_ref) + p->lambda * fabs(psi - flux_ref);
 }
 
+/* The fraction of a choice's state voltage applied over the period: its duty, or for a virtual
+ * vector of VV-MPTC (reported as its large state, duty 1) the virtual vector's magnitude over
+ * the large state's, 4 sqrt(3) - 6 (the same direction; the x-y part is zero and does not enter
+ * the cost). */
+static double applied_share(int16_t controller, int16_t v, double d)
+{
+    if (controller == (int16_t)CTL_CONTROLLER_VVMPTC && v != 0 && v != 077 && d > 0.0) {
+        return 4.0 * sqrt(3.0) - 6.0;
+    }
+    return d;
+}
+
 static uint32_t rng = 99u;
 static double uniform(double lo, double hi) { return test_lcg_range(&rng, lo, hi); }
 
@@ -116,14 +129,18 @@ static void compare(int16_t controller, double max_mismatch_fraction, double max
         fvf_evaluate(&p, &fx);
         flt_fvf_evaluate(&p, &fl);
         assert_true(fx.vector >= 0 && fl.vector >= 0);
-        cost_sum += reference_cost(&p, fl.flux_ref, fl.vector, fl.duty);
+        cost_sum += reference_cost(&p, fl.flux_ref, fl.vector,
+                                   applied_share(controller, fl.vector, fl.duty));
         if (fx.vector != fl.vector || fabs(fx.duty - fl.duty) > 1e-6) {
             /* u00 and u77 are the same voltage: not a different choice */
             const bool both_zero = (fx.vector == 0 || fx.vector == 077 || fx.duty == 0.0) &&
                                    (fl.vector == 0 || fl.vector == 077 || fl.duty == 0.0);
             if (!both_zero) {
-                const double excess = reference_cost(&p, fl.flux_ref, fx.vector, fx.duty) -
-                                      reference_cost(&p, fl.flux_ref, fl.vector, fl.duty);
+                const double excess =
+                    reference_cost(&p, fl.flux_ref, fx.vector,
+                                   applied_share(controller, fx.vector, fx.duty)) -
+                    reference_cost(&p, fl.flux_ref, fl.vector,
+                                   applied_share(controller, fl.vector, fl.duty));
                 mismatches++;
                 vector_mismatches += (fx.vector != fl.vector) ? 1 : 0;
                 excess_sum += excess;
@@ -158,12 +175,19 @@ static void test_mptc13(void **state)
     compare(2, 0.01, 0.02);
 }
 
+static void test_vvmptc(void **state)
+{
+    (void)state;
+    compare((int16_t)CTL_CONTROLLER_VVMPTC, 0.01, 0.02);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_ddc),
         cmocka_unit_test(test_mptc49),
         cmocka_unit_test(test_mptc13),
+        cmocka_unit_test(test_vvmptc),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

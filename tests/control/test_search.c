@@ -10,6 +10,7 @@
 #include "ctl_mptc.h"
 #include "ctl_tables.h"
 #include "ctl_vectors.h"
+#include "ctl_vvmptc.h"
 #include "test_rng.h"
 #include "test_support.h"
 
@@ -120,6 +121,85 @@ static void test_mptc_pruning_keeps_the_choice(void **state)
         }
         ctl_mptc_select(&h, cand, count, 0, &c);
         assert_int_equal(c.vector, best_v);
+        assert_true(c.cost == best);
+    }
+}
+
+/* Predicted k+2 torque and flux of virtual vector k held for the period. */
+static void predicted_virtual(const ctl_horizon_t *h, int16_t k, ctl_q *torque, ctl_q *flux)
+{
+    ctl_q did;
+    ctl_q diq;
+    ctl_horizon_forced(h, &ctl_vv_vsd[k], &did, &diq);
+    (void)ctl_horizon_cost(h, ctl_add(h->id2_free, did), ctl_add(h->iq2_free, diq), torque, flux);
+}
+
+/* VV-MPTC on simple states: a torque reference equal to one virtual vector's predicted torque
+ * picks that virtual vector (its large state, duty 1, 13 candidates); a reference equal to the
+ * zero vector's picks the zero vector, as u77 after a state with more upper switches on. */
+static void test_vvmptc_picks_the_virtual_vector_that_meets_the_torque_reference(void **state)
+{
+    int16_t k;
+    (void)state;
+    for (k = 0; k < CTL_VV_COUNT; k++) {
+        ctl_horizon_t h = horizon();
+        ctl_choice_t c;
+        ctl_q flux;
+        predicted_virtual(&h, k, &h.torque_ref, &flux);
+        assert_int_equal(ctl_vvmptc_select(&h, 0, &c), k);
+        assert_int_equal(c.vector, ctl_vv_states[k][0]);
+        assert_true(c.duty == CTL_Q(1.0));
+        assert_int_equal(c.candidates, CTL_VVMPTC_CANDIDATES);
+        assert_near((double)ctl_to_float(c.cost), 0.0, 1e-5);
+    }
+    {
+        ctl_horizon_t h = horizon();
+        ctl_choice_t c;
+        ctl_q flux;
+        predicted(&h, 0, CTL_Q(0.0), &h.torque_ref, &flux);
+        assert_int_equal(ctl_vvmptc_select(&h, 066, &c), CTL_VV_NONE);
+        assert_int_equal(c.vector, 077);
+        assert_int_equal(ctl_vvmptc_select(&h, 044, &c), CTL_VV_NONE);
+        assert_int_equal(c.vector, 0);
+    }
+}
+
+/* With the pruning VV-MPTC picks the candidate, and the cost, that the full cost of all 13
+ * picks, over random horizons (as the MPTC test above). */
+static void test_vvmptc_pruning_keeps_the_choice(void **state)
+{
+    test_rng_t rng = {54321u};
+    int32_t n;
+    (void)state;
+    for (n = 0; n < 20000; n++) {
+        ctl_horizon_t h = horizon();
+        ctl_choice_t c;
+        ctl_q torque;
+        ctl_q flux;
+        ctl_q best;
+        int16_t best_k = CTL_VV_NONE;
+        int16_t k;
+        ctl_sincos_pu(ctl_from_float((float)test_rng_range(&rng, 0.0, 1.0)), &h.sin1, &h.cos1);
+        h.id2_free = ctl_from_float((float)test_rng_range(&rng, -0.6, 0.6));
+        h.iq2_free = ctl_from_float((float)test_rng_range(&rng, -0.6, 0.6));
+        h.torque_ref = ctl_from_float((float)test_rng_range(&rng, -1.5, 1.5));
+        h.flux_ref = ctl_from_float((float)test_rng_range(&rng, 0.3, 0.6));
+        h.lambda = ctl_from_float((float)test_rng_range(&rng, 0.0, 20.0));
+        ctl_horizon_prepare(&h);
+        best = ctl_horizon_cost(&h, h.id2_free, h.iq2_free, &torque, &flux);
+        for (k = 0; k < CTL_VV_COUNT; k++) {
+            ctl_q did;
+            ctl_q diq;
+            ctl_q cost;
+            ctl_horizon_forced(&h, &ctl_vv_vsd[k], &did, &diq);
+            cost = ctl_horizon_cost(&h, ctl_add(h.id2_free, did), ctl_add(h.iq2_free, diq), &torque,
+                                    &flux);
+            if (cost < best) {
+                best = cost;
+                best_k = k;
+            }
+        }
+        assert_int_equal(ctl_vvmptc_select(&h, 0, &c), best_k);
         assert_true(c.cost == best);
     }
 }
@@ -324,6 +404,8 @@ int main(void)
         cmocka_unit_test(test_flux_tie_band),
         cmocka_unit_test(test_ddc_zero_duty),
         cmocka_unit_test(test_torque_guard),
+        cmocka_unit_test(test_vvmptc_picks_the_virtual_vector_that_meets_the_torque_reference),
+        cmocka_unit_test(test_vvmptc_pruning_keeps_the_choice),
     };
     return cmocka_run_group_tests(tests, setup, NULL);
 }

@@ -16,6 +16,7 @@
 
 #include <math.h>
 
+#include "ctl_constants.h"
 #include "ctl_q.h"
 #include "ctl_tables.h"
 #include "ctl_vectors.h"
@@ -548,6 +549,48 @@ static void test_mptc13(void **state)
     assert_int_equal(g4_states, 12);
 }
 
+/* VV-MPTC's virtual vectors: in direction 15 + 30 k deg the G4 state for sqrt(3) - 1 of the
+ * period and the G3 state of the same alpha-beta direction for the rest; the average has no x-y
+ * voltage and an alpha-beta magnitude of sqrt(2) (3 - sqrt(3)) / 3 = 0.598 Vdc; the table holds
+ * that average; within each three-phase set one state's legs are a subset of the other's (the
+ * centred per-leg duties then give each set its two parts for exactly their shares). */
+static void test_virtual_vectors(void **state)
+{
+    const double share = sqrt(3.0) - 1.0;
+    const double mag = sqrt(2.0) * (3.0 - sqrt(3.0)) / 3.0;
+    int32_t k;
+    (void)state;
+    expect_close(qd(CTL_K_VV_LARGE_SHARE), share, TABLE_TOL, "CTL_K_VV_LARGE_SHARE", 0.0);
+    for (k = 0; k < CTL_VV_COUNT; k++) {
+        const int32_t large = ctl_vv_states[k][0];
+        const int32_t medium = ctl_vv_states[k][1];
+        const vsd_d l = vsd_ref_state(large);
+        const vsd_d m = vsd_ref_state(medium);
+        const double dir = (15.0 + 30.0 * (double)k) * TEST_PI / 180.0;
+        vsd_d avg;
+        int32_t set;
+        avg.alpha = share * l.alpha + (1.0 - share) * m.alpha;
+        avg.beta = share * l.beta + (1.0 - share) * m.beta;
+        avg.x = share * l.x + (1.0 - share) * m.x;
+        avg.y = share * l.y + (1.0 - share) * m.y;
+        expect_close(vsd_ref_mag_ab(l), MAG_G4, 1e-9, "virtual vector's large state is G4", k);
+        expect_close(vsd_ref_mag_ab(m), MAG_G3, 1e-9, "virtual vector's medium state is G3", k);
+        expect_close(avg.x, 0.0, 1e-12, "virtual vector x", k);
+        expect_close(avg.y, 0.0, 1e-12, "virtual vector y", k);
+        expect_close(avg.alpha, mag * cos(dir), 1e-12, "virtual vector alpha", k);
+        expect_close(avg.beta, mag * sin(dir), 1e-12, "virtual vector beta", k);
+        expect_close(qd(ctl_vv_vsd[k].alpha), avg.alpha, TABLE_TOL, "ctl_vv_vsd alpha", k);
+        expect_close(qd(ctl_vv_vsd[k].beta), avg.beta, TABLE_TOL, "ctl_vv_vsd beta", k);
+        expect_close(qd(ctl_vv_vsd[k].x), 0.0, TABLE_TOL, "ctl_vv_vsd x", k);
+        expect_close(qd(ctl_vv_vsd[k].y), 0.0, TABLE_TOL, "ctl_vv_vsd y", k);
+        for (set = 070; set > 0; set >>= 3) {
+            const int32_t a = large & set;
+            const int32_t b = medium & set;
+            assert_true((a & ~b) == 0 || (b & ~a) == 0);
+        }
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -561,6 +604,7 @@ int main(void)
         cmocka_unit_test(test_vector_leg_ones),
         cmocka_unit_test(test_mptc49),
         cmocka_unit_test(test_mptc13),
+        cmocka_unit_test(test_virtual_vectors),
     };
     print_message("arithmetic: %s\n", CTL_MATH_FLOAT ? "float" : "Q24 fixed point");
     return cmocka_run_group_tests(tests, NULL, NULL);

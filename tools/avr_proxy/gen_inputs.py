@@ -24,6 +24,7 @@ POLE_PAIRS = 3
 VDC_V = 540.0
 
 DDC, MPTC49, MPTC13 = 0, 1, 2
+VVMPTC = 3  # CTL_CONTROLLER_VVMPTC (its id in ctl_params.h's CTL_CONTROLLER_LIST)
 FLUX_ERROR, XY_TABLE = 0, 1
 CONSTANT, MTPA = 0, 1
 SPEED, TORQUE = 0, 1
@@ -206,6 +207,24 @@ def build(sim, work, scale):
         tag = "ddc" if nd * 4 // 10 < k <= nd * 6 // 10 else "mptc13"
         s.step(r[:3], speed_ref_ahead(rows, k), tag=tag)
 
+    # G: VV-MPTC (virtual vectors), torque mode over a load step, then speed mode; mid-run a
+    #    switch to MPTC-13 and back (the virtual vector in force enters the other's prediction).
+    rows = record(sim, work, "vvmptc", "load-step")
+    s.init(controller=VVMPTC, lam=100.0)
+    s.mode(TORQUE)
+    s.reset()
+    ng = min(len(rows), n(3000))
+    for k in range(ng):
+        if k == ng // 2:
+            s.mode(SPEED)
+        if k == ng * 3 // 5:
+            s.request(controller=MPTC13, lam=100.0)
+        if k == ng * 7 // 10:
+            s.request(controller=VVMPTC, lam=60.0)
+        r = rows[k]
+        tag = "mptc13" if ng * 3 // 5 < k <= ng * 7 // 10 else "vvmptc"
+        s.step(r[:3], tref(r) if k < ng // 2 else speed_ref_ahead(rows, k), tag=tag)
+
     # E: protection. An unusable set first (commands all-off), then a valid one; then faults
     #    injected one after another on top of a recorded trace, each followed by log reads and
     #    a clear.
@@ -285,6 +304,8 @@ def build_open_phase(s, sim, work, n):
             s.request(open_phase=6)  # refused: no such phase
         if k == nf * 5 // 8:
             s.request(controller=MPTC49, open_phase=2, strategy=1)
+        if k == nf * 11 // 16:
+            s.request(controller=VVMPTC, open_phase=2)  # falls back to post-fault MPTC-13
         if k == nf * 3 // 4:
             s.request(controller=DDC)
             s.quiet(0)

@@ -22,8 +22,8 @@ typedef struct {
 size_t bench_prepare(const bench_point_t *points, size_t n);
 size_t flt_bench_prepare(const bench_point_t *points, size_t n);
 
-/* Initialises the controller (0 DDC, 1 MPTC-49, 2 MPTC-13) with default parameters in
- * torque mode. 0 on success. Not measured. */
+/* Initialises the controller (an id of CTL_CONTROLLER_LIST: 0 DDC, 1 MPTC-49, 2 MPTC-13, ...) with
+ * default parameters in torque mode. 0 on success. Not measured. */
 int16_t bench_setup(int16_t controller);
 int16_t flt_bench_setup(int16_t controller);
 

@@ -24,6 +24,7 @@
 #include <valgrind/callgrind.h>
 
 #include "bench.h"
+#include "ctl_params.h"
 #include "trace_csv.h"
 
 static bench_point_t points[BENCH_MAX_POINTS];
@@ -47,8 +48,6 @@ static int parse_positive(const char *flag, const char *text, double *out)
     return 0;
 }
 
-static const char *const controller_names[3] = {"ddc", "mptc49", "mptc13"};
-
 /* Parameter changes during the per-step replay: one every this many steps. */
 #define CHANGE_EVERY 500u
 
@@ -65,7 +64,7 @@ static void worst_step_replay(int16_t controller, int arith, size_t n)
             change++;
         }
         applies = arith ? flt_bench_change_pending() : bench_change_pending();
-        snprintf(label, sizeof label, "w-%s_%s-%zu-%d", controller_names[controller],
+        snprintf(label, sizeof label, "w-%s_%s-%zu-%d", ctl_controller_name(controller),
                  arith ? "float" : "fixed", i, applies ? 1 : 0);
         CALLGRIND_TOGGLE_COLLECT;
         (void)(arith ? flt_bench_step(i) : bench_step(i));
@@ -125,7 +124,7 @@ static int setup_controller(int16_t controller, int arith)
 {
     if ((arith ? flt_bench_setup(controller) : bench_setup(controller)) != 0) {
         fprintf(stderr, "ctl-bench: controller %s (%s) did not initialise\n",
-                controller_names[controller], arith ? "float" : "fixed");
+                ctl_controller_name(controller), arith ? "float" : "fixed");
         return 1;
     }
     return 0;
@@ -135,7 +134,7 @@ static int run_worst_steps(size_t n)
 {
     int16_t controller;
     int arith;
-    for (controller = 0; controller < 3; controller++) {
+    for (controller = 0; controller < (int16_t)CTL_CONTROLLER_COUNT; controller++) {
         for (arith = 0; arith < 2; arith++) {
             if (setup_controller(controller, arith) != 0) {
                 return 1;
@@ -151,12 +150,12 @@ static int run_measured(size_t n, double reps)
 {
     int16_t controller;
     int arith;
-    for (controller = 0; controller < 3; controller++) {
+    for (controller = 0; controller < (int16_t)CTL_CONTROLLER_COUNT; controller++) {
         for (arith = 0; arith < 2; arith++) {
             char label[32];
             double t0, t1;
             uint32_t sum;
-            snprintf(label, sizeof label, "%s_%s", controller_names[controller],
+            snprintf(label, sizeof label, "%s_%s", ctl_controller_name(controller),
                      arith ? "float" : "fixed");
             if (setup_controller(controller, arith) != 0) {
                 return 1;

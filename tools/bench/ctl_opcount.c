@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "bench.h"
+#include "ctl_params.h"
 #include "ctl_q.h"
 #include "trace_csv.h"
 
@@ -16,7 +17,6 @@ static bench_point_t points[BENCH_MAX_POINTS];
 
 int main(int argc, char **argv)
 {
-    static const char *names[3] = {"ddc", "mptc49", "mptc13"};
     static const char *ops[CTL_OP_KINDS] = {"add", "mul", "div", "sqrt", "sin"};
     size_t n = 0;
     int a;
@@ -39,13 +39,14 @@ int main(int argc, char **argv)
         return 2;
     }
     n = bench_prepare(points, n);
-    for (controller = 0; controller < 3; controller++) {
+    for (controller = 0; controller < (int16_t)CTL_CONTROLLER_COUNT; controller++) {
         double sum[CTL_OP_KINDS] = {0};
         uint32_t max[CTL_OP_KINDS] = {0};
         size_t i;
         int16_t k;
         if (bench_setup(controller) != 0) {
-            fprintf(stderr, "ctl-opcount: controller %s did not initialise\n", names[controller]);
+            fprintf(stderr, "ctl-opcount: controller %s did not initialise\n",
+                    ctl_controller_name(controller));
             return 1;
         }
         for (i = 0; i < n; i++) {
@@ -58,7 +59,7 @@ int main(int argc, char **argv)
                 }
             }
         }
-        printf("%s", names[controller]);
+        printf("%s", ctl_controller_name(controller));
         for (k = 0; k < CTL_OP_KINDS; k++) {
             printf(" %s_mean %.2f %s_max %u", ops[k], sum[k] / (double)n, ops[k], (unsigned)max[k]);
         }
