@@ -110,6 +110,7 @@ typedef struct {
     /* the open-phase part of each configuration (ctl_postfault_config.h), built and taken with
      * it; a separate array keeps the healthy configuration's layout as it was */
     ctl_postfault_config_t postfault[2];
+    ctl_foc_state_t foc; /* FOC-VSD's integrators and voltage in force (ctl_foc.h) */
 } ctl_t;
 
 /* Builds the first configuration from p (background, before the ISR runs). Returns false,

@@ -16,6 +16,7 @@
 
 #include "ctl_ddc.h"
 #include "ctl_flux_ref.h"
+#include "ctl_foc_types.h"
 #include "ctl_params.h"
 #include "ctl_predict.h"
 #include "ctl_protect.h"
@@ -33,6 +34,8 @@ typedef struct {
     /* drive scaling: electrical per unit speed per mechanical rev/s */
     ctl_q omega_pu_per_rev_s;
     ctl_protect_limits_t protect;
+    ctl_foc_config_t foc; /* FOC-VSD's gains and current references (built for that controller
+                           * only) */
 } ctl_config_t;
 
 /* Checks p and builds cfg from it. On a refusal cfg is left partly written and must not be

@@ -23,7 +23,9 @@
 #define CTL_CONTROLLER_LIST(X)                                                                     \
     X(CTL_CONTROLLER_DDC, 0, "ddc", "the paper's discrete-duty MPTC")                              \
     X(CTL_CONTROLLER_MPTC49, 1, "mptc49", "conventional MPTC, 48 vectors + zero")                  \
-    X(CTL_CONTROLLER_MPTC13, 2, "mptc13", "conventional MPTC, 12 largest + zero")
+    X(CTL_CONTROLLER_MPTC13, 2, "mptc13", "conventional MPTC, 12 largest + zero")                  \
+    X(CTL_CONTROLLER_FOC, 3, "foc",                                                                \
+      "field-oriented control in VSD coordinates: PI in d-q and x-y, carrier PWM")
 
 #define CTL_CONTROLLER_ENUM(id, number, name, what) id = number,
 typedef enum { CTL_CONTROLLER_LIST(CTL_CONTROLLER_ENUM) CTL_CONTROLLER_COUNT } ctl_controller_t;

@@ -3,6 +3,7 @@
 #include "ctl_barrier.h"
 #include "ctl_constants.h"
 #include "ctl_ddc.h"
+#include "ctl_foc.h"
 #include "ctl_diag_record.h"
 #include "ctl_mptc.h"
 #include "ctl_pulse.h"
@@ -22,6 +23,7 @@ SIXPHASE_RAMFUNC void ctl_reset_command(ctl_t *c)
     c->applied_vector = 0;
     c->applied_duty = CTL_Q(0.0);
     c->applied_edges = 0;
+    ctl_foc_reset(&c->foc); /* its integrators hold voltages no longer applied */
 }
 
 /* The speed loop's gains follow the configuration in force; its integrator is kept across a
@@ -96,6 +98,10 @@ SIXPHASE_RAMFUNC bool ctl_config_take(ctl_t *c)
         return false;
     }
     CTL_COMPILER_BARRIER(); /* nothing of the new buffer is read before the flag */
+    if (c->config[1 - c->config_active].params.controller !=
+        c->config[c->config_active].params.controller) {
+        ctl_foc_reset(&c->foc); /* FOC-VSD starts from a clean state after another controller */
+    }
     c->config_active = (int16_t)(1 - c->config_active);
     use_config(c, &c->config[c->config_active]);
     CTL_COMPILER_BARRIER(); /* done with the old buffer before the background may reuse it */
@@ -259,6 +265,10 @@ SIXPHASE_RAMFUNC void ctl_healthy_step(ctl_t *c, const ctl_meas_t *m, ctl_cmd_t 
     ctl_q ix1;
     ctl_q iy1;
 
+    if (cfg->params.controller == CTL_CONTROLLER_FOC) { /* current loops, no search */
+        ctl_foc_healthy_step(c, m, cmd);
+        return;
+    }
     /* Measured state at k, references. */
     ctl_vsd_forward(m->i_phase, &smp.vsd);
     ctl_sincos_pu(m->theta_e, &smp.s0, &smp.c0);

@@ -1,5 +1,6 @@
 #include "ctl_config.h"
 
+#include "ctl_foc.h"
 #include "ctl_postfault_config.h"
 #include "ctl_pu.h"
 
@@ -39,5 +40,8 @@ ctl_param_error_t ctl_config_build(ctl_config_t *cfg, const ctl_params_t *p)
         ctl_from_float((CTL_TWO_PI_F / CTL_BASE_OMEGA_RAD_S_F) * (float)p->pole_pairs);
     ctl_protect_limits_build(&cfg->protect, &p->protect, p->sample_time_s, p->pole_pairs,
                              p->inertia_kg_m2);
+    if (p->controller == CTL_CONTROLLER_FOC) {
+        ctl_foc_config_build(&cfg->foc, p, &cfg->model);
+    }
     return CTL_PARAM_OK;
 }

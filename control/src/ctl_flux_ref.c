@@ -32,13 +32,11 @@ static void mtpa_point(float i, float ld, float lq, float psi_f, int16_t pp, flo
 /* The operating point on the circle |i| = i (SI) that gives the torque target, between the MTPA
  * point (d-axis current id_mtpa, the circle's largest torque) and the pure -d current (no
  * torque): torque falls monotonically over that arc, so bisect the d-axis current. */
-static float floor_point_flux(float i, float target, float ld, float lq, float psi_f, int16_t pp,
-                              float id_mtpa)
+static void floor_point(float i, float target, float ld, float lq, float psi_f, int16_t pp,
+                        float id_mtpa, float *id, float *iq)
 {
     float lo = -i;      /* torque 0 */
     float hi = id_mtpa; /* torque >= target */
-    float id;
-    float iq;
     int16_t it;
     for (it = 0; it < 40; it++) {
         const float mid = 0.5f * (lo + hi);
@@ -49,8 +47,16 @@ static float floor_point_flux(float i, float target, float ld, float lq, float p
             hi = mid;
         }
     }
-    id = 0.5f * (lo + hi);
-    iq = ctl_sqrtf(i * i - id * id);
+    *id = 0.5f * (lo + hi);
+    *iq = ctl_sqrtf(i * i - *id * *id);
+}
+
+static float floor_point_flux(float i, float target, float ld, float lq, float psi_f, int16_t pp,
+                              float id_mtpa)
+{
+    float id;
+    float iq;
+    floor_point(i, target, ld, lq, psi_f, pp, id_mtpa, &id, &iq);
     return ctl_sqrtf((psi_f + ld * id) * (psi_f + ld * id) + (lq * iq) * (lq * iq));
 }
 
@@ -108,6 +114,32 @@ void ctl_flux_ref_init(ctl_flux_ref_t *f, ctl_flux_ref_mode_t mode, float consta
             mtpa_point(i, m->ld_h, m->lq_h, m->psi_f_wb, m->pole_pairs, &t, &flux);
         }
         f->table[k] = ctl_from_float(flux / psi_b);
+    }
+}
+
+void ctl_flux_ref_currents(ctl_q *id_pu, ctl_q *iq_pu, ctl_flux_ref_mode_t mode,
+                           const ctl_flux_ref_machine_t *m, float torque_max_nm, float floor_a)
+{
+    int16_t k;
+    for (k = CTL_FLUX_REF_TABLE_POINTS - 1; k >= 0; k--) {
+        const float target = torque_max_nm * (float)k / (float)(CTL_FLUX_REF_TABLE_POINTS - 1);
+        float id = 0.0f;
+        float iq = target / (3.0f * (float)m->pole_pairs * m->psi_f_wb); /* i_d = 0 */
+        if (mode == CTL_FLUX_REF_MTPA) {
+            const float i = mtpa_current_for_torque(m, target);
+            if (k == CTL_FLUX_REF_TABLE_POINTS - 1 && floor_a > i) {
+                floor_a = i;
+            }
+            if (i < floor_a) {
+                floor_point(floor_a, target, m->ld_h, m->lq_h, m->psi_f_wb, m->pole_pairs,
+                            mtpa_id(floor_a, m->ld_h, m->lq_h, m->psi_f_wb), &id, &iq);
+            } else {
+                id = mtpa_id(i, m->ld_h, m->lq_h, m->psi_f_wb);
+                iq = ctl_sqrtf(i * i - id * id);
+            }
+        }
+        id_pu[k] = ctl_from_float(id / CTL_BASE_CURRENT_A_F);
+        iq_pu[k] = ctl_from_float(iq / CTL_BASE_CURRENT_A_F);
     }
 }
 

@@ -115,7 +115,7 @@ static ctl_param_error_t check_control(const ctl_params_t *p)
     float kp;
     float ki_ts;
     if (!(p->controller == CTL_CONTROLLER_DDC || p->controller == CTL_CONTROLLER_MPTC49 ||
-          p->controller == CTL_CONTROLLER_MPTC13)) {
+          p->controller == CTL_CONTROLLER_MPTC13 || p->controller == CTL_CONTROLLER_FOC)) {
         return CTL_PARAM_CONTROLLER;
     }
     if (!(p->ddc_direction == CTL_DDC_DIRECTION_FLUX_ERROR ||

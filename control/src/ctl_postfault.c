@@ -374,7 +374,9 @@ void ctl_postfault_step(ctl_t *c, const ctl_meas_t *m, ctl_cmd_t *cmd)
     pf_predict_k1(c, cfg, m, &i0, s0, c0, &p);
     pf_predict_k2(cfg, m, s0, c0, &p);
     CTL_STAGE_MARK(c->stage_hook, CTL_STAGE_PREDICT);
-    if (cfg->params.controller == CTL_CONTROLLER_DDC) {
+    /* FOC-VSD has no five-leg mode: with an open phase it rides through on the post-fault DDC */
+    if (cfg->params.controller == CTL_CONTROLLER_DDC ||
+        cfg->params.controller == CTL_CONTROLLER_FOC) {
         pf_select_ddc(c, cfg, &p, &choice);
     } else {
         CTL_STAGE_MARK(c->stage_hook, CTL_STAGE_TABLE);

@@ -1,0 +1,66 @@
+/*
+ * FOC-VSD: field-oriented current control in the VSD coordinates of the six-phase machine
+ * (docs/design.md, "FOC-VSD"), the linear baseline beside the predictive controllers.
+ *
+ *   references   i_d, i_q from the torque reference at the flux reference's operating points
+ *                (MTPA, or i_d = 0 in constant-flux mode); i_x = i_y = 0
+ *   prediction   the currents at k+1 under the voltage in force (the MPC's delay compensation)
+ *   current PIs  d-q in the rotor frame with decoupling (v_d -= w L_q i_q,
+ *                v_q += w (L_d i_d + psi_f)); x-y in the stationary frame; gains by pole-zero
+ *                cancellation, Kp = L w_c, Ki = R w_c; back-calculation anti-windup against
+ *                the voltage the duties realise
+ *   modulation   inverse Park at the angle advanced 1.5 periods, inverse VSD to six phase
+ *                voltages, per three-phase set its own min-max zero sequence (isolated
+ *                neutrals), leg duties clamped to [0, 1]: one centred pulse per leg and period
+ *                (carrier at the sampling frequency)
+ */
+#ifndef CTL_FOC_H
+#define CTL_FOC_H
+
+#include <stdint.h>
+
+#include "ctl.h"
+#include "ctl_config.h"
+#include "ctl_foc_types.h"
+#include "ctl_predict.h"
+#include "ctl_q.h"
+#include "ctl_vsd.h"
+
+/* Gains and current references from p (SI) and the model built from it. Background only. */
+void ctl_foc_config_build(ctl_foc_config_t *f, const ctl_params_t *p, const ctl_model_t *model);
+
+/* Clears the integrators and the voltage in force. */
+void ctl_foc_reset(ctl_foc_state_t *s);
+
+/* The current references of a torque reference (per unit). */
+void ctl_foc_current_ref(const ctl_foc_config_t *f, const ctl_flux_ref_t *span, ctl_q torque_ref,
+                         ctl_q *id_ref, ctl_q *iq_ref);
+
+/* One PI with back-calculation: out = kp e + integ; returns out. */
+static inline ctl_q ctl_foc_pi(ctl_q kp, ctl_q integ, ctl_q err)
+{
+    return ctl_mul_acc(integ, kp, err);
+}
+
+/* The integrator after a period: integ + ki_ts e + (realised - requested), bounded. The
+ * back-calculation term moves the integrator to the value that would have asked for what the
+ * modulator could apply, so it never winds up beyond the voltage limit. */
+static inline ctl_q ctl_foc_integrate(ctl_q integ, ctl_q ki_ts, ctl_q err, ctl_q requested,
+                                      ctl_q realised, ctl_q limit)
+{
+    const ctl_q next = ctl_add(ctl_mul_acc(integ, ki_ts, err), ctl_sub(realised, requested));
+    return ctl_clamp(next, -limit, limit);
+}
+
+/* Six leg duties (centred pulses, [0, 1]) from a VSD voltage (per unit) at the DC link vdc (per
+ * unit), each three-phase set with its own min-max zero sequence; the voltage they realise
+ * (after the clamp) into realised. Returns the legs high at the period boundary (duty 1; S_A is
+ * bit 5). */
+int16_t ctl_foc_modulate(const ctl_vsd_t *v, ctl_q vdc, ctl_q duty[6], ctl_vsd_t *realised);
+
+/* ctl_healthy_step's period when the set in force is FOC-VSD (all six legs): measurement, speed
+ * loop and references as the predictive controllers', then the current loops above. The command
+ * is the six leg duties; its vector and duty are 0 (no one switching state stands for it). */
+void ctl_foc_healthy_step(ctl_t *c, const ctl_meas_t *m, ctl_cmd_t *cmd);
+
+#endif /* CTL_FOC_H */

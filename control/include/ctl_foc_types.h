@@ -1,0 +1,38 @@
+/*
+ * FOC-VSD's settings (ctl_foc_config_t, built once per parameter set into ctl_config_t) and its
+ * state between periods (ctl_foc_state_t, in ctl_t), below ctl_foc.h so that the configuration
+ * and the controller's state take the types without the step's functions.
+ */
+#ifndef CTL_FOC_TYPES_H
+#define CTL_FOC_TYPES_H
+
+#include "ctl_flux_ref.h"
+#include "ctl_q.h"
+#include "ctl_vsd.h"
+
+/* The current loops' bandwidth: w_c = 2 pi f_s / CTL_FOC_BANDWIDTH_RATIO (500 Hz, 3142 rad/s at
+ * the 10 kHz sampling rate), lowered only where a per-unit gain would pass
+ * CTL_FOC_GAIN_MAX (an inductance far above the reference machine's). */
+#define CTL_FOC_BANDWIDTH_RATIO 20.0f
+#define CTL_FOC_GAIN_MAX 64.0f
+/* |integrator| bound of every current PI, per unit voltage (twice the 540 V base: beyond what
+ * any DC link the drive accepts can apply). */
+#define CTL_FOC_INTEG_LIMIT 2.0f
+
+typedef struct {
+    ctl_q kp_d, kp_q, kp_xy;          /* L w_c, per unit voltage per per-unit current */
+    ctl_q ki_ts_d, ki_ts_q, ki_ts_xy; /* R w_c Ts, per step */
+    ctl_q advance; /* 1.5 Ts per unit: times w, the command angle's advance (rad) */
+    ctl_q integ_limit;
+    /* current references at the flux reference's torque points (ctl_flux_ref_currents) */
+    ctl_q id_ref[CTL_FLUX_REF_TABLE_POINTS];
+    ctl_q iq_ref[CTL_FLUX_REF_TABLE_POINTS];
+} ctl_foc_config_t;
+
+typedef struct {
+    ctl_q integ_d, integ_q, integ_x, integ_y; /* the PIs' integrators, per unit voltage */
+    ctl_vsd_t v_in_force; /* the voltage the command in force applies (period average, after the
+                           * duties' clamp), per unit: the k -> k+1 prediction's */
+} ctl_foc_state_t;
+
+#endif /* CTL_FOC_TYPES_H */
