@@ -17,12 +17,20 @@
 
 #define CLI_DEG_TO_RAD (3.14159265358979323846 / 180.0)
 
+#define CLI_CONTROLLER_NAME(id, number, name, what) name,
+static const char *const controllers[] = {CTL_CONTROLLER_LIST(CLI_CONTROLLER_NAME) NULL};
+#undef CLI_CONTROLLER_NAME
+
 void sim_cli_usage(FILE *f)
 {
+    int k;
+    fprintf(f, "usage:\n  sixphase-sim run --controller {");
+    for (k = 0; controllers[k] != NULL; k++) { /* the core's list (CTL_CONTROLLER_LIST) */
+        fprintf(f, "%s%s", (k > 0) ? "," : "", controllers[k]);
+    }
     fprintf(
         f,
-        "usage:\n"
-        "  sixphase-sim run --controller {ddc,mptc49,mptc13} --scenario "
+        "} --scenario "
         "{steady,load-step,accel,reversal,commission,fault-<name>}\n"
         "                   [--lambda X] [--fs HZ] [--speed RPM] [--load NM] [--duration S]\n"
         "                   [--arith {fixed,float}] [--seed N] [--out DIR [--out-limit-mb MB]]\n"
@@ -112,9 +120,6 @@ typedef struct {
     const char *const *choices;
 } opt_t;
 
-#define CLI_CONTROLLER_NAME(id, number, name, what) name,
-static const char *const controllers[] = {CTL_CONTROLLER_LIST(CLI_CONTROLLER_NAME) NULL};
-#undef CLI_CONTROLLER_NAME
 static const char *const ariths[] = {"fixed", "float", NULL};
 static const char *const directions[] = {"flux-error", "xy-table", NULL};
 static const char *const flux_refs[] = {"constant", "mtpa", NULL};

@@ -37,7 +37,7 @@ typedef struct {
 } sim_ctl_machine_t;
 
 typedef struct {
-    int controller; /* 0 ddc, 1 mptc49, 2 mptc13 */
+    int controller; /* ctl_controller_t: 0 ddc, 1 mptc49, 2 mptc13, 3 foc */
     int arith;      /* 0 fixed, 1 float */
     sim_scenario_t scenario;
     double lambda;     /* N*m/Wb */

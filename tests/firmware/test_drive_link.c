@@ -268,7 +268,7 @@ static void test_set_controller(void **state)
                 mock_rec.requested.lambda_nm_per_wb < 1.2501f);
     assert_int_equal(mock_rec.requested.pole_pairs, 3); /* rest of the set kept */
 
-    req.payload[0] = 3u;
+    req.payload[0] = (uint16_t)CTL_CONTROLLER_COUNT; /* the first id beyond the core's list */
     assert_int_equal(send(SXL_CMD_SET_CONTROLLER), SXL_ERR_VALUE);
     req.payload[0] = SXL_CONTROLLER_DDC;
     sxl_put_u32(&req.payload[1], 2000001u);
