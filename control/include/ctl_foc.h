@@ -42,20 +42,25 @@ static inline ctl_q ctl_foc_pi(ctl_q kp, ctl_q integ, ctl_q err)
     return ctl_mul_acc(integ, kp, err);
 }
 
-/* The integrator after a period: integ + ki_ts e + (realised - requested), bounded. The
- * back-calculation term moves the integrator to the value that would have asked for what the
- * modulator could apply, so it never winds up beyond the voltage limit. */
-static inline ctl_q ctl_foc_integrate(ctl_q integ, ctl_q ki_ts, ctl_q err, ctl_q requested,
-                                      ctl_q realised, ctl_q limit)
+/* The integrator after a period, back-calculation with tracking time constant T_t = T_i:
+ * integ + ki_ts e + kt (realised - requested), kt = Ts / T_i, bounded. Held in saturation it
+ * settles where its own output, the error gone, would ask for what the modulator could apply
+ * (integ + ki_ts e + kt (realised - kp e - integ) = integ at integ = realised), so it never
+ * winds up beyond the voltage limit and the output leaves the limit as soon as the error turns. */
+static inline ctl_q ctl_foc_integrate(ctl_q integ, ctl_q ki_ts, ctl_q kt, ctl_q err,
+                                      ctl_q requested, ctl_q realised, ctl_q limit)
 {
-    const ctl_q next = ctl_add(ctl_mul_acc(integ, ki_ts, err), ctl_sub(realised, requested));
+    const ctl_q next =
+        ctl_mul_acc(ctl_mul_acc(integ, ki_ts, err), kt, ctl_sub(realised, requested));
     return ctl_clamp(next, -limit, limit);
 }
 
 /* Six leg duties (centred pulses, [0, 1]) from a VSD voltage (per unit) at the DC link vdc (per
- * unit), each three-phase set with its own min-max zero sequence; the voltage they realise
- * (after the clamp) into realised. Returns the legs high at the period boundary (duty 1; S_A is
- * bit 5). */
+ * unit), each three-phase set with its own min-max zero sequence. A request beyond the linear
+ * range (a set's phase voltages spread wider than Vdc) is scaled down as a whole, all four axes
+ * by the same factor, so that the wider set just fits: the directions in both planes are kept and
+ * no clamp distortion lands in x-y. The voltage the duties realise goes to realised. Returns the
+ * legs high at the period boundary (duty 1; S_A is bit 5). */
 int16_t ctl_foc_modulate(const ctl_vsd_t *v, ctl_q vdc, ctl_q duty[6], ctl_vsd_t *realised);
 
 /* ctl_healthy_step's period when the set in force is FOC-VSD (all six legs): measurement, speed

@@ -22,6 +22,7 @@
 typedef struct {
     ctl_q kp_d, kp_q, kp_xy;          /* L w_c, per unit voltage per per-unit current */
     ctl_q ki_ts_d, ki_ts_q, ki_ts_xy; /* R w_c Ts, per step */
+    ctl_q kt_d, kt_q, kt_xy;          /* anti-windup tracking per step, Ts / T_i = R Ts / L */
     ctl_q advance; /* 1.5 Ts per unit: times w, the command angle's advance (rad) */
     ctl_q integ_limit;
     /* current references at the flux reference's torque points (ctl_flux_ref_currents) */

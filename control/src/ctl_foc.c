@@ -43,37 +43,42 @@ void ctl_foc_current_ref(const ctl_foc_config_t *f, const ctl_flux_ref_t *span, 
     *iq_ref = (torque_ref < CTL_Q(0.0)) ? -iq : iq;
 }
 
-/* One three-phase set (legs first..first+2): its own zero sequence, the min-max one (the
- * set's phase voltages centred between the rails), then the duties. */
-static int16_t modulate_set(const ctl_q *v, ctl_q inv_vdc, int16_t first, ctl_q *duty)
+/* The spread of one three-phase set's phase voltages (legs first..first+2) and its middle: the
+ * set's own zero sequence is the min-max one, which centres the spread between the rails. */
+static ctl_q set_spread(const ctl_q *v, int16_t first, ctl_q *mid)
 {
     const ctl_q hi = ctl_max(ctl_max(v[first], v[first + 1]), v[first + 2]);
     const ctl_q lo = ctl_min(ctl_min(v[first], v[first + 1]), v[first + 2]);
-    const ctl_q mid = ctl_mul(ctl_add(hi, lo), CTL_Q(0.5));
-    int16_t edges = 0;
-    int16_t k;
-    for (k = first; k < first + 3; k++) {
-        const ctl_q d = ctl_mul_acc(CTL_Q(0.5), ctl_sub(v[k], mid), inv_vdc);
-        duty[k] = ctl_clamp(d, CTL_Q(0.0), CTL_Q(1.0));
-        if (duty[k] >= CTL_Q(1.0)) {
-            edges = (int16_t)(edges | (1 << (5 - k)));
-        }
-    }
-    return edges;
+    *mid = ctl_mul(ctl_add(hi, lo), CTL_Q(0.5));
+    return ctl_sub(hi, lo);
 }
 
 int16_t ctl_foc_modulate(const ctl_vsd_t *v, ctl_q vdc, ctl_q duty[6], ctl_vsd_t *realised)
 {
     ctl_q phase[6];
+    ctl_q mid[2];
     ctl_vsd_t r;
     /* 1 / Vdc once per period (the DC link at least a quarter of its base: below that the duties
      * clamp anyway) */
     const ctl_q vdc_floor = ctl_max(vdc, CTL_Q(0.25));
     const ctl_q inv_vdc = ctl_div(CTL_Q(1.0), vdc_floor);
-    int16_t edges;
+    ctl_q gain = inv_vdc;
+    ctl_q spread;
+    int16_t edges = 0;
+    int16_t k;
     ctl_vsd_inverse(v, phase);
-    edges =
-        (int16_t)(modulate_set(phase, inv_vdc, 0, duty) | modulate_set(phase, inv_vdc, 3, duty));
+    spread =
+        ctl_mul(ctl_max(set_spread(phase, 0, &mid[0]), set_spread(phase, 3, &mid[1])), inv_vdc);
+    if (spread > CTL_Q(1.0)) { /* beyond the linear range: the whole request scaled to fit */
+        gain = ctl_mul(inv_vdc, ctl_div(CTL_Q(1.0), spread));
+    }
+    for (k = 0; k < 6; k++) {
+        const ctl_q d = ctl_mul_acc(CTL_Q(0.5), ctl_sub(phase[k], mid[k / 3]), gain);
+        duty[k] = ctl_clamp(d, CTL_Q(0.0), CTL_Q(1.0));
+        if (duty[k] >= CTL_Q(1.0)) {
+            edges = (int16_t)(edges | (1 << (5 - k)));
+        }
+    }
     /* The set's common mode drops out of the VSD rows: the duties' VSD times Vdc is the period
      * average the legs apply. */
     ctl_vsd_forward(duty, &r);
@@ -131,12 +136,14 @@ static void foc_integrate(ctl_foc_state_t *s, const ctl_foc_config_t *f, const f
     ctl_q rd;
     ctl_q rq;
     ctl_park(fw->realised.alpha, fw->realised.beta, fw->s_cmd, fw->c_cmd, &rd, &rq);
-    s->integ_d = ctl_foc_integrate(s->integ_d, f->ki_ts_d, fw->ed, fw->vd, rd, f->integ_limit);
-    s->integ_q = ctl_foc_integrate(s->integ_q, f->ki_ts_q, fw->eq, fw->vq, rq, f->integ_limit);
-    s->integ_x =
-        ctl_foc_integrate(s->integ_x, f->ki_ts_xy, fw->ex, fw->v.x, fw->realised.x, f->integ_limit);
-    s->integ_y =
-        ctl_foc_integrate(s->integ_y, f->ki_ts_xy, fw->ey, fw->v.y, fw->realised.y, f->integ_limit);
+    s->integ_d =
+        ctl_foc_integrate(s->integ_d, f->ki_ts_d, f->kt_d, fw->ed, fw->vd, rd, f->integ_limit);
+    s->integ_q =
+        ctl_foc_integrate(s->integ_q, f->ki_ts_q, f->kt_q, fw->eq, fw->vq, rq, f->integ_limit);
+    s->integ_x = ctl_foc_integrate(s->integ_x, f->ki_ts_xy, f->kt_xy, fw->ex, fw->v.x,
+                                   fw->realised.x, f->integ_limit);
+    s->integ_y = ctl_foc_integrate(s->integ_y, f->ki_ts_xy, f->kt_xy, fw->ey, fw->v.y,
+                                   fw->realised.y, f->integ_limit);
     s->v_in_force = fw->realised;
 }
 

@@ -23,10 +23,10 @@ static const char *const controllers[] = {CTL_CONTROLLER_LIST(CLI_CONTROLLER_NAM
 
 void sim_cli_usage(FILE *f)
 {
-    int k;
+    int c;
     fprintf(f, "usage:\n  sixphase-sim run --controller {");
-    for (k = 0; controllers[k] != NULL; k++) { /* the core's list (CTL_CONTROLLER_LIST) */
-        fprintf(f, "%s%s", (k > 0) ? "," : "", controllers[k]);
+    for (c = 0; controllers[c] != NULL; c++) { /* the core's list (CTL_CONTROLLER_LIST) */
+        fprintf(f, "%s%s", (c > 0) ? "," : "", controllers[c]);
     }
     fprintf(
         f,

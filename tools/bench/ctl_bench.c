@@ -24,6 +24,7 @@
 #include <valgrind/callgrind.h>
 
 #include "bench.h"
+#include "ctl_params.h"
 #include "trace_csv.h"
 
 static bench_point_t points[BENCH_MAX_POINTS];
@@ -47,7 +48,11 @@ static int parse_positive(const char *flag, const char *text, double *out)
     return 0;
 }
 
-static const char *const controller_names[3] = {"ddc", "mptc49", "mptc13"};
+/* The core's controllers by name (CTL_CONTROLLER_LIST), in id order. */
+#define BENCH_CONTROLLER_NAME(id, number, name, what) name,
+static const char *const controller_names[CTL_CONTROLLER_COUNT] = {
+    CTL_CONTROLLER_LIST(BENCH_CONTROLLER_NAME)};
+#undef BENCH_CONTROLLER_NAME
 
 /* Parameter changes during the per-step replay: one every this many steps. */
 #define CHANGE_EVERY 500u
@@ -135,7 +140,7 @@ static int run_worst_steps(size_t n)
 {
     int16_t controller;
     int arith;
-    for (controller = 0; controller < 3; controller++) {
+    for (controller = 0; controller < CTL_CONTROLLER_COUNT; controller++) {
         for (arith = 0; arith < 2; arith++) {
             if (setup_controller(controller, arith) != 0) {
                 return 1;
@@ -151,7 +156,7 @@ static int run_measured(size_t n, double reps)
 {
     int16_t controller;
     int arith;
-    for (controller = 0; controller < 3; controller++) {
+    for (controller = 0; controller < CTL_CONTROLLER_COUNT; controller++) {
         for (arith = 0; arith < 2; arith++) {
             char label[32];
             double t0, t1;

@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "bench.h"
+#include "ctl_params.h"
 #include "ctl_q.h"
 #include "trace_csv.h"
 
@@ -16,7 +17,9 @@ static bench_point_t points[BENCH_MAX_POINTS];
 
 int main(int argc, char **argv)
 {
-    static const char *names[3] = {"ddc", "mptc49", "mptc13"};
+#define OPCOUNT_CONTROLLER_NAME(id, number, name, what) name,
+    static const char *names[CTL_CONTROLLER_COUNT] = {CTL_CONTROLLER_LIST(OPCOUNT_CONTROLLER_NAME)};
+#undef OPCOUNT_CONTROLLER_NAME
     static const char *ops[CTL_OP_KINDS] = {"add", "mul", "div", "sqrt", "sin"};
     size_t n = 0;
     int a;
@@ -39,7 +42,7 @@ int main(int argc, char **argv)
         return 2;
     }
     n = bench_prepare(points, n);
-    for (controller = 0; controller < 3; controller++) {
+    for (controller = 0; controller < CTL_CONTROLLER_COUNT; controller++) {
         double sum[CTL_OP_KINDS] = {0};
         uint32_t max[CTL_OP_KINDS] = {0};
         size_t i;

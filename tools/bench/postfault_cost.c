@@ -89,9 +89,8 @@ static void measured_step(int i, int controller, bool each, double *worst, ctl_c
 #else
     (void)worst;
     if (each) {
-        static const char *const controller_names[3] = {"ddc", "mptc49", "mptc13"};
         char label[64];
-        snprintf(label, sizeof label, "p-%s_%s-%d", controller_names[controller],
+        snprintf(label, sizeof label, "p-%s_%s-%d", ctl_controller_name(controller),
                  CTL_MATH_FLOAT ? "float" : "fixed", i);
         CALLGRIND_TOGGLE_COLLECT;
         ctl_step(&ctl, &meas[i], cmd);
@@ -133,7 +132,7 @@ int main(int argc, char **argv)
                         "[--worst-step]\n");
         return 2;
     }
-    if (parse_int("CONTROLLER", argv[2], 0, 2, &controller) != 0 ||
+    if (parse_int("CONTROLLER", argv[2], 0, CTL_CONTROLLER_COUNT - 1, &controller) != 0 ||
         parse_int("LEG", argv[3], -1, 5, &leg) != 0) {
         return 2;
     }

@@ -18,7 +18,9 @@ import sys
 import tempfile
 
 SCENARIOS = ["steady", "load-step", "accel", "reversal"]
-CONFIGS = ["ddc_fixed", "ddc_float", "mptc49_fixed", "mptc49_float", "mptc13_fixed", "mptc13_float"]
+CONFIGS = ["ddc_fixed", "ddc_float", "mptc49_fixed", "mptc49_float", "mptc13_fixed", "mptc13_float",
+           "foc_fixed", "foc_float"]
+NAMES = {"ddc": "DDC (proposed)", "mptc49": "MPTC-49", "mptc13": "MPTC-13", "foc": "FOC-VSD"}
 PAPER_US = {"ddc": 50.6, "mptc49": 74.2}
 PROTECT = ["protect_fixed", "protect_float"]
 OPS = ["add", "mul", "div", "sqrt", "sin"]
@@ -199,7 +201,7 @@ def postfault_steps(sim, tools, work):
     out = os.path.join(work, "callgrind.postfault")
     steps = {}
     for arith, tool in tools.items():
-        for controller in ("0", "1", "2"):
+        for controller in [str(k) for k in range(len(CONFIGS) // 2)]:
             if os.path.exists(out):
                 os.remove(out)
             run(["valgrind", "--tool=callgrind", "--collect-atstart=no", "--combine-dumps=yes",
@@ -385,7 +387,7 @@ def main():
         ctrl, arith = c.split("_")
         ref = per_step["mptc49_" + arith]
         w("| %s | %s | %.0f | %.3f | %.0f |" % (
-            {"ddc": "DDC (proposed)", "mptc49": "MPTC-49", "mptc13": "MPTC-13"}[ctrl], arith,
+            NAMES[ctrl], arith,
             per_step[c], per_step[c] / ref, ns.get(c, float("nan"))))
     w("")
     w("Paper (measured on the F28335 at 150 MHz): DDC %.1f us, conventional MPTC %.1f us, ratio"
