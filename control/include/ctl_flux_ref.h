@@ -44,11 +44,11 @@ void ctl_flux_ref_init(ctl_flux_ref_t *f, ctl_flux_ref_mode_t mode, float consta
 
 ctl_q ctl_flux_ref_run(const ctl_flux_ref_t *f, ctl_q torque_ref_pu);
 
-/* The d-q currents (per unit) of the table's operating points, for a controller that takes
- * current references (FOC-VSD, ctl_foc.h): MTPA mode the very points ctl_flux_ref_init tabulates
- * (the light-load floor included), constant mode i_d = 0 and i_q = T / (3 Pn psi_f). i_q is for
- * positive torque; the arguments as ctl_flux_ref_init's. Background only. */
-void ctl_flux_ref_currents(ctl_q *id_pu, ctl_q *iq_pu, ctl_flux_ref_mode_t mode,
+/* The d-axis currents (per unit) of the operating points at `points` torques evenly over the span,
+ * for a controller that takes current references (FOC-VSD, ctl_foc.h): MTPA mode the points
+ * ctl_flux_ref_init tabulates (the light-load floor included), constant mode i_d = 0; the other
+ * arguments as ctl_flux_ref_init's. Background only. */
+void ctl_flux_ref_currents(ctl_q *id_pu, int16_t points, ctl_flux_ref_mode_t mode,
                            const ctl_flux_ref_machine_t *m, float torque_max_nm, float floor_a);
 
 #endif /* CTL_FLUX_REF_H */

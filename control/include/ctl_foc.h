@@ -33,8 +33,8 @@ void ctl_foc_config_build(ctl_foc_config_t *f, const ctl_params_t *p, const ctl_
 void ctl_foc_reset(ctl_foc_state_t *s);
 
 /* The current references of a torque reference (per unit). */
-void ctl_foc_current_ref(const ctl_foc_config_t *f, const ctl_flux_ref_t *span, ctl_q torque_ref,
-                         ctl_q *id_ref, ctl_q *iq_ref);
+void ctl_foc_current_ref(const ctl_foc_config_t *f, const ctl_flux_ref_t *span,
+                         const ctl_model_t *model, ctl_q torque_ref, ctl_q *id_ref, ctl_q *iq_ref);
 
 /* One PI with back-calculation: out = kp e + integ; returns out. */
 static inline ctl_q ctl_foc_pi(ctl_q kp, ctl_q integ, ctl_q err)

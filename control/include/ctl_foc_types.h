@@ -17,17 +17,20 @@
 #define CTL_FOC_GAIN_MAX 64.0f
 /* |integrator| bound of every current PI, per unit voltage (twice the 540 V base: beyond what
  * any DC link the drive accepts can apply). */
-#define CTL_FOC_INTEG_LIMIT 2.0f
+#define CTL_FOC_INTEG_LIMIT CTL_Q(2.0)
+/* The i_d reference's table: every fourth point of the flux reference's (0, 1/8, .. 1 of its
+ * span), i_q from the torque equation. Nine points, not 33, for the RAM of the 16-bit-int proxy
+ * (tools/avr_proxy, two configurations in ctl_t). */
+#define CTL_FOC_REF_POINTS 9
+#define CTL_FOC_REF_STRIDE 4 /* (CTL_FLUX_REF_TABLE_POINTS - 1) / (CTL_FOC_REF_POINTS - 1) */
 
 typedef struct {
-    ctl_q kp_d, kp_q, kp_xy;          /* L w_c, per unit voltage per per-unit current */
-    ctl_q ki_ts_d, ki_ts_q, ki_ts_xy; /* R w_c Ts, per step */
-    ctl_q kt_d, kt_q, kt_xy;          /* anti-windup tracking per step, Ts / T_i = R Ts / L */
-    ctl_q advance; /* 1.5 Ts per unit: times w, the command angle's advance (rad) */
-    ctl_q integ_limit;
-    /* current references at the flux reference's torque points (ctl_flux_ref_currents) */
-    ctl_q id_ref[CTL_FLUX_REF_TABLE_POINTS];
-    ctl_q iq_ref[CTL_FLUX_REF_TABLE_POINTS];
+    ctl_q kp_d, kp_q, kp_xy; /* L w_c, per unit voltage per per-unit current */
+    ctl_q ki_ts;             /* R w_c Ts, per step (every axis) */
+    ctl_q kt_d, kt_q, kt_xy; /* anti-windup tracking per step, Ts / T_i = R Ts / L */
+    ctl_q advance;           /* 1.5 Ts per unit: times w, the command angle's advance (rad) */
+    /* i_d references at the flux reference's torque points (ctl_flux_ref_currents) */
+    ctl_q id_ref[CTL_FOC_REF_POINTS];
 } ctl_foc_config_t;
 
 typedef struct {

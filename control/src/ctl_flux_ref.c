@@ -117,17 +117,17 @@ void ctl_flux_ref_init(ctl_flux_ref_t *f, ctl_flux_ref_mode_t mode, float consta
     }
 }
 
-void ctl_flux_ref_currents(ctl_q *id_pu, ctl_q *iq_pu, ctl_flux_ref_mode_t mode,
+void ctl_flux_ref_currents(ctl_q *id_pu, int16_t points, ctl_flux_ref_mode_t mode,
                            const ctl_flux_ref_machine_t *m, float torque_max_nm, float floor_a)
 {
     int16_t k;
-    for (k = CTL_FLUX_REF_TABLE_POINTS - 1; k >= 0; k--) {
-        const float target = torque_max_nm * (float)k / (float)(CTL_FLUX_REF_TABLE_POINTS - 1);
-        float id = 0.0f;
-        float iq = target / (3.0f * (float)m->pole_pairs * m->psi_f_wb); /* i_d = 0 */
+    for (k = (int16_t)(points - 1); k >= 0; k--) {
+        const float target = torque_max_nm * (float)k / (float)(points - 1);
+        float id = 0.0f; /* constant-flux mode: i_d = 0 */
+        float iq;
         if (mode == CTL_FLUX_REF_MTPA) {
             const float i = mtpa_current_for_torque(m, target);
-            if (k == CTL_FLUX_REF_TABLE_POINTS - 1 && floor_a > i) {
+            if (k == points - 1 && floor_a > i) {
                 floor_a = i;
             }
             if (i < floor_a) {
@@ -135,11 +135,9 @@ void ctl_flux_ref_currents(ctl_q *id_pu, ctl_q *iq_pu, ctl_flux_ref_mode_t mode,
                             mtpa_id(floor_a, m->ld_h, m->lq_h, m->psi_f_wb), &id, &iq);
             } else {
                 id = mtpa_id(i, m->ld_h, m->lq_h, m->psi_f_wb);
-                iq = ctl_sqrtf(i * i - id * id);
             }
         }
         id_pu[k] = ctl_from_float(id / CTL_BASE_CURRENT_A_F);
-        iq_pu[k] = ctl_from_float(iq / CTL_BASE_CURRENT_A_F);
     }
 }
 

@@ -14,20 +14,21 @@ void ctl_foc_reset(ctl_foc_state_t *s)
     s->v_in_force.y = CTL_Q(0.0);
 }
 
-/* The flux reference's interpolation (ctl_flux_ref_run) over the current tables. */
-void ctl_foc_current_ref(const ctl_foc_config_t *f, const ctl_flux_ref_t *span, ctl_q torque_ref,
-                         ctl_q *id_ref, ctl_q *iq_ref)
+/* i_d by the flux reference's interpolation (ctl_flux_ref_run) over the table's every fourth
+ * point, i_q from the torque equation Te = Pn i_q (psi_f + (L_d - L_q) i_d) (one division; the
+ * bracket, at least psi_f for an MTPA point, held above a quarter of it). */
+void ctl_foc_current_ref(const ctl_foc_config_t *f, const ctl_flux_ref_t *span,
+                         const ctl_model_t *model, ctl_q torque_ref, ctl_q *id_ref, ctl_q *iq_ref)
 {
     const ctl_q pos =
-        ctl_mul(ctl_min(ctl_abs(torque_ref), span->torque_max), span->points_per_torque);
+        ctl_mul(ctl_mul(ctl_min(ctl_abs(torque_ref), span->torque_max), span->points_per_torque),
+                CTL_Q(0.25)); /* 1 / CTL_FOC_REF_STRIDE */
     ctl_q id;
-    ctl_q iq;
-    if (!(pos < CTL_Q(CTL_FLUX_REF_TABLE_POINTS - 1))) { /* at or past the end, or NaN */
-        id = f->id_ref[CTL_FLUX_REF_TABLE_POINTS - 1];
-        iq = f->iq_ref[CTL_FLUX_REF_TABLE_POINTS - 1];
+    ctl_q bracket;
+    if (!(pos < CTL_Q(CTL_FOC_REF_POINTS - 1))) { /* at or past the end, or NaN */
+        id = f->id_ref[CTL_FOC_REF_POINTS - 1];
     } else if (!(pos > CTL_Q(0.0))) {
         id = f->id_ref[0];
-        iq = f->iq_ref[0];
     } else {
 #if CTL_MATH_FLOAT
         const int16_t k = (int16_t)pos; /* defined: 0 < pos < points - 1 */
@@ -37,10 +38,11 @@ void ctl_foc_current_ref(const ctl_foc_config_t *f, const ctl_flux_ref_t *span, 
         const ctl_q frac = pos & (CTL_Q_ONE - 1);
 #endif
         id = ctl_add(f->id_ref[k], ctl_mul(frac, ctl_sub(f->id_ref[k + 1], f->id_ref[k])));
-        iq = ctl_add(f->iq_ref[k], ctl_mul(frac, ctl_sub(f->iq_ref[k + 1], f->iq_ref[k])));
     }
+    bracket = ctl_mul_acc(model->psi_f, ctl_sub(model->ld, model->lq), id);
+    bracket = ctl_max(bracket, ctl_mul(model->psi_f, CTL_Q(0.25)));
     *id_ref = id;
-    *iq_ref = (torque_ref < CTL_Q(0.0)) ? -iq : iq;
+    *iq_ref = ctl_div(torque_ref, ctl_mul_int(bracket, model->pole_pairs));
 }
 
 /* The spread of one three-phase set's phase voltages (legs first..first+2) and its middle: the
@@ -137,13 +139,13 @@ static void foc_integrate(ctl_foc_state_t *s, const ctl_foc_config_t *f, const f
     ctl_q rq;
     ctl_park(fw->realised.alpha, fw->realised.beta, fw->s_cmd, fw->c_cmd, &rd, &rq);
     s->integ_d =
-        ctl_foc_integrate(s->integ_d, f->ki_ts_d, f->kt_d, fw->ed, fw->vd, rd, f->integ_limit);
+        ctl_foc_integrate(s->integ_d, f->ki_ts, f->kt_d, fw->ed, fw->vd, rd, CTL_FOC_INTEG_LIMIT);
     s->integ_q =
-        ctl_foc_integrate(s->integ_q, f->ki_ts_q, f->kt_q, fw->eq, fw->vq, rq, f->integ_limit);
-    s->integ_x = ctl_foc_integrate(s->integ_x, f->ki_ts_xy, f->kt_xy, fw->ex, fw->v.x,
-                                   fw->realised.x, f->integ_limit);
-    s->integ_y = ctl_foc_integrate(s->integ_y, f->ki_ts_xy, f->kt_xy, fw->ey, fw->v.y,
-                                   fw->realised.y, f->integ_limit);
+        ctl_foc_integrate(s->integ_q, f->ki_ts, f->kt_q, fw->eq, fw->vq, rq, CTL_FOC_INTEG_LIMIT);
+    s->integ_x = ctl_foc_integrate(s->integ_x, f->ki_ts, f->kt_xy, fw->ex, fw->v.x, fw->realised.x,
+                                   CTL_FOC_INTEG_LIMIT);
+    s->integ_y = ctl_foc_integrate(s->integ_y, f->ki_ts, f->kt_xy, fw->ey, fw->v.y, fw->realised.y,
+                                   CTL_FOC_INTEG_LIMIT);
     s->v_in_force = fw->realised;
 }
 
@@ -194,7 +196,7 @@ void ctl_foc_healthy_step(ctl_t *c, const ctl_meas_t *m, ctl_cmd_t *cmd)
         torque_ref = ctl_clamp(c->torque_ref_direct, -cfg->torque_limit, cfg->torque_limit);
     }
     flux_ref = ctl_flux_ref_run(&cfg->flux_ref, torque_ref);
-    ctl_foc_current_ref(&cfg->foc, &cfg->flux_ref, torque_ref, &fw.id_ref, &fw.iq_ref);
+    ctl_foc_current_ref(&cfg->foc, &cfg->flux_ref, &cfg->model, torque_ref, &fw.id_ref, &fw.iq_ref);
     CTL_STAGE_MARK(c->stage_hook, CTL_STAGE_TRANSFORMS);
 
     foc_predict(s, &cfg->model, &i, id, iq, m->omega_e, s0, c0, &fw);

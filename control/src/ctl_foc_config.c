@@ -23,15 +23,12 @@ void ctl_foc_config_build(ctl_foc_config_t *f, const ctl_params_t *p, const ctl_
     f->kp_d = ctl_from_float(l_d * wc);
     f->kp_q = ctl_from_float(l_q * wc);
     f->kp_xy = ctl_from_float(l_xy * wc);
-    f->ki_ts_d = ctl_from_float(r * wc * ts);
-    f->ki_ts_q = f->ki_ts_d;
-    f->ki_ts_xy = f->ki_ts_d;
+    f->ki_ts = ctl_from_float(r * wc * ts);
     /* back-calculation with the tracking time constant T_t = T_i = Kp / Ki = L / R */
     f->kt_d = ctl_from_float(r * ts / l_d);
     f->kt_q = ctl_from_float(r * ts / l_q);
     f->kt_xy = ctl_from_float(r * ts / l_xy);
     f->advance = ctl_from_float(1.5f * ts);
-    f->integ_limit = ctl_from_float(CTL_FOC_INTEG_LIMIT);
-    ctl_flux_ref_currents(f->id_ref, f->iq_ref, p->flux_ref_mode, &m, p->torque_limit_nm,
+    ctl_flux_ref_currents(f->id_ref, CTL_FOC_REF_POINTS, p->flux_ref_mode, &m, p->torque_limit_nm,
                           p->light_load_current_a);
 }
