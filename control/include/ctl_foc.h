@@ -26,8 +26,28 @@
 #include "ctl_q.h"
 #include "ctl_vsd.h"
 
-/* Gains and current references from p (SI) and the model built from it. Background only. */
-void ctl_foc_config_build(ctl_foc_config_t *f, const ctl_params_t *p, const ctl_model_t *model);
+/* The bandwidth from p (SI); the current references come with the flux table
+ * (ctl_flux_ref_init's id_pu, ctl_config_build). Background only. */
+void ctl_foc_config_build(ctl_foc_config_t *f, const ctl_params_t *p);
+
+/* The PIs' gains, per unit, from the bandwidth and the model (a few products per period). */
+typedef struct {
+    ctl_q kp_d, kp_q, kp_xy; /* L w_c */
+    ctl_q ki_ts;             /* R w_c Ts (every axis) */
+    ctl_q kt_d, kt_q, kt_xy; /* anti-windup tracking Ts / T_i = R Ts / L = 1 - a */
+} ctl_foc_gains_t;
+
+static inline void ctl_foc_gains(const ctl_foc_config_t *f, const ctl_model_t *m,
+                                 ctl_foc_gains_t *g)
+{
+    g->kp_d = ctl_mul(m->ld, f->wc);
+    g->kp_q = ctl_mul(m->lq, f->wc);
+    g->kp_xy = ctl_mul(m->lxy, f->wc);
+    g->kt_d = ctl_sub(CTL_Q(1.0), m->a_d);
+    g->kt_q = ctl_sub(CTL_Q(1.0), m->a_q);
+    g->kt_xy = ctl_sub(CTL_Q(1.0), m->a_xy);
+    g->ki_ts = ctl_mul(g->kt_d, g->kp_d);
+}
 
 /* Clears the integrators and the voltage in force. */
 void ctl_foc_reset(ctl_foc_state_t *s);
@@ -63,7 +83,7 @@ static inline ctl_q ctl_foc_integrate(ctl_q integ, ctl_q ki_ts, ctl_q kt, ctl_q 
  * legs high at the period boundary (duty 1; S_A is bit 5). */
 int16_t ctl_foc_modulate(const ctl_vsd_t *v, ctl_q vdc, ctl_q duty[6], ctl_vsd_t *realised);
 
-/* ctl_healthy_step's period when the set in force is FOC-VSD (all six legs): measurement, speed
+/* ctl_step's healthy period when the set in force is FOC-VSD (all six legs): measurement, speed
  * loop and references as the predictive controllers', then the current loops above. The command
  * is the six leg duties; its vector and duty are 0 (no one switching state stands for it). */
 void ctl_foc_healthy_step(ctl_t *c, const ctl_meas_t *m, ctl_cmd_t *cmd);

@@ -21,15 +21,14 @@
 /* The i_d reference's table: every fourth point of the flux reference's (0, 1/8, .. 1 of its
  * span), i_q from the torque equation. Nine points, not 33, for the RAM of the 16-bit-int proxy
  * (tools/avr_proxy, two configurations in ctl_t). */
-#define CTL_FOC_REF_POINTS 9
-#define CTL_FOC_REF_STRIDE 4 /* (CTL_FLUX_REF_TABLE_POINTS - 1) / (CTL_FOC_REF_POINTS - 1) */
+#define CTL_FOC_REF_POINTS CTL_FLUX_REF_CURRENT_POINTS
 
+/* What a FOC set adds to its configuration (beside the model, from which the step takes the
+ * gains: Kp = L w_c, Ki Ts = R w_c Ts, the tracking Ts / T_i = R Ts / L = 1 - a). It shares its
+ * place with the DDC's settings (ctl_config_t.ctrl), which a FOC set never uses. */
 typedef struct {
-    ctl_q kp_d, kp_q, kp_xy; /* L w_c, per unit voltage per per-unit current */
-    ctl_q ki_ts;             /* R w_c Ts, per step (every axis) */
-    ctl_q kt_d, kt_q, kt_xy; /* anti-windup tracking per step, Ts / T_i = R Ts / L */
-    ctl_q advance;           /* 1.5 Ts per unit: times w, the command angle's advance (rad) */
-    /* i_d references at the flux reference's torque points (ctl_flux_ref_currents) */
+    ctl_q wc; /* the current loops' bandwidth, per unit */
+    /* i_d references at the flux reference's torque points (ctl_flux_ref_init fills them) */
     ctl_q id_ref[CTL_FOC_REF_POINTS];
 } ctl_foc_config_t;
 

@@ -37,6 +37,7 @@ SIXPHASE_RAMFUNC static void use_config(ctl_t *c, const ctl_config_t *cfg)
     c->initialised = true;
     c->healthy_step = c->postfault[c->config_active].open_leg == CTL_POSTFAULT_NO_LEG;
     c->xy_held = c->healthy_step && cfg->params.controller == CTL_CONTROLLER_DDC;
+    c->foc_step = c->healthy_step && cfg->params.controller == CTL_CONTROLLER_FOC;
 }
 
 /* The open-phase part of a configuration (ctl_postfault_config.h), beside it. */
@@ -53,6 +54,7 @@ bool ctl_init(ctl_t *c, const ctl_params_t *p)
     c->initialised = false;
     c->healthy_step = false;
     c->xy_held = false;
+    c->foc_step = false;
     c->config_active = 0;
     c->config_ready = 0;
     c->params_rejected = 0u;
@@ -246,10 +248,10 @@ SIXPHASE_RAMFUNC static void select_ddc(const ctl_t *c, const ctl_config_t *cfg,
     f.psi_x = ctl_mul(cfg->model.lxy, ix1);
     f.psi_y = ctl_mul(cfg->model.lxy, iy1);
 #if CTL_PROFILE
-    ctl_ddc_select(h, &f, &cfg->ddc, c->stage_hook, choice);
+    ctl_ddc_select(h, &f, &cfg->ctrl.ddc, c->stage_hook, choice);
 #else
     (void)c;
-    ctl_ddc_select(h, &f, &cfg->ddc, 0, choice);
+    ctl_ddc_select(h, &f, &cfg->ctrl.ddc, 0, choice);
 #endif
 }
 
@@ -265,10 +267,6 @@ SIXPHASE_RAMFUNC void ctl_healthy_step(ctl_t *c, const ctl_meas_t *m, ctl_cmd_t 
     ctl_q ix1;
     ctl_q iy1;
 
-    if (cfg->params.controller == CTL_CONTROLLER_FOC) { /* current loops, no search */
-        ctl_foc_healthy_step(c, m, cmd);
-        return;
-    }
     /* Measured state at k, references. */
     ctl_vsd_forward(m->i_phase, &smp.vsd);
     ctl_sincos_pu(m->theta_e, &smp.s0, &smp.c0);

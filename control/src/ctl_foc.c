@@ -1,8 +1,9 @@
 #include "ctl_foc.h"
 
 #include "ctl_angle.h"
+#include "ctl_placement.h"
 
-void ctl_foc_reset(ctl_foc_state_t *s)
+SIXPHASE_RAMFUNC void ctl_foc_reset(ctl_foc_state_t *s)
 {
     s->integ_d = CTL_Q(0.0);
     s->integ_q = CTL_Q(0.0);
@@ -100,6 +101,7 @@ typedef struct {
     ctl_q s_cmd, c_cmd;       /* the command's angle: k + 1.5 periods */
     ctl_vsd_t v;              /* requested */
     ctl_vsd_t realised;
+    ctl_foc_gains_t g;
 } foc_work_t;
 
 /* k -> k+1 under the voltage in force, rotated at the sample angle as the MPC's prediction. */
@@ -117,7 +119,7 @@ static void foc_predict(const ctl_foc_state_t *s, const ctl_model_t *model, cons
 /* The four PIs and the decoupling. */
 static void foc_pis(const ctl_foc_state_t *s, const ctl_config_t *cfg, ctl_q w, foc_work_t *fw)
 {
-    const ctl_foc_config_t *f = &cfg->foc;
+    const ctl_foc_gains_t *f = &fw->g;
     fw->ed = ctl_sub(fw->id_ref, fw->id1);
     fw->eq = ctl_sub(fw->iq_ref, fw->iq1);
     fw->ex = -fw->ix1;
@@ -133,8 +135,9 @@ static void foc_pis(const ctl_foc_state_t *s, const ctl_config_t *cfg, ctl_q w, 
 
 /* The integrators after the modulator: back-calculation against the realised voltage, the d-q
  * part turned back at the command's angle. */
-static void foc_integrate(ctl_foc_state_t *s, const ctl_foc_config_t *f, const foc_work_t *fw)
+static void foc_integrate(ctl_foc_state_t *s, const foc_work_t *fw)
 {
+    const ctl_foc_gains_t *f = &fw->g;
     ctl_q rd;
     ctl_q rq;
     ctl_park(fw->realised.alpha, fw->realised.beta, fw->s_cmd, fw->c_cmd, &rd, &rq);
@@ -196,19 +199,21 @@ void ctl_foc_healthy_step(ctl_t *c, const ctl_meas_t *m, ctl_cmd_t *cmd)
         torque_ref = ctl_clamp(c->torque_ref_direct, -cfg->torque_limit, cfg->torque_limit);
     }
     flux_ref = ctl_flux_ref_run(&cfg->flux_ref, torque_ref);
-    ctl_foc_current_ref(&cfg->foc, &cfg->flux_ref, &cfg->model, torque_ref, &fw.id_ref, &fw.iq_ref);
+    ctl_foc_current_ref(&cfg->ctrl.foc, &cfg->flux_ref, &cfg->model, torque_ref, &fw.id_ref,
+                        &fw.iq_ref);
     CTL_STAGE_MARK(c->stage_hook, CTL_STAGE_TRANSFORMS);
 
     foc_predict(s, &cfg->model, &i, id, iq, m->omega_e, s0, c0, &fw);
     CTL_STAGE_MARK(c->stage_hook, CTL_STAGE_PREDICT);
     CTL_STAGE_MARK(c->stage_hook, CTL_STAGE_TABLE); /* no tables: the stage is empty */
 
+    ctl_foc_gains(&cfg->ctrl.foc, &cfg->model, &fw.g);
     foc_pis(s, cfg, m->omega_e, &fw);
-    ctl_angle_advance(m->theta_e, s0, c0, ctl_mul(m->omega_e, cfg->foc.advance), &fw.s_cmd,
-                      &fw.c_cmd);
+    ctl_angle_advance(m->theta_e, s0, c0, ctl_mul(m->omega_e, ctl_mul(cfg->model.ts, CTL_Q(1.5))),
+                      &fw.s_cmd, &fw.c_cmd);
     ctl_park_inverse(fw.vd, fw.vq, fw.s_cmd, fw.c_cmd, &fw.v.alpha, &fw.v.beta);
     c->applied_edges = ctl_foc_modulate(&fw.v, m->vdc, cmd->leg_duty, &fw.realised);
-    foc_integrate(s, &cfg->foc, &fw);
+    foc_integrate(s, &fw);
     /* no one switching state stands for a carrier-PWM command: the predictive controllers, should
      * the next set be one of them, see a zero vector in force (ctl_config_take resets this state
      * when the controller changes) */

@@ -35,22 +35,26 @@ static ctl_params_t foc_params(void)
 
 static double f(ctl_q x) { return (double)ctl_to_float(x); }
 
-/* Kp = L w_c, Ki Ts = R w_c Ts with w_c = 2 pi fs / 20 (500 Hz at 10 kHz), per unit. */
+/* Kp = L w_c, Ki Ts = R w_c Ts, tracking R Ts / L with w_c = 2 pi fs / 20 (500 Hz at 10 kHz),
+ * per unit. */
 static void test_gains_from_machine(void **state)
 {
     const ctl_params_t p = foc_params();
     const ctl_config_t *cfg;
+    ctl_foc_gains_t g;
     const double wc = 2.0 * TEST_PI * (1.0 / (double)p.sample_time_s) / 20.0 / CTL_BASE_OMEGA_RAD_S;
     const double ts = (double)p.sample_time_s / CTL_BASE_TIME_S;
     (void)state;
     assert_true(ctl_init(&ctl, &p));
     cfg = ctl_config(&ctl);
     assert_near(wc * CTL_BASE_OMEGA_RAD_S, 2.0 * TEST_PI * 500.0, 1e-3);
-    assert_near(f(cfg->foc.kp_d), PU_L(CTL_MACHINE_LD_H) * wc, 1e-5);
-    assert_near(f(cfg->foc.kp_q), PU_L(CTL_MACHINE_LQ_H) * wc, 1e-5);
-    assert_near(f(cfg->foc.kp_xy), PU_L(CTL_MACHINE_LXY_H) * wc, 1e-5);
-    assert_near(f(cfg->foc.ki_ts), CTL_MACHINE_R_OHM / CTL_BASE_IMPEDANCE_OHM * wc * ts, 1e-6);
-    assert_near(f(cfg->foc.advance), 1.5 * ts, 1e-6);
+    ctl_foc_gains(&cfg->ctrl.foc, &cfg->model, &g);
+    assert_near(f(g.kp_d), PU_L(CTL_MACHINE_LD_H) * wc, 1e-5);
+    assert_near(f(g.kp_q), PU_L(CTL_MACHINE_LQ_H) * wc, 1e-5);
+    assert_near(f(g.kp_xy), PU_L(CTL_MACHINE_LXY_H) * wc, 1e-5);
+    assert_near(f(g.ki_ts), CTL_MACHINE_R_OHM / CTL_BASE_IMPEDANCE_OHM * wc * ts, 1e-6);
+    assert_near(f(g.kt_d), CTL_MACHINE_R_OHM / CTL_BASE_IMPEDANCE_OHM * ts / PU_L(CTL_MACHINE_LD_H),
+                1e-6);
 }
 
 /* Torque and flux of the references: the torque asked, the MTPA flux the predictive
@@ -70,7 +74,7 @@ static void test_current_references(void **state)
         ctl_q id;
         ctl_q iq;
         double psi_d, psi_q;
-        ctl_foc_current_ref(&cfg->foc, &cfg->flux_ref, &cfg->model, t, &id, &iq);
+        ctl_foc_current_ref(&cfg->ctrl.foc, &cfg->flux_ref, &cfg->model, t, &id, &iq);
         psi_d = CTL_MACHINE_PSI_F_WB + CTL_MACHINE_LD_H * f(id) * CTL_BASE_CURRENT_A;
         psi_q = CTL_MACHINE_LQ_H * f(iq) * CTL_BASE_CURRENT_A;
         assert_near(3.0 * 3.0 * (psi_d * f(iq) - psi_q * f(id)) * CTL_BASE_CURRENT_A, t_nm, 0.01);
@@ -85,7 +89,7 @@ static void test_current_references(void **state)
         const double t_nm = 1.75 * (double)k;
         ctl_q id;
         ctl_q iq;
-        ctl_foc_current_ref(&cfg->foc, &cfg->flux_ref, &cfg->model,
+        ctl_foc_current_ref(&cfg->ctrl.foc, &cfg->flux_ref, &cfg->model,
                             ctl_from_float((float)(t_nm / CTL_BASE_TORQUE_NM)), &id, &iq);
         assert_near(f(id), 0.0, 1e-7);
         assert_near(f(iq) * CTL_BASE_CURRENT_A, t_nm / (3.0 * 3.0 * CTL_MACHINE_PSI_F_WB), 1e-3);
@@ -284,7 +288,7 @@ static void test_current_loops_on_the_model(void **state)
     assert_true(ctl_init(&ctl, &p));
     ctl_set_loop_mode(&ctl, CTL_LOOP_TORQUE);
     ctl_set_torque_ref(&ctl, t_ref);
-    ctl_foc_current_ref(&ctl_config(&ctl)->foc, &ctl_config(&ctl)->flux_ref,
+    ctl_foc_current_ref(&ctl_config(&ctl)->ctrl.foc, &ctl_config(&ctl)->flux_ref,
                         &ctl_config(&ctl)->model, t_ref, &id_ref, &iq_ref);
     for (n = 0; n < 300; n++) {
         ctl_meas_t m;

@@ -244,9 +244,9 @@ static void emit_config(const ctl_config_t *c)
     wr_q(c->speed_kp);
     wr_q(c->speed_ki_ts);
     for (i = 0; i < CTL_DUTY_LEVELS_MAX; i++) {
-        wr_q(c->ddc.levels[i]);
+        wr_q(c->ctrl.ddc.levels[i]);
     }
-    wr_q(c->ddc.tie_per_span);
+    wr_q(c->ctrl.ddc.tie_per_span);
     wr_q(c->omega_pu_per_rev_s);
     wr_u8((uint8_t)c->flux_ref.mode);
     wr_q(c->flux_ref.constant);
