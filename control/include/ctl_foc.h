@@ -26,10 +26,6 @@
 #include "ctl_q.h"
 #include "ctl_vsd.h"
 
-/* The bandwidth from p (SI); the current references come with the flux table
- * (ctl_flux_ref_init's id_pu, ctl_config_build). Background only. */
-void ctl_foc_config_build(ctl_foc_config_t *f, const ctl_params_t *p);
-
 /* The PIs' gains, per unit, from the bandwidth and the model (a few products per period). */
 typedef struct {
     ctl_q kp_d, kp_q, kp_xy; /* L w_c */
@@ -48,9 +44,6 @@ static inline void ctl_foc_gains(const ctl_foc_config_t *f, const ctl_model_t *m
     g->kt_xy = ctl_sub(CTL_Q(1.0), m->a_xy);
     g->ki_ts = ctl_mul(g->kt_d, g->kp_d);
 }
-
-/* Clears the integrators and the voltage in force. */
-void ctl_foc_reset(ctl_foc_state_t *s);
 
 /* The current references of a torque reference (per unit). */
 void ctl_foc_current_ref(const ctl_foc_config_t *f, const ctl_flux_ref_t *span,

@@ -38,4 +38,18 @@ typedef struct {
                            * duties' clamp), per unit: the k -> k+1 prediction's */
 } ctl_foc_state_t;
 
+/* Clears the integrators and the voltage in force (ctl_reset_command, and a change of
+ * controller). */
+static inline void ctl_foc_reset(ctl_foc_state_t *s)
+{
+    s->integ_d = CTL_Q(0.0);
+    s->integ_q = CTL_Q(0.0);
+    s->integ_x = CTL_Q(0.0);
+    s->integ_y = CTL_Q(0.0);
+    s->v_in_force.alpha = CTL_Q(0.0);
+    s->v_in_force.beta = CTL_Q(0.0);
+    s->v_in_force.x = CTL_Q(0.0);
+    s->v_in_force.y = CTL_Q(0.0);
+}
+
 #endif /* CTL_FOC_TYPES_H */

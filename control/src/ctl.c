@@ -3,7 +3,6 @@
 #include "ctl_barrier.h"
 #include "ctl_constants.h"
 #include "ctl_ddc.h"
-#include "ctl_foc.h"
 #include "ctl_diag_record.h"
 #include "ctl_mptc.h"
 #include "ctl_pulse.h"

@@ -1,6 +1,6 @@
 #include "ctl_config.h"
 
-#include "ctl_foc.h"
+#include "ctl_foc_config.h"
 #include "ctl_postfault_config.h"
 #include "ctl_pu.h"
 

@@ -1,19 +1,6 @@
 #include "ctl_foc.h"
 
 #include "ctl_angle.h"
-#include "ctl_placement.h"
-
-SIXPHASE_RAMFUNC void ctl_foc_reset(ctl_foc_state_t *s)
-{
-    s->integ_d = CTL_Q(0.0);
-    s->integ_q = CTL_Q(0.0);
-    s->integ_x = CTL_Q(0.0);
-    s->integ_y = CTL_Q(0.0);
-    s->v_in_force.alpha = CTL_Q(0.0);
-    s->v_in_force.beta = CTL_Q(0.0);
-    s->v_in_force.x = CTL_Q(0.0);
-    s->v_in_force.y = CTL_Q(0.0);
-}
 
 /* i_d by the flux reference's interpolation (ctl_flux_ref_run) over the table's every fourth
  * point, i_q from the torque equation Te = Pn i_q (psi_f + (L_d - L_q) i_d) (one division; the

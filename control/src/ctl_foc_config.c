@@ -1,5 +1,5 @@
 /* FOC-VSD's configuration (ctl_foc.h), built with the rest of a set's outside the ISR. */
-#include "ctl_foc.h"
+#include "ctl_foc_config.h"
 
 #include "ctl_pu.h"
 
