@@ -17,6 +17,8 @@ set(SIXPHASE_CTL_SOURCES
     control/src/ctl_flux_ref.c
     control/src/ctl_ddc.c
     control/src/ctl_mptc.c
+    control/src/ctl_foc.c
+    control/src/ctl_foc_config.c
     control/src/ctl_vvmptc.c
     control/src/ctl_protect.c
     control/src/ctl_params.c

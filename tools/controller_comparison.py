@@ -202,6 +202,7 @@ def table_a(results, arith, cost):
 def summary(results, arith):
     lines = ["| metric (%s, F28335 rates) | best | runner-up | margin | beyond the seed scatter |"
              % arith, "|---|---|---|---|---|"]
+    wins = {}
     for _, label, fmt in STEADY + STEP + REVERSAL:
         if label == "f_sw Hz":
             continue
@@ -215,9 +216,14 @@ def summary(results, arith):
             continue
         (m1, h1), n1 = scored[0]
         (m2, h2), n2 = scored[1]
+        apart = m1 + h1 < m2 - h2
         lines.append("| %s | %s (%s) | %s (%s) | %s (%.0f %%) | %s |" % (
             label, n1, fmt % m1, n2, fmt % m2, fmt % (m2 - m1),
-            100.0 * (m2 - m1) / m2 if m2 else 0.0, "yes" if m1 + h1 < m2 - h2 else "no"))
+            100.0 * (m2 - m1) / m2 if m2 else 0.0, "yes" if apart else "no"))
+        if apart:
+            wins.setdefault(n1, []).append(label)
+    lines += ["", "Best beyond the seed scatter (%s): %s." % (arith, "; ".join(
+        "%s: %s" % (name, ", ".join(labels)) for name, labels in sorted(wins.items())) or "none")]
     return lines
 
 

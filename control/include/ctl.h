@@ -96,6 +96,7 @@ typedef struct {
     /* the healthy step of the DDC, which holds the x-y currents near zero: the protection's fast
      * open-phase check may judge (ctl_protect_input_t.xy_held) */
     bool xy_held;
+    bool foc_step; /* the healthy step is FOC-VSD's (ctl_foc.h), which ctl_step calls itself */
     uint16_t params_rejected;            /* sets refused by ctl_request_params (background) */
     ctl_param_error_t params_last_error; /* reason of the last refusal */
     ctl_speed_pi_t speed_pi;             /* gains copied from the configuration in force */
@@ -113,6 +114,7 @@ typedef struct {
     /* the open-phase part of each configuration (ctl_postfault_config.h), built and taken with
      * it; a separate array keeps the healthy configuration's layout as it was */
     ctl_postfault_config_t postfault[2];
+    ctl_foc_state_t foc; /* FOC-VSD's integrators and voltage in force (ctl_foc.h) */
 } ctl_t;
 
 /* Builds the first configuration from p (background, before the ISR runs). Returns false,

@@ -16,6 +16,7 @@
 
 #include "ctl_ddc.h"
 #include "ctl_flux_ref.h"
+#include "ctl_foc_types.h"
 #include "ctl_params.h"
 #include "ctl_predict.h"
 #include "ctl_protect.h"
@@ -29,7 +30,13 @@ typedef struct {
     ctl_q torque_limit; /* with an open phase divided by ctl_postfault_peak_ratio */
     ctl_q speed_kp;
     ctl_q speed_ki_ts;
-    ctl_ddc_config_t ddc; /* the DDC search's settings and duty levels */
+    /* the DDC search's settings and duty levels, or for a FOC-VSD set its bandwidth and current
+     * references (a FOC set never runs the DDC: with an open phase it falls back to the
+     * post-fault MPTC-13) */
+    union {
+        ctl_ddc_config_t ddc;
+        ctl_foc_config_t foc;
+    } ctrl;
     /* drive scaling: electrical per unit speed per mechanical rev/s */
     ctl_q omega_pu_per_rev_s;
     ctl_protect_limits_t protect;

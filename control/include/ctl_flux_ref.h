@@ -16,6 +16,10 @@
 #include "ctl_q.h"
 
 #define CTL_FLUX_REF_TABLE_POINTS 33
+/* The d-axis currents of every fourth point (9 of them), for a controller that takes current
+ * references (FOC-VSD, ctl_foc.h). */
+#define CTL_FLUX_REF_CURRENT_STRIDE 4
+#define CTL_FLUX_REF_CURRENT_POINTS 9
 
 typedef enum { CTL_FLUX_REF_CONSTANT = 0, CTL_FLUX_REF_MTPA = 1 } ctl_flux_ref_mode_t;
 
@@ -38,9 +42,12 @@ typedef struct {
 /* SI in; torque_max_nm sets the table span, floor_a the light-load current floor (0: plain
  * MTPA; above the current of the table's top it is that current). The parameters must have passed
  * ctl_params_check (positive inductances and magnet flux, torque_max_nm >= 1 mN*m, floor_a >= 0).
- * Background only: the MTPA table takes thousands of square roots. */
+ * id_pu: 0, or CTL_FLUX_REF_CURRENT_POINTS d-axis currents (per unit) of the table's every
+ * CTL_FLUX_REF_CURRENT_STRIDE-th operating point (MTPA mode; i_d = 0 in constant mode), filled
+ * in the same pass. Background only: the MTPA table takes thousands of square roots. */
 void ctl_flux_ref_init(ctl_flux_ref_t *f, ctl_flux_ref_mode_t mode, float constant_wb,
-                       const ctl_flux_ref_machine_t *m, float torque_max_nm, float floor_a);
+                       const ctl_flux_ref_machine_t *m, float torque_max_nm, float floor_a,
+                       ctl_q *id_pu);
 
 ctl_q ctl_flux_ref_run(const ctl_flux_ref_t *f, ctl_q torque_ref_pu);
 

@@ -24,7 +24,9 @@
     X(CTL_CONTROLLER_DDC, 0, "ddc", "the paper's discrete-duty MPTC")                              \
     X(CTL_CONTROLLER_MPTC49, 1, "mptc49", "conventional MPTC, 48 vectors + zero")                  \
     X(CTL_CONTROLLER_MPTC13, 2, "mptc13", "conventional MPTC, 12 largest + zero")                  \
-    X(CTL_CONTROLLER_VVMPTC, 3, "vvmptc", "virtual-vector MPTC: 12 x-y-free virtual vectors + zero")
+    X(CTL_CONTROLLER_FOC, 3, "foc",                                                                \
+      "field-oriented control in VSD coordinates: PI in d-q and x-y, carrier PWM")                 \
+    X(CTL_CONTROLLER_VVMPTC, 4, "vvmptc", "virtual-vector MPTC: 12 x-y-free virtual vectors + zero")
 
 #define CTL_CONTROLLER_ENUM(id, number, name, what) id = number,
 typedef enum { CTL_CONTROLLER_LIST(CTL_CONTROLLER_ENUM) CTL_CONTROLLER_COUNT } ctl_controller_t;

@@ -27,4 +27,13 @@
 #define SIXPHASE_RAMCONST
 #endif
 
+/* A function kept out of its only caller, so that it can run from elsewhere than the caller
+ * (a comparison controller's part of the period left in flash while the product's runs from
+ * RAM; tools/flash_on_purpose.txt). GCC and TI's compiler take the same attribute. */
+#if defined(__GNUC__) || defined(__TI_COMPILER_VERSION__)
+#define SIXPHASE_NOINLINE __attribute__((noinline))
+#else
+#define SIXPHASE_NOINLINE
+#endif
+
 #endif /* SIXPHASE_PLACEMENT_H */

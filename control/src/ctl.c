@@ -24,6 +24,7 @@ SIXPHASE_RAMFUNC void ctl_reset_command(ctl_t *c)
     c->applied_duty = CTL_Q(0.0);
     c->applied_edges = 0;
     c->applied_virtual = CTL_VV_NONE;
+    ctl_foc_reset(&c->foc); /* its integrators hold voltages no longer applied */
 }
 
 /* The speed loop's gains follow the configuration in force; its integrator is kept across a
@@ -37,6 +38,7 @@ SIXPHASE_RAMFUNC static void use_config(ctl_t *c, const ctl_config_t *cfg)
     c->initialised = true;
     c->healthy_step = c->postfault[c->config_active].open_leg == CTL_POSTFAULT_NO_LEG;
     c->xy_held = c->healthy_step && cfg->params.controller == CTL_CONTROLLER_DDC;
+    c->foc_step = c->healthy_step && cfg->params.controller == CTL_CONTROLLER_FOC;
 }
 
 /* The open-phase part of a configuration (ctl_postfault_config.h), beside it. */
@@ -53,6 +55,7 @@ bool ctl_init(ctl_t *c, const ctl_params_t *p)
     c->initialised = false;
     c->healthy_step = false;
     c->xy_held = false;
+    c->foc_step = false;
     c->config_active = 0;
     c->config_ready = 0;
     c->params_rejected = 0u;
@@ -98,6 +101,11 @@ SIXPHASE_RAMFUNC bool ctl_config_take(ctl_t *c)
         return false;
     }
     CTL_COMPILER_BARRIER(); /* nothing of the new buffer is read before the flag */
+    if (c->config[1 - c->config_active].params.controller !=
+        c->config[c->config_active].params.controller) {
+        ctl_foc_reset(&c->foc); /* FOC-VSD starts from a clean state after another controller */
+        c->applied_virtual = CTL_VV_NONE; /* a virtual vector's compensation ends with VV-MPTC */
+    }
     c->config_active = (int16_t)(1 - c->config_active);
     use_config(c, &c->config[c->config_active]);
     CTL_COMPILER_BARRIER(); /* done with the old buffer before the background may reuse it */
@@ -162,8 +170,10 @@ SIXPHASE_RAMFUNC static void command_from_choice(int16_t vector, ctl_q duty, con
  * nested (the one set's legs on in one state are on in the other), so each set applies its part
  * of the one state in the middle and of the other at the edges, for exactly its share; the period
  * average is the virtual vector's, x-y zero. The legs' states at the period boundary: those on
- * in both states. */
-SIXPHASE_RAMFUNC static void command_from_virtual(int16_t k, ctl_cmd_t *cmd, int16_t *edges)
+ * in both states. VV-MPTC is a comparison: in the Q24 image this runs from flash beside
+ * ctl_vvmptc_select (tools/flash_on_purpose.txt), leaving RAM to the product's period. */
+CTL_RAMFUNC_FLOAT SIXPHASE_NOINLINE static void command_from_virtual(int16_t k, ctl_cmd_t *cmd,
+                                                                     int16_t *edges)
 {
     int16_t leg;
     const int16_t large = ctl_vv_states[k][0];
@@ -267,10 +277,10 @@ SIXPHASE_RAMFUNC static void select_ddc(const ctl_t *c, const ctl_config_t *cfg,
     f.psi_x = ctl_mul(cfg->model.lxy, ix1);
     f.psi_y = ctl_mul(cfg->model.lxy, iy1);
 #if CTL_PROFILE
-    ctl_ddc_select(h, &f, &cfg->ddc, c->stage_hook, choice);
+    ctl_ddc_select(h, &f, &cfg->ctrl.ddc, c->stage_hook, choice);
 #else
     (void)c;
-    ctl_ddc_select(h, &f, &cfg->ddc, 0, choice);
+    ctl_ddc_select(h, &f, &cfg->ctrl.ddc, 0, choice);
 #endif
 }
 

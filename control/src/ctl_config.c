@@ -1,5 +1,6 @@
 #include "ctl_config.h"
 
+#include "ctl_foc_config.h"
 #include "ctl_postfault_config.h"
 #include "ctl_pu.h"
 
@@ -16,7 +17,8 @@ ctl_param_error_t ctl_config_build(ctl_config_t *cfg, const ctl_params_t *p)
     {
         const ctl_flux_ref_machine_t m = {p->ld_h, p->lq_h, p->pm_flux_wb, p->pole_pairs};
         ctl_flux_ref_init(&cfg->flux_ref, p->flux_ref_mode, p->flux_ref_wb, &m, p->torque_limit_nm,
-                          p->light_load_current_a);
+                          p->light_load_current_a,
+                          (p->controller == CTL_CONTROLLER_FOC) ? cfg->ctrl.foc.id_ref : 0);
     }
     cfg->lambda = ctl_from_float(p->lambda_nm_per_wb * (CTL_BASE_FLUX_WB_F / CTL_BASE_TORQUE_NM_F));
     /* With an open phase the same alpha-beta current drives the healthy phases to peak_ratio
@@ -32,9 +34,13 @@ ctl_param_error_t ctl_config_build(ctl_config_t *cfg, const ctl_params_t *p)
     /* With an open phase the torque guard is always on: without it the flux term chose the
      * levels on the five legs' weaker voltages and the torque was lost (the paper's DDC with C
      * open at 3.5 N m fell to 570 r/min). */
-    ctl_ddc_config_init(&cfg->ddc, (int16_t)p->ddc_direction, p->duty_levels,
-                        p->ddc_torque_guard || p->open_phase != CTL_POSTFAULT_NO_LEG,
-                        p->ddc_flux_tie_band);
+    if (p->controller == CTL_CONTROLLER_FOC) {
+        ctl_foc_config_build(&cfg->ctrl.foc, p);
+    } else {
+        ctl_ddc_config_init(&cfg->ctrl.ddc, (int16_t)p->ddc_direction, p->duty_levels,
+                            p->ddc_torque_guard || p->open_phase != CTL_POSTFAULT_NO_LEG,
+                            p->ddc_flux_tie_band);
+    }
     cfg->omega_pu_per_rev_s =
         ctl_from_float((CTL_TWO_PI_F / CTL_BASE_OMEGA_RAD_S_F) * (float)p->pole_pairs);
     ctl_protect_limits_build(&cfg->protect, &p->protect, p->sample_time_s, p->pole_pairs,

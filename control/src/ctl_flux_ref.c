@@ -31,9 +31,10 @@ static void mtpa_point(float i, float ld, float lq, float psi_f, int16_t pp, flo
 
 /* The operating point on the circle |i| = i (SI) that gives the torque target, between the MTPA
  * point (d-axis current id_mtpa, the circle's largest torque) and the pure -d current (no
- * torque): torque falls monotonically over that arc, so bisect the d-axis current. */
+ * torque): torque falls monotonically over that arc, so bisect the d-axis current. Its flux
+ * returned, its d-axis current in *id_out. */
 static float floor_point_flux(float i, float target, float ld, float lq, float psi_f, int16_t pp,
-                              float id_mtpa)
+                              float id_mtpa, float *id_out)
 {
     float lo = -i;      /* torque 0 */
     float hi = id_mtpa; /* torque >= target */
@@ -51,6 +52,7 @@ static float floor_point_flux(float i, float target, float ld, float lq, float p
     }
     id = 0.5f * (lo + hi);
     iq = ctl_sqrtf(i * i - id * id);
+    *id_out = id;
     return ctl_sqrtf((psi_f + ld * id) * (psi_f + ld * id) + (lq * iq) * (lq * iq));
 }
 
@@ -81,7 +83,8 @@ static float mtpa_current_for_torque(const ctl_flux_ref_machine_t *m, float targ
 }
 
 void ctl_flux_ref_init(ctl_flux_ref_t *f, ctl_flux_ref_mode_t mode, float constant_wb,
-                       const ctl_flux_ref_machine_t *m, float torque_max_nm, float floor_a)
+                       const ctl_flux_ref_machine_t *m, float torque_max_nm, float floor_a,
+                       ctl_q *id_pu)
 {
     const float psi_b = CTL_BASE_FLUX_WB_F;
     const float torque_max_pu = torque_max_nm / CTL_BASE_TORQUE_NM_F;
@@ -98,16 +101,23 @@ void ctl_flux_ref_init(ctl_flux_ref_t *f, ctl_flux_ref_mode_t mode, float consta
         const float i = mtpa_current_for_torque(m, target);
         float t;
         float flux;
+        float id;
         if (k == CTL_FLUX_REF_TABLE_POINTS - 1 && floor_a > i) {
             floor_a = i;
         }
         if (i < floor_a) {
             flux = floor_point_flux(floor_a, target, m->ld_h, m->lq_h, m->psi_f_wb, m->pole_pairs,
-                                    mtpa_id(floor_a, m->ld_h, m->lq_h, m->psi_f_wb));
+                                    mtpa_id(floor_a, m->ld_h, m->lq_h, m->psi_f_wb), &id);
         } else {
             mtpa_point(i, m->ld_h, m->lq_h, m->psi_f_wb, m->pole_pairs, &t, &flux);
+            id = mtpa_id(i, m->ld_h, m->lq_h, m->psi_f_wb);
         }
         f->table[k] = ctl_from_float(flux / psi_b);
+        if (id_pu != 0 && k % CTL_FLUX_REF_CURRENT_STRIDE == 0) { /* constant mode: i_d = 0 */
+            id_pu[k / CTL_FLUX_REF_CURRENT_STRIDE] = (mode == CTL_FLUX_REF_MTPA)
+                                                         ? ctl_from_float(id / CTL_BASE_CURRENT_A_F)
+                                                         : CTL_Q(0.0);
+        }
     }
 }
 

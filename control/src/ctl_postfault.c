@@ -218,7 +218,7 @@ static void pf_select_ddc(const ctl_t *c, const ctl_config_t *cfg, const pf_hori
     /* the healthy search on the projected forced response (the torque guard is always on with
      * an open phase: ctl_config.c) */
     pf_forced(p, &ctl_vector_vsd[vector], &did, &diq);
-    ctl_ddc_levels_search(&p->h, &cfg->ddc, vector, did, diq, &zero, out);
+    ctl_ddc_levels_search(&p->h, &cfg->ctrl.ddc, vector, did, diq, &zero, out);
     out->candidates = cfg->params.duty_levels;
     out->flux_sector = sector;
     out->xy_sector = sign;
@@ -378,6 +378,8 @@ void ctl_postfault_step(ctl_t *c, const ctl_meas_t *m, ctl_cmd_t *cmd)
     pf_predict_k1(c, cfg, m, &i0, s0, c0, &p);
     pf_predict_k2(cfg, m, s0, c0, &p);
     CTL_STAGE_MARK(c->stage_hook, CTL_STAGE_PREDICT);
+    /* FOC-VSD has no five-leg mode: with an open phase it rides through on the post-fault
+     * MPTC-13 (the else branch), as the MPTC baselines on theirs */
     if (cfg->params.controller == CTL_CONTROLLER_DDC) {
         pf_select_ddc(c, cfg, &p, &choice);
     } else {

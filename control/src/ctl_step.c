@@ -1,10 +1,11 @@
 /*
  * ctl_step (ctl.h): the published parameter set taken, then the period handed to the healthy
- * step (ctl.c) or the open-phase step (ctl_postfault.c). A file of its own so that neither
- * step is inlined here: their frames are never on the stack at once, and the larger one sets
- * the control interrupt's depth (tools/check_stack_bound.sh).
+ * step (ctl.c), FOC-VSD's (ctl_foc.c) or the open-phase step (ctl_postfault.c). A file of its
+ * own so that no step is inlined here: their frames are never on the stack at once, and the larger
+ * one sets the control interrupt's depth (tools/check_stack_bound.sh).
  */
 #include "ctl.h"
+#include "ctl_foc.h"
 #include "ctl_placement.h"
 #include "ctl_postfault.h"
 
@@ -14,7 +15,11 @@ SIXPHASE_RAMFUNC void ctl_step(ctl_t *c, const ctl_meas_t *m, ctl_cmd_t *cmd)
         (void)ctl_config_take(c);
     }
     if (c->healthy_step) { /* one test on the healthy path, as before open phases */
-        ctl_healthy_step(c, m, cmd);
+        if (c->foc_step) { /* and one for FOC-VSD, whose frame is not nested in the MPC's */
+            ctl_foc_healthy_step(c, m, cmd);
+        } else {
+            ctl_healthy_step(c, m, cmd);
+        }
     } else {
         ctl_postfault_step(c, m, cmd);
     }

@@ -157,6 +157,7 @@ bool fw_startup(void)
     drive_init(&fw_drive, &p);
     /* indirect-call: ctl_healthy_step, ctl_ddc_select -> prof_ctl_stage (tools/stack_depth.py) */
     /* indirect-call: ctl_postfault_step, pf_select_ddc -> prof_ctl_stage */
+    /* indirect-call: ctl_foc_healthy_step -> prof_ctl_stage (FOC-VSD's stage marks) */
     ctl_set_stage_hook(&fw_drive.ctl, prof_ctl_stage); /* stage timing (profile.h) */
     if (!fw_state.clock_ok || !hal_ok) {
         /* Never run on a limp-mode clock or a half-configured inverter; the

@@ -60,6 +60,7 @@ enum { SXL_RESULT_LIST(SXL_RESULT_ENUM) SXL_RESULT_COUNT };
 #define SXL_CONTROLLER_DDC 0u
 #define SXL_CONTROLLER_MPTC49 1u
 #define SXL_CONTROLLER_MPTC13 2u
+#define SXL_CONTROLLER_FOC 3u
 
 /* What the drive does when the speed loop is at its torque limit: the request of
  * SXL_CMD_SET_TORQUE_LIMITED_ACTION (ACTION and STOP_MS) and the reply to

@@ -42,7 +42,8 @@ enum { SXL_NONE_SIZE = 0 };
       "change pending, bit 3 a leg isolated (GET_OPEN_PHASE), bit 4 "                              \
       "torque-limited: the speed loop at its torque limit for 0.1 s or "                           \
       "more, the speed not held (docs/faults.md)")                                                 \
-    X(SXL_ST_CONTROLLER, U8, 1, "controller in force (0 ddc, 1 mptc49, 2 mptc13, 3 vvmptc)")       \
+    X(SXL_ST_CONTROLLER, U8, 1,                                                                    \
+      "controller in force (0 ddc, 1 mptc49, 2 mptc13, 3 foc, 4 vvmptc)")                          \
     X(SXL_ST_SPEED, I32, 1, "measured mechanical speed, 0.1 r/min")                                \
     X(SXL_ST_SPEED_REF, I32, 1, "speed reference, 0.1 r/min")                                      \
     X(SXL_ST_TORQUE, I32, 1, "torque estimate, mN·m")                                              \
@@ -132,7 +133,7 @@ enum { SXL_SPEED_FIELDS(SXL_PAYLOAD_OFFSET) SXL_SPEED_SIZE };
 #define SXL_TORQUE_FIELDS(X) X(SXL_TORQUE_REF, I32, 1, "torque reference, mN·m")
 enum { SXL_TORQUE_FIELDS(SXL_PAYLOAD_OFFSET) SXL_TORQUE_SIZE };
 #define SXL_SC_FIELDS(X)                                                                           \
-    X(SXL_SC_CONTROLLER, U8, 1, "controller: 0 ddc, 1 mptc49, 2 mptc13, 3 vvmptc")                 \
+    X(SXL_SC_CONTROLLER, U8, 1, "controller: 0 ddc, 1 mptc49, 2 mptc13, 3 foc, 4 vvmptc")          \
     X(SXL_SC_LAMBDA, U32, 1, "lambda, 0.001 N·m/Wb")
 enum { SXL_SC_FIELDS(SXL_PAYLOAD_OFFSET) SXL_SC_SIZE };
 

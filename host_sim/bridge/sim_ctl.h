@@ -11,7 +11,7 @@
 #include <stdbool.h>
 
 typedef struct {
-    int controller;       /* ctl_controller_t: 0 ddc, 1 mptc49, 2 mptc13, 3 vvmptc */
+    int controller;       /* 0 ddc, 1 mptc49, 2 mptc13, 3 foc, 4 vvmptc (ctl_controller_t) */
     double lambda;        /* N*m/Wb */
     double ts_s;          /* control period */
     int duty_levels;      /* <= 0: core default */

@@ -37,7 +37,7 @@ typedef struct {
 } sim_ctl_machine_t;
 
 typedef struct {
-    int controller; /* an id of CTL_CONTROLLER_LIST: 0 ddc, 1 mptc49, 2 mptc13, 3 vvmptc */
+    int controller; /* an id of CTL_CONTROLLER_LIST: 0 ddc, 1 mptc49, 2 mptc13, 3 foc, 4 vvmptc */
     int arith;      /* 0 fixed, 1 float */
     sim_scenario_t scenario;
     double lambda;     /* N*m/Wb */

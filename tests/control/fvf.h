@@ -21,7 +21,8 @@ typedef struct {
 typedef struct {
     int16_t vector;
     double duty;
-    double flux_ref; /* Wb, as the build computed it */
+    double flux_ref;    /* Wb, as the build computed it */
+    double leg_duty[6]; /* the command's leg duties (FOC-VSD's whole command) */
 } fvf_result_t;
 
 void fvf_evaluate(const fvf_point_t *p, fvf_result_t *r);

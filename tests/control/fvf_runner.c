@@ -1,6 +1,7 @@
 /* One operating point through the public control-step API of this arithmetic build. */
 #include "ctl.h"
 #include "ctl_pu.h"
+#include "ctl_vectors.h"
 #include "ctl_vsd.h"
 #include "fvf.h"
 
@@ -51,6 +52,14 @@ void fvf_evaluate(const fvf_point_t *p, fvf_result_t *r)
     ctl_set_torque_ref(c, pu(p->torque_ref, CTL_BASE_TORQUE_NM));
     c->applied_vector = p->vector_in_force;
     c->applied_duty = pu(p->duty_in_force, 1.0);
+    if (p->controller == CTL_CONTROLLER_FOC) { /* FOC-VSD: the same voltage in force */
+        const ctl_vsd_t *u = &ctl_vector_vsd[p->vector_in_force];
+        const ctl_q scale = ctl_mul(c->applied_duty, pu(p->vdc, CTL_BASE_VOLTAGE_V));
+        c->foc.v_in_force.alpha = ctl_mul(u->alpha, scale);
+        c->foc.v_in_force.beta = ctl_mul(u->beta, scale);
+        c->foc.v_in_force.x = ctl_mul(u->x, scale);
+        c->foc.v_in_force.y = ctl_mul(u->y, scale);
+    }
     m.theta_e = pu(p->theta, 1.0);
     m.omega_e = pu(p->omega, CTL_BASE_OMEGA_RAD_S);
     m.vdc = pu(p->vdc, CTL_BASE_VOLTAGE_V);
@@ -64,4 +73,10 @@ void fvf_evaluate(const fvf_point_t *p, fvf_result_t *r)
     r->vector = cmd.vector;
     r->duty = (double)ctl_to_float(cmd.duty);
     r->flux_ref = (double)ctl_to_float(ctl_diag(c)->flux_ref) * CTL_BASE_FLUX_WB;
+    {
+        int16_t k;
+        for (k = 0; k < 6; k++) {
+            r->leg_duty[k] = (double)ctl_to_float(cmd.leg_duty[k]);
+        }
+    }
 }

@@ -181,13 +181,54 @@ static void test_vvmptc(void **state)
     compare((int16_t)CTL_CONTROLLER_VVMPTC, 0.01, 0.02);
 }
 
+/* FOC-VSD has no choice to differ: its command is six continuous duties. Both builds on the same
+ * random points (the voltage in force a random state's at a random duty): the duties agree to
+ * within a few Q24 roundings amplified by the PI gains. */
+static void test_foc(void **state)
+{
+    int32_t n;
+    double diff_max = 0.0;
+    double diff_sum = 0.0;
+    (void)state;
+    for (n = 0; n < POINTS; n++) {
+        fvf_point_t p;
+        fvf_result_t fx;
+        fvf_result_t fl;
+        double te;
+        int16_t k;
+        p.controller = 3;
+        p.lambda = 100.0;
+        p.id = uniform(-2.0, 0.5);
+        p.iq = uniform(-4.0, 4.0);
+        p.ix = uniform(-0.5, 0.5);
+        p.iy = uniform(-0.5, 0.5);
+        p.theta = uniform(0.0, 1.0);
+        p.omega = uniform(-1.0, 1.0) * 1600.0 * TEST_PI / 30.0 * 3.0;
+        p.vdc = uniform(510.0, 570.0);
+        p.vector_in_force = (int16_t)(uniform(0.0, 64.0));
+        p.duty_in_force = uniform(0.0, 1.0);
+        te = 9.0 * ((LD_H * p.id + PSI_F) * p.iq - LQ_H * p.iq * p.id);
+        p.torque_ref = fmax(-7.0, fmin(7.0, te + uniform(-1.0, 1.0)));
+        fvf_evaluate(&p, &fx);
+        flt_fvf_evaluate(&p, &fl);
+        assert_true(fx.vector == 0 && fl.vector == 0);
+        for (k = 0; k < 6; k++) {
+            const double d = fabs(fx.leg_duty[k] - fl.leg_duty[k]);
+            diff_max = fmax(diff_max, d);
+            diff_sum += d;
+        }
+    }
+    print_message("controller 3 (FOC-VSD): %d points, leg duty fixed - float: mean %.2e, max "
+                  "%.2e\n",
+                  POINTS, diff_sum / (6.0 * POINTS), diff_max);
+    assert_true(diff_max < 1e-4); /* 10 ns of a 100 us period */
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_ddc),
-        cmocka_unit_test(test_mptc49),
-        cmocka_unit_test(test_mptc13),
-        cmocka_unit_test(test_vvmptc),
+        cmocka_unit_test(test_ddc),    cmocka_unit_test(test_mptc49), cmocka_unit_test(test_mptc13),
+        cmocka_unit_test(test_vvmptc), cmocka_unit_test(test_foc),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -78,7 +78,7 @@ static void test_flux_ref_constant(void **state)
 {
     ctl_flux_ref_t f;
     (void)state;
-    ctl_flux_ref_init(&f, CTL_FLUX_REF_CONSTANT, 0.26f, &reference_machine, 7.0f, 0.5f);
+    ctl_flux_ref_init(&f, CTL_FLUX_REF_CONSTANT, 0.26f, &reference_machine, 7.0f, 0.5f, 0);
     assert_near((double)ctl_to_float(ctl_flux_ref_run(&f, CTL_Q(0.3))) * CTL_BASE_FLUX_WB, 0.26,
                 1e-6);
 }
@@ -123,7 +123,7 @@ static void test_flux_ref_mtpa(void **state)
     const double torques[] = {0.0, 1.0, 3.5, 5.0, 7.0, -4.0};
     int16_t k;
     (void)state;
-    ctl_flux_ref_init(&f, CTL_FLUX_REF_MTPA, 0.26f, &reference_machine, 7.0f, 0.0f);
+    ctl_flux_ref_init(&f, CTL_FLUX_REF_MTPA, 0.26f, &reference_machine, 7.0f, 0.0f, 0);
     for (k = 0; k < 6; k++) {
         const double t = torques[k];
         const double ref = brute_force_mtpa_flux(fabs(t));
@@ -167,7 +167,7 @@ static void test_flux_ref_light_load_floor(void **state)
     const double torques[] = {0.0, 0.5, 1.0, -1.5, 1.9};
     int16_t k;
     (void)state;
-    ctl_flux_ref_init(&f, CTL_FLUX_REF_MTPA, 0.26f, &reference_machine, 7.0f, (float)floor_a);
+    ctl_flux_ref_init(&f, CTL_FLUX_REF_MTPA, 0.26f, &reference_machine, 7.0f, (float)floor_a, 0);
     assert_near((double)ctl_to_float(f.table[0]) * CTL_BASE_FLUX_WB, 0.225 - 0.035 * floor_a, 1e-4);
     for (k = 0; k < 5; k++) {
         const double t = torques[k];
@@ -199,13 +199,13 @@ static void test_light_load_current_range(void **state)
     int k;
     (void)state;
     ctl_params_default(&p);
-    ctl_flux_ref_init(&plain, CTL_FLUX_REF_MTPA, 0.26f, &reference_machine, 7.0f, 0.0f);
+    ctl_flux_ref_init(&plain, CTL_FLUX_REF_MTPA, 0.26f, &reference_machine, 7.0f, 0.0f, 0);
     for (k = 0; k < 2; k++) {
         ctl_flux_ref_t f;
         int16_t i;
         q = p, q.light_load_current_a = ends[k];
         assert_int_equal(ctl_params_check(&q), CTL_PARAM_OK);
-        ctl_flux_ref_init(&f, CTL_FLUX_REF_MTPA, 0.26f, &reference_machine, 7.0f, ends[k]);
+        ctl_flux_ref_init(&f, CTL_FLUX_REF_MTPA, 0.26f, &reference_machine, 7.0f, ends[k], 0);
         for (i = 1; i < CTL_FLUX_REF_TABLE_POINTS; i++) {
             assert_true(f.table[i] >= f.table[i - 1]);
         }

@@ -99,8 +99,9 @@ static bool set_realised(const ctl_cmd_t *cmd, int16_t set, int16_t open_leg)
 }
 
 /* With an open phase (open_leg >= 0) its leg is never on and the vector never names it; the
- * other legs follow the same arrangement rules. */
-static void check_command(const ctl_cmd_t *cmd, int16_t open_leg)
+ * other legs follow the same arrangement rules. A carrier-PWM command (FOC-VSD, carrier) names
+ * no vector: six duties in [0, 1], vector and duty 0. */
+static void check_command(const ctl_cmd_t *cmd, int16_t open_leg, bool carrier)
 {
     const int16_t mask = (int16_t)((open_leg >= 0) ? (077 & ~(1 << (5 - open_leg))) : 077);
     int16_t leg;
@@ -122,6 +123,12 @@ static void check_command(const ctl_cmd_t *cmd, int16_t open_leg)
         if (!(cmd->leg_duty[leg] >= CTL_Q(0.0) && cmd->leg_duty[leg] <= CTL_Q(1.0))) {
             abort();
         }
+    }
+    if (carrier) {
+        if (cmd->vector != 0 || cmd->duty != CTL_Q(0.0) || open_leg >= 0) {
+            abort();
+        }
+        return;
     }
     if ((cmd->vector & ~mask) != 0 || (open_leg >= 0 && cmd->leg_duty[open_leg] != CTL_Q(0.0))) {
         abort();
@@ -149,7 +156,7 @@ int LLVMFuzzerTestOneInput(const unsigned char *data, size_t size)
         const uint32_t tag = take32(&s) % 8u;
         if (tag == 0u) {
             ctl_params_t q = p;
-            q.controller = (ctl_controller_t)(take32(&s) % 4u);
+            q.controller = (ctl_controller_t)(take32(&s) % 4u); /* 3: FOC-VSD */
             q.lambda_nm_per_wb = take_float(&s);
             q.duty_levels = (int16_t)(take32(&s) % 16u);
             q.ddc_direction = (ctl_ddc_direction_t)(take32(&s) % 3u);
@@ -180,7 +187,7 @@ int LLVMFuzzerTestOneInput(const unsigned char *data, size_t size)
             m.theta_e = take_q(&s);
             m.omega_e = take_q(&s);
             ctl_step(&c, &m, &cmd);
-            check_command(&cmd, ctl_postfault_config(&c)->open_leg);
+            check_command(&cmd, ctl_postfault_config(&c)->open_leg, c.foc_step);
             in.vdc = m.vdc;
             in.theta_e = m.theta_e;
             in.omega_e = m.omega_e;

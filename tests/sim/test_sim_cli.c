@@ -291,7 +291,7 @@ typedef struct {
 } bad_case_t;
 
 static const bad_case_t bad_cases[] = {
-    {{"--controller", "foc", "--scenario", "steady"}, 4, "'foc'"},
+    {{"--controller", "pid", "--scenario", "steady"}, 4, "'pid'"},
     {{"--controller", "ddc", "--scenario", "cruise"}, 4, "'cruise'"},
     {{"--controller", "ddc", "--scenario", "steady", "--lambda", "abc"}, 6, "'abc'"},
     {{"--controller", "ddc", "--scenario", "steady", "--lambda", "-1"}, 6, "'-1'"},

@@ -21,6 +21,7 @@ CONFIG = ([(n, "q") for n in ("a_d", "b_d", "c_d", "a_q", "b_q", "e_q", "c_q", "
                                "ld", "lq", "lxy", "psi_f", "ts")] +
           [("pole_pairs", "i16")] +
           [(n, "q") for n in ("lambda", "torque_limit", "speed_kp", "speed_ki_ts")] +
+          # a FOC set: w_c, its i_d table [0..8], 0, 0 in these 12 fields (they share the place)
           [("duty_level[%d]" % i, "q") for i in range(11)] + [("ddc.tie_per_span", "q")] +
           [("omega_pu_per_rev_s", "q"), ("flux_ref.mode", "u8"), ("flux_ref.constant", "q"),
            ("flux_ref.torque_max", "q"), ("flux_ref.points_per_torque", "q")] +

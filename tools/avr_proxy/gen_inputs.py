@@ -23,8 +23,8 @@ T_BASE = 17.188733853924696
 POLE_PAIRS = 3
 VDC_V = 540.0
 
-DDC, MPTC49, MPTC13 = 0, 1, 2
-VVMPTC = 3  # CTL_CONTROLLER_VVMPTC (its id in ctl_params.h's CTL_CONTROLLER_LIST)
+DDC, MPTC49, MPTC13, FOC = 0, 1, 2, 3
+VVMPTC = 4  # CTL_CONTROLLER_VVMPTC (its id in ctl_params.h's CTL_CONTROLLER_LIST)
 FLUX_ERROR, XY_TABLE = 0, 1
 CONSTANT, MTPA = 0, 1
 SPEED, TORQUE = 0, 1
@@ -278,6 +278,7 @@ def build(sim, work, scale):
             s.clear()
             s.log()
     build_open_phase(s, sim, work, n)
+    build_foc(s, sim, work, n)
     s.raw(b"E")
     return s
 
@@ -312,6 +313,26 @@ def build_open_phase(s, sim, work, n):
         r = rows[k]
         s.step(r[:3], tref(r), tag="open-phase")
     s.log()
+
+
+def build_foc(s, sim, work, n):
+    """G: FOC-VSD over a load step, torque mode then speed mode; mid-run a switch to DDC and back
+    (the FOC state is reset on the change), then a constant-flux set (i_d = 0)."""
+    rows = record(sim, work, "foc", "load-step")
+    s.init(controller=FOC)
+    s.mode(TORQUE)
+    s.reset()
+    ng = min(len(rows), n(3000))
+    for k in range(ng):
+        if k == ng // 3:
+            s.mode(SPEED)
+        if k == ng // 2:
+            s.request(controller=DDC)
+        if k == ng * 6 // 10:
+            s.request(controller=FOC, flux_mode=CONSTANT, flux_wb=0.25)
+        r = rows[k]
+        tag = "ddc" if ng // 2 < k <= ng * 6 // 10 else "foc"
+        s.step(r[:3], tref(r) if k < ng // 3 else speed_ref_ahead(rows, k), tag=tag)
 
 
 def main():

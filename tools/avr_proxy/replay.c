@@ -243,10 +243,20 @@ static void emit_config(const ctl_config_t *c)
     wr_q(c->torque_limit);
     wr_q(c->speed_kp);
     wr_q(c->speed_ki_ts);
-    for (i = 0; i < CTL_DUTY_LEVELS_MAX; i++) {
-        wr_q(c->ddc.levels[i]);
+    if (c->params.controller == CTL_CONTROLLER_FOC) { /* the place the DDC's settings share */
+        wr_q(c->ctrl.foc.wc);                         /* the same 12 fields: w_c, i_d, 0, 0 */
+        for (i = 0; i < CTL_FOC_REF_POINTS; i++) {
+            wr_q(c->ctrl.foc.id_ref[i]);
+        }
+        for (i = CTL_FOC_REF_POINTS + 1; i < CTL_DUTY_LEVELS_MAX + 1; i++) {
+            wr_q(CTL_Q(0.0));
+        }
+    } else {
+        for (i = 0; i < CTL_DUTY_LEVELS_MAX; i++) {
+            wr_q(c->ctrl.ddc.levels[i]);
+        }
+        wr_q(c->ctrl.ddc.tie_per_span);
     }
-    wr_q(c->ddc.tie_per_span);
     wr_q(c->omega_pu_per_rev_s);
     wr_u8((uint8_t)c->flux_ref.mode);
     wr_q(c->flux_ref.constant);

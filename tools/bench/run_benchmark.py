@@ -22,7 +22,9 @@ import c28x_cost  # noqa: E402  (the F28335 cost model beside this script)
 
 SCENARIOS = ["steady", "load-step", "accel", "reversal"]
 CONFIGS = ["ddc_fixed", "ddc_float", "mptc49_fixed", "mptc49_float", "mptc13_fixed", "mptc13_float",
-           "vvmptc_fixed", "vvmptc_float"]
+           "foc_fixed", "foc_float", "vvmptc_fixed", "vvmptc_float"]
+NAMES = {"ddc": "DDC (proposed)", "mptc49": "MPTC-49", "mptc13": "MPTC-13", "foc": "FOC-VSD",
+         "vvmptc": "VV-MPTC"}
 PAPER_US = {"ddc": 50.6, "mptc49": 74.2}
 PROTECT = ["protect_fixed", "protect_float"]
 OPS = ["add", "mul", "div", "sqrt", "sin"]
@@ -246,7 +248,7 @@ def postfault_steps(sim, tools, work):
     out = os.path.join(work, "callgrind.postfault")
     steps = {}
     for arith, tool in tools.items():
-        for controller in ("0", "1", "2", "3"):
+        for controller in [str(k) for k in range(len(CONFIGS) // 2)]:
             if os.path.exists(out):
                 os.remove(out)
             run(["valgrind", "--tool=callgrind", "--collect-atstart=no", "--combine-dumps=yes",
@@ -323,7 +325,9 @@ def avr_section(w, avr):
     w("")
 
 
-NAMES = {"ddc": "DDC", "mptc49": "MPTC-49", "mptc13": "MPTC-13"}
+# The cost model's names (the controller comparison of docs/results.md reads its rows by them).
+COST_NAMES = {"ddc": "DDC", "mptc49": "MPTC-49", "mptc13": "MPTC-13", "foc": "FOC-VSD",
+              "vvmptc": "VV-MPTC"}
 
 
 def us(cycles):
@@ -352,7 +356,8 @@ def f28335_section(w, costs, validation, points, worst, pf, ops):
         n, lo, hi = (x / points for x in c28x_cost.totals(costs[c]))
         wn = worst[c]["worst"]
         w("| %s | %s | %.0f | %d | %.0f - %.0f | %.1f - %.1f | %.1f - %.1f | %.0f %% |" % (
-            NAMES[ctrl], arith, n, wn, lo, hi, us(lo), us(hi), us(lo / n * wn), us(hi / n * wn),
+            COST_NAMES[ctrl], arith, n, wn, lo, hi, us(lo), us(hi), us(lo / n * wn),
+            us(hi / n * wn),
             100.0 * us(hi / n * wn) / PERIOD_US))
     for arith in ("fixed", "float"):
         c = "ddc_" + arith
@@ -380,10 +385,10 @@ def f28335_section(w, costs, validation, points, worst, pf, ops):
     w("")
     w("| controller | arithmetic | adds | multiplies | roots | sines |")
     w("|---|---|---|---|---|---|")
-    for ctrl in ("ddc", "mptc49", "mptc13"):
+    for ctrl in [c.split("_")[0] for c in CONFIGS[::2]]:
         for arith in ("fixed", "float"):
             cnt = ops[arith][ctrl]
-            w("| %s | %s | %d | %d | %d | %d |" % (NAMES[ctrl], arith, cnt["add"][1],
+            w("| %s | %s | %d | %d | %d | %d |" % (COST_NAMES[ctrl], arith, cnt["add"][1],
                                                    cnt["mul"][1], cnt["sqrt"][1], cnt["sin"][1]))
     w("")
 
@@ -574,8 +579,7 @@ def main():
         ctrl, arith = c.split("_")
         ref = per_step["mptc49_" + arith]
         w("| %s | %s | %.0f | %.3f | %.0f |" % (
-            {"ddc": "DDC (proposed)", "mptc49": "MPTC-49", "mptc13": "MPTC-13",
-             "vvmptc": "VV-MPTC"}[ctrl], arith,
+            NAMES[ctrl], arith,
             per_step[c], per_step[c] / ref, ns.get(c, float("nan"))))
     w("")
     w("Paper (measured on the F28335 at 150 MHz): DDC %.1f us, conventional MPTC %.1f us, ratio"
