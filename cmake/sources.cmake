@@ -9,7 +9,7 @@ get_filename_component(SIXPHASE_REPO_ROOT ${CMAKE_CURRENT_LIST_DIR}/.. ABSOLUTE)
 # Portable control core (control/).
 set(SIXPHASE_CTL_SOURCES
     control/src/ctl_barrier.c
-    control/src/ctl_q.c
+    control/src/ctl_qmath.c
     control/src/ctl_tables.c
     control/src/ctl_vsd.c
     control/src/ctl_predict.c

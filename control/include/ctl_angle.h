@@ -6,6 +6,7 @@
 
 #include "ctl_constants.h"
 #include "ctl_q.h"
+#include "ctl_qmath.h"
 
 /* Sine and cosine of the sample angle theta_e (turns; sine s0, cosine c0) advanced by delta
  * (rad). For |delta| <= 0.5 rad (7 times rated speed at 10 kHz) a rotation by short series of

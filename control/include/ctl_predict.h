@@ -16,6 +16,7 @@
 #include <stdint.h>
 
 #include "ctl_q.h"
+#include "ctl_qmath.h"
 
 typedef struct {
     ctl_q a_d;  /* 1 - R Ts / L_d */

@@ -11,6 +11,7 @@
 #include "ctl_vsd.h"
 #include "ctl_vvmptc.h"
 #include "ctl_placement.h"
+#include "ctl_qmath.h"
 
 SIXPHASE_RAMFUNC void ctl_reset(ctl_t *c)
 {

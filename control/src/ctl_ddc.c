@@ -4,6 +4,7 @@
 #include "ctl_tables.h"
 #include "ctl_vectors.h"
 #include "ctl_placement.h"
+#include "ctl_qmath.h"
 
 void ctl_ddc_config_init(ctl_ddc_config_t *cfg, int16_t direction, int16_t n_levels,
                          bool torque_guard, float tie_band)

@@ -2,6 +2,7 @@
 
 #include "ctl_pu.h"
 #include "ctl_placement.h"
+#include "ctl_qmath.h"
 
 /* MTPA operating point for a current magnitude i (SI): the d-axis current that maximises
  * torque per ampere for a salient machine (L_d < L_q gives i_d < 0). */

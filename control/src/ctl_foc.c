@@ -1,6 +1,7 @@
 #include "ctl_foc.h"
 
 #include "ctl_angle.h"
+#include "ctl_qmath.h"
 
 /* i_d by the flux reference's interpolation (ctl_flux_ref_run) over the table's every fourth
  * point, i_q from the torque equation Te = Pn i_q (psi_f + (L_d - L_q) i_d) (one division; the

@@ -3,6 +3,7 @@
 #include "ctl_machine.h"
 #include "ctl_predict.h"
 #include "ctl_pu.h"
+#include "ctl_qmath.h"
 
 void ctl_params_default(ctl_params_t *p)
 {

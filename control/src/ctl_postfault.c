@@ -8,6 +8,7 @@
 #include "ctl_tables.h"
 #include "ctl_vectors.h"
 #include "ctl_vsd.h"
+#include "ctl_qmath.h"
 
 /* The open phase's constraint at one rotor angle: its row c in the rotor frame, the model's
  * one-period response g to a voltage along c (g = (Ts/L_d c_d, Ts/L_q c_q, Ts/L_xy c_x, ..)),

@@ -1,6 +1,7 @@
 #include "ctl_postfault_config.h"
 
 #include "ctl_vectors.h"
+#include "ctl_qmath.h"
 
 #define PF_SAME 1.0e-4f /* effective voltages (per unit of Vdc) closer than this are one */
 

@@ -5,6 +5,7 @@
 #include "ctl_pu.h"
 #include "ctl_placement.h"
 #include "ctl_vsd.h"
+#include "ctl_qmath.h"
 
 static void open_phase_restart(ctl_protect_t *p);
 static void open_phase_fast_reset(ctl_protect_t *p);

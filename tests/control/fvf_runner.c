@@ -4,6 +4,7 @@
 #include "ctl_vectors.h"
 #include "ctl_vsd.h"
 #include "fvf.h"
+#include "ctl_qmath.h"
 
 static ctl_q pu(double si, double base) { return ctl_from_float((float)(si / base)); }
 

@@ -12,6 +12,7 @@
 #include "hal_board.h"
 #include "test_support.h"
 #include "vsd_reference.h"
+#include "ctl_qmath.h"
 
 static ctl_protect_t prot;
 static ctl_protect_limits_t limits;

@@ -1,5 +1,5 @@
 /*
- * Unit tests of the control-core arithmetic (ctl_q.h / ctl_q.c), built twice:
+ * Unit tests of the control-core arithmetic (ctl_q.h, ctl_qmath.h / ctl_qmath.c), built twice:
  * test_q_fixed (Q24, CTL_MATH_FLOAT = 0) and test_q_float (CTL_MATH_FLOAT = 1).
  *
  * Every expectation is computed here from the defining formula in double (or
@@ -19,6 +19,7 @@
 #include <math.h>
 
 #include "ctl_q.h"
+#include "ctl_qmath.h"
 #include "q24_exact.h" /* qd, dq, Q24_LSB */
 #include "test_rng.h"
 

@@ -13,6 +13,7 @@
 #include "ctl_vvmptc.h"
 #include "test_rng.h"
 #include "test_support.h"
+#include "ctl_qmath.h"
 
 static ctl_model_t model;
 

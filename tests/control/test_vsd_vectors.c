@@ -18,6 +18,7 @@
 
 #include "ctl_constants.h"
 #include "ctl_q.h"
+#include "ctl_qmath.h"
 #include "ctl_tables.h"
 #include "ctl_vectors.h"
 #include "ctl_vsd.h"

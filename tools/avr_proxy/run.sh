@@ -50,9 +50,9 @@ if [ "$inject" = 1 ]; then
   core="$out/control-bug"
   rm -rf "$core"
   cp -r "$here/control" "$core"
-  # Fixed-point sine interpolation (ctl_q.c, used in every step): the exact 64-bit product
+  # Fixed-point sine interpolation (ctl_qmath.c, used in every step): the exact 64-bit product
   # replaced by int16 pieces whose product fits 16 bits but, scaled by 4, only a 32-bit int.
-  python3 - "$core/src/ctl_q.c" <<'EOF'
+  python3 - "$core/src/ctl_qmath.c" <<'EOF'
 import sys
 p = sys.argv[1]
 s = open(p).read()
@@ -61,10 +61,10 @@ new = ("    const int16_t d9 = (int16_t)(dy >> 9);\n"
        "    const int16_t f7 = (int16_t)(frac >> 7);\n"
        "    return y0 + (int32_t)(d9 * f7 * 4); /* INJECTED BUG: int16*int16*4 in int */\n")
 if s.count(old) != 1:
-    sys.exit("run.sh: the injection point in ctl_q.c was not found")
+    sys.exit("run.sh: the injection point in ctl_qmath.c was not found")
 open(p, "w").write(s.replace(old, new))
 EOF
-  echo "run.sh: INJECTED an int-width bug into the scratch copy $core/src/ctl_q.c (control/ untouched)"
+  echo "run.sh: INJECTED an int-width bug into the scratch copy $core/src/ctl_qmath.c (control/ untouched)"
 fi
 
 # 1. Builds: AVR ELF and host replay per arithmetic, the simavr harness, the simulator.

@@ -3,6 +3,7 @@
 #include "ctl.h"
 #include "ctl_protect.h"
 #include "ctl_pu.h"
+#include "ctl_qmath.h"
 
 static ctl_meas_t meas[BENCH_MAX_POINTS];
 static ctl_q torque_ref[BENCH_MAX_POINTS];

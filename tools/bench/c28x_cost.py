@@ -72,7 +72,7 @@ PRICES = collections.OrderedDict([
     ("div64", ("integer divide, 64 bits", 54, 2631, "SPRACN6",
                "i64/u64 division through the run-time library, 54 to 2631 cycles")),
     ("clz", ("count leading zeros (bsr/lzcnt)", 25, 45, "SPRU430",
-             "the TI build of ctl_q.c's top_bit is a five-step binary search (compare + branch "
+             "the TI build of ctl_qmath.c's top_bit is a five-step binary search (compare + branch "
              "each, taken 7 / not taken 4, plus the shifts and adds)")),
     ("cmp", ("integer compare/test, 32 bits or narrower (register or memory)", 1, 2, "SPRU430",
              "CMPL ACC,loc32 / CMP / TBIT 1 cycle; +1 to load a register operand")),

@@ -3,6 +3,7 @@
 
 #include "ctl_pu.h"
 #include "ctl_q.h"
+#include "ctl_qmath.h"
 
 /* Electrical turns the output is applied after the sample, in periods: the command written in
  * period k is in force during period k + 1, on average 1.5 periods after the sample. */

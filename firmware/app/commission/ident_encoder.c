@@ -2,6 +2,7 @@
 #include "ident_encoder.h"
 
 #include "ctl_q.h"
+#include "ctl_qmath.h"
 
 #define ENC_ALIGN_RAMP_S 0.3f
 #define ENC_ALIGN_HOLD_S 0.2f

@@ -2,6 +2,7 @@
 #include "ident_excite.h"
 
 #include "ctl_q.h"
+#include "ctl_qmath.h"
 
 #define IDENT_H3 0.8660254f /* sqrt(3) / 2 */
 

@@ -2,6 +2,7 @@
 #include "ident_flux.h"
 
 #include "ctl_q.h"
+#include "ctl_qmath.h"
 
 #define FLUX_RAMP_S 1.0f         /* speed reference 0 -> target, and back */
 #define FLUX_SETTLE_S 0.3f       /* at least */

@@ -2,6 +2,7 @@
 #include "ident_mech.h"
 
 #include "ctl_q.h"
+#include "ctl_qmath.h"
 
 #define MECH_TOP_FRACTION 0.5f /* w_top, of the flux step's test speed */
 #define MECH_LOW_FRACTION 0.2f /* the runs turn back up here, of w_top */

@@ -2,6 +2,7 @@
 #include "ident_resistance.h"
 
 #include "ctl_q.h"
+#include "ctl_qmath.h"
 
 #define RES_MOVE_S 0.3f
 #define RES_SETTLE_S 0.3f

@@ -2,6 +2,7 @@
 #include "ident_stats.h"
 
 #include "ctl_q.h"
+#include "ctl_qmath.h"
 
 void ident_blocks_init(ident_blocks_t *b, int32_t length)
 {

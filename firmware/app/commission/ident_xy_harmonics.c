@@ -2,6 +2,7 @@
 #include "ident_xy_harmonics.h"
 
 #include "ctl_q.h"
+#include "ctl_qmath.h"
 
 #define XY_KH_RAD_S 60.0f  /* each harmonic current's decay rate */
 #define XY_MIN_SPEED 30.0f /* rad/s electrical: below, the integrators hold */

@@ -5,6 +5,7 @@
 #include "hal_board.h"
 #include "hal_encoder.h"
 #include "hal_pwm.h"
+#include "ctl_qmath.h"
 
 /* An encoder that saw its index and then went unhealthy has a counter or signal error; one
  * that has not seen its index yet is what the sequence turns the rotor for. */

@@ -1,4 +1,4 @@
-#include "ctl_q.h"
+#include "ctl_qmath.h"
 
 #include "ctl_constants.h"
 #include "ctl_tables.h"

@@ -1,0 +1,44 @@
+/*
+ * The control core's number functions on ctl_q (ctl_q.h): square roots, sine and cosine, angle
+ * and sector, the float range test. Separate from the number type so that the generated tables
+ * and constants they read (ctl_tables.h, ctl_constants.h), which take the type from ctl_q.h, form
+ * no include cycle with it (tools/include_graph.py).
+ */
+#ifndef CTL_QMATH_H
+#define CTL_QMATH_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "ctl_q.h"
+
+/* True for a normal finite float (or exactly zero) within [lo, hi]: NaN, infinities and
+ * denormals are out, whatever the bounds. For checking parameters before they are used. */
+bool ctl_float_in_range(float x, float lo, float hi);
+
+/* Square root; negative input gives 0. */
+ctl_q ctl_sqrt(ctl_q a);
+
+/* Sine and cosine of an angle in per unit of one turn (any value, wrapped). */
+ctl_q ctl_sin_pu(ctl_q angle_turn);
+ctl_q ctl_cos_pu(ctl_q angle_turn);
+void ctl_sincos_pu(ctl_q angle_turn, ctl_q *s, ctl_q *c);
+
+/* Angle of (x, y) in per unit of one turn, in [0, 1). atan2(0, 0) = 0. */
+ctl_q ctl_atan2_pu(ctl_q y, ctl_q x);
+
+/* Wrap an angle into [0, 1) turn. */
+ctl_q ctl_wrap_turn(ctl_q angle_turn);
+
+/* Index of the n-th part of a turn that holds the angle: floor(wrap(angle) * n),
+ * in [0, n). n must be in 1..64. Sector boundaries are therefore at k/n turn. */
+int16_t ctl_turn_sector(ctl_q angle_turn, int16_t n);
+
+/* Index k in 0..23 of the 15-degree sector [15k, 15k + 15) deg that holds the vector (x, y),
+ * by comparisons against tan(15 deg) multiples (no atan, no division). (0, 0) gives 0. */
+int16_t ctl_sector24(ctl_q y, ctl_q x);
+
+/* sqrt on float without libm. */
+float ctl_sqrtf(float x);
+
+#endif /* CTL_QMATH_H */
