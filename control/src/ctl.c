@@ -105,7 +105,6 @@ SIXPHASE_RAMFUNC bool ctl_config_take(ctl_t *c)
     if (c->config[1 - c->config_active].params.controller !=
         c->config[c->config_active].params.controller) {
         ctl_foc_reset(&c->foc); /* FOC-VSD starts from a clean state after another controller */
-        c->applied_virtual = CTL_VV_NONE; /* a virtual vector's compensation ends with VV-MPTC */
     }
     c->config_active = (int16_t)(1 - c->config_active);
     use_config(c, &c->config[c->config_active]);

@@ -203,13 +203,13 @@ void ctl_foc_healthy_step(ctl_t *c, const ctl_meas_t *m, ctl_cmd_t *cmd)
     c->applied_edges = ctl_foc_modulate(&fw.v, m->vdc, cmd->leg_duty, &fw.realised);
     foc_integrate(s, &fw);
     /* no one switching state stands for a carrier-PWM command: the predictive controllers, should
-     * the next set be one of them, see a zero vector in force (ctl_config_take resets this state
-     * when the controller changes) */
+     * the next set be one of them, see a zero vector in force, and no virtual vector */
     cmd->vector = 0;
     cmd->duty = CTL_Q(0.0);
     cmd->enable = true;
     c->applied_vector = 0;
     c->applied_duty = CTL_Q(0.0);
+    c->applied_virtual = CTL_VV_NONE;
     foc_diag(c, cfg, &i, id, iq, torque_ref, flux_ref, &fw);
     CTL_STAGE_MARK(c->stage_hook, CTL_STAGE_SEARCH);
 }

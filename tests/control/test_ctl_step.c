@@ -346,6 +346,38 @@ static void test_command_invariants_for_any_input(void **state)
     }
 }
 
+/* A step records what it applied: after VV-MPTC, FOC-VSD's carrier-PWM periods leave no virtual
+ * vector in force, so a predictive controller taken next compensates its delay for a zero
+ * vector, not for the last virtual vector VV-MPTC chose before FOC ran. */
+static void test_foc_step_leaves_no_virtual_vector_in_force(void **state)
+{
+    ctl_params_t p;
+    ctl_t c;
+    ctl_meas_t m = {
+        {CTL_Q(0.1), CTL_Q(-0.05), CTL_Q(-0.05), CTL_Q(0.1), CTL_Q(-0.05), CTL_Q(-0.05)},
+        CTL_Q(1.0),
+        CTL_Q(0.0),
+        CTL_Q(0.1)};
+    ctl_cmd_t cmd;
+    int16_t n;
+    (void)state;
+    ctl_params_default(&p);
+    p.controller = CTL_CONTROLLER_VVMPTC;
+    assert_true(ctl_init(&c, &p));
+    ctl_set_loop_mode(&c, CTL_LOOP_TORQUE);
+    ctl_set_torque_ref(&c, CTL_Q(0.5));
+    for (n = 0; n < 50 && c.applied_virtual == CTL_VV_NONE; n++) {
+        m.theta_e = ctl_add(m.theta_e, CTL_Q(0.01));
+        ctl_step(&c, &m, &cmd);
+    }
+    assert_true(c.applied_virtual != CTL_VV_NONE);
+    p.controller = CTL_CONTROLLER_FOC;
+    assert_int_equal(ctl_request_params(&c, &p), CTL_PARAM_OK);
+    ctl_step(&c, &m, &cmd); /* takes the FOC set and runs FOC's step */
+    assert_int_equal(c.applied_virtual, CTL_VV_NONE);
+    assert_int_equal(c.applied_vector, 0);
+}
+
 static void test_duty_levels_parameter(void **state)
 {
     ctl_params_t p;
@@ -398,6 +430,7 @@ int main(void)
         cmocka_unit_test(test_parameter_hand_off),
         cmocka_unit_test(test_hand_off_never_writes_the_buffer_in_force),
         cmocka_unit_test(test_command_invariants_for_any_input),
+        cmocka_unit_test(test_foc_step_leaves_no_virtual_vector_in_force),
         cmocka_unit_test(test_duty_levels_parameter),
         cmocka_unit_test(test_torque_mode_clamps_reference),
     };
