@@ -19,6 +19,7 @@ mapfile -t includes < <(cmake -P "$here/tools/print_sources.cmake" SIXPHASE_TARG
 flags=(-std=c99 -ffreestanding -mcpu=cortex-m0 -mthumb -O2 -fcallgraph-info
        -DF28335_LINK_PROXY=1 -DCTL_MATH_FLOAT=1 --param=min-pagesize=0)
 for inc in "${includes[@]}"; do flags+=(-I "$here/$inc"); done
+rm -f "$out"/*.ci "$out"/*.o # a file no longer in the source list leaves no call graph behind
 for src in "${sources[@]}" tools/ti_link_proxy/ti_link_stubs.c; do
   (cd "$out" && "$cc" "${flags[@]}" -c "$here/$src" -o "$out/$(basename "$src" .c).o")
 done

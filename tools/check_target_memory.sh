@@ -37,7 +37,8 @@ linker="$here/firmware/f28335/F28335_flash.cmd"
 compile() { # dir, extra flags...
   local dir=$1 src
   shift
-  mkdir -p "$dir"
+  # afresh: objects and call graphs of a file no longer in the source list must not linger
+  rm -rf "$dir" && mkdir -p "$dir"
   for src in "${sources[@]}" tools/ti_link_proxy/ti_link_stubs.c; do
     (cd "$dir" && "$cc" "${flags[@]}" "$@" -c "$here/$src" -o "$dir/$(basename "$src" .c).o")
   done
