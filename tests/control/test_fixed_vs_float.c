@@ -99,6 +99,28 @@ static double applied_share(int16_t controller, int16_t v, double d)
 static uint32_t rng = 99u;
 static double uniform(double lo, double hi) { return test_lcg_range(&rng, lo, hi); }
 
+/* A random operating point, drawn in this order: currents, angle, speed, DC link, the state in
+ * force; then the caller's duty in force; then random_torque_ref near the currents' torque. */
+static void random_point(fvf_point_t *p, int16_t controller, double lambda)
+{
+    p->controller = controller;
+    p->lambda = lambda;
+    p->id = uniform(-2.0, 0.5);
+    p->iq = uniform(-4.0, 4.0);
+    p->ix = uniform(-0.5, 0.5);
+    p->iy = uniform(-0.5, 0.5);
+    p->theta = uniform(0.0, 1.0);
+    p->omega = uniform(-1.0, 1.0) * 1600.0 * TEST_PI / 30.0 * 3.0;
+    p->vdc = uniform(510.0, 570.0);
+    p->vector_in_force = (int16_t)(uniform(0.0, 64.0));
+}
+
+static void random_torque_ref(fvf_point_t *p)
+{
+    const double te = 9.0 * ((LD_H * p->id + PSI_F) * p->iq - LQ_H * p->iq * p->id);
+    p->torque_ref = fmax(-7.0, fmin(7.0, te + uniform(-1.0, 1.0)));
+}
+
 static void compare(int16_t controller, double max_mismatch_fraction, double max_cost_excess)
 {
     static const double lambdas[3] = {20.0, 100.0, 200.0};
@@ -112,20 +134,9 @@ static void compare(int16_t controller, double max_mismatch_fraction, double max
         fvf_point_t p;
         fvf_result_t fx;
         fvf_result_t fl;
-        double te;
-        p.controller = controller;
-        p.lambda = lambdas[n % 3];
-        p.id = uniform(-2.0, 0.5);
-        p.iq = uniform(-4.0, 4.0);
-        p.ix = uniform(-0.5, 0.5);
-        p.iy = uniform(-0.5, 0.5);
-        p.theta = uniform(0.0, 1.0);
-        p.omega = uniform(-1.0, 1.0) * 1600.0 * TEST_PI / 30.0 * 3.0;
-        p.vdc = uniform(510.0, 570.0);
-        p.vector_in_force = (int16_t)(uniform(0.0, 64.0));
+        random_point(&p, controller, lambdas[n % 3]);
         p.duty_in_force = controller == 0 ? (double)(int32_t)uniform(0.0, 6.0) / 5.0 : 1.0;
-        te = 9.0 * ((LD_H * p.id + PSI_F) * p.iq - LQ_H * p.iq * p.id);
-        p.torque_ref = fmax(-7.0, fmin(7.0, te + uniform(-1.0, 1.0)));
+        random_torque_ref(&p);
         fvf_evaluate(&p, &fx);
         flt_fvf_evaluate(&p, &fl);
         assert_true(fx.vector >= 0 && fl.vector >= 0);
@@ -194,21 +205,10 @@ static void test_foc(void **state)
         fvf_point_t p;
         fvf_result_t fx;
         fvf_result_t fl;
-        double te;
         int16_t k;
-        p.controller = 3;
-        p.lambda = 100.0;
-        p.id = uniform(-2.0, 0.5);
-        p.iq = uniform(-4.0, 4.0);
-        p.ix = uniform(-0.5, 0.5);
-        p.iy = uniform(-0.5, 0.5);
-        p.theta = uniform(0.0, 1.0);
-        p.omega = uniform(-1.0, 1.0) * 1600.0 * TEST_PI / 30.0 * 3.0;
-        p.vdc = uniform(510.0, 570.0);
-        p.vector_in_force = (int16_t)(uniform(0.0, 64.0));
+        random_point(&p, (int16_t)CTL_CONTROLLER_FOC, 100.0);
         p.duty_in_force = uniform(0.0, 1.0);
-        te = 9.0 * ((LD_H * p.id + PSI_F) * p.iq - LQ_H * p.iq * p.id);
-        p.torque_ref = fmax(-7.0, fmin(7.0, te + uniform(-1.0, 1.0)));
+        random_torque_ref(&p);
         fvf_evaluate(&p, &fx);
         flt_fvf_evaluate(&p, &fl);
         assert_true(fx.vector == 0 && fl.vector == 0);

@@ -80,6 +80,31 @@ static void test_mptc_flux_weight_selects_flux_match(void **state)
     assert_int_equal(c.vector, 026);
 }
 
+/* A random horizon for the pruning tests: angle, free response, references and lambda (up to
+ * 200 N m/Wb in per unit and beyond), drawn in this order. */
+static ctl_horizon_t random_horizon(test_rng_t *rng)
+{
+    ctl_horizon_t h = horizon();
+    const double angle = test_rng_range(rng, 0.0, 1.0);
+    ctl_sincos_pu(ctl_from_float((float)angle), &h.sin1, &h.cos1);
+    h.id2_free = ctl_from_float((float)test_rng_range(rng, -0.6, 0.6));
+    h.iq2_free = ctl_from_float((float)test_rng_range(rng, -0.6, 0.6));
+    h.torque_ref = ctl_from_float((float)test_rng_range(rng, -1.5, 1.5));
+    h.flux_ref = ctl_from_float((float)test_rng_range(rng, 0.3, 0.6));
+    h.lambda = ctl_from_float((float)test_rng_range(rng, 0.0, 20.0));
+    ctl_horizon_prepare(&h);
+    return h;
+}
+
+/* The full cost of holding voltage v for the period, and its predicted k+2 torque and flux. */
+static ctl_q full_cost(const ctl_horizon_t *h, const ctl_vsd_t *v, ctl_q *torque, ctl_q *flux)
+{
+    ctl_q did;
+    ctl_q diq;
+    ctl_horizon_forced(h, v, &did, &diq);
+    return ctl_horizon_cost(h, ctl_add(h->id2_free, did), ctl_add(h->iq2_free, diq), torque, flux);
+}
+
 /* The exhaustive search skips a candidate's flux root once its torque error alone reaches the
  * best cost: over random horizons (angle, free response, references, lambda up to 200 N m/Wb in
  * per unit and beyond) it picks the candidate, cost, torque and flux that the full cost of every
@@ -90,31 +115,18 @@ static void test_mptc_pruning_keeps_the_choice(void **state)
     int32_t n;
     (void)state;
     for (n = 0; n < 20000; n++) {
-        ctl_horizon_t h = horizon();
+        const ctl_horizon_t h = random_horizon(&rng);
         ctl_choice_t c;
         ctl_q best = CTL_Q_MAX;
         int16_t best_v = 0;
         int16_t i;
-        const double angle = test_rng_range(&rng, 0.0, 1.0);
         const bool all = (n % 2) == 0;
         const int16_t *cand = all ? ctl_mptc49_vectors : ctl_mptc13_vectors;
         const int16_t count = all ? CTL_MPTC49_CANDIDATES : CTL_MPTC13_CANDIDATES;
-        ctl_sincos_pu(ctl_from_float((float)angle), &h.sin1, &h.cos1);
-        h.id2_free = ctl_from_float((float)test_rng_range(&rng, -0.6, 0.6));
-        h.iq2_free = ctl_from_float((float)test_rng_range(&rng, -0.6, 0.6));
-        h.torque_ref = ctl_from_float((float)test_rng_range(&rng, -1.5, 1.5));
-        h.flux_ref = ctl_from_float((float)test_rng_range(&rng, 0.3, 0.6));
-        h.lambda = ctl_from_float((float)test_rng_range(&rng, 0.0, 20.0));
-        ctl_horizon_prepare(&h);
         for (i = 0; i < count; i++) {
             ctl_q torque;
             ctl_q flux;
-            ctl_q did;
-            ctl_q diq;
-            ctl_q cost;
-            ctl_horizon_forced(&h, &ctl_vector_vsd[cand[i]], &did, &diq);
-            cost = ctl_horizon_cost(&h, ctl_add(h.id2_free, did), ctl_add(h.iq2_free, diq), &torque,
-                                    &flux);
+            const ctl_q cost = full_cost(&h, &ctl_vector_vsd[cand[i]], &torque, &flux);
             if (cost < best) {
                 best = cost;
                 best_v = cand[i];
@@ -129,10 +141,7 @@ static void test_mptc_pruning_keeps_the_choice(void **state)
 /* Predicted k+2 torque and flux of virtual vector k held for the period. */
 static void predicted_virtual(const ctl_horizon_t *h, int16_t k, ctl_q *torque, ctl_q *flux)
 {
-    ctl_q did;
-    ctl_q diq;
-    ctl_horizon_forced(h, &ctl_vv_vsd[k], &did, &diq);
-    (void)ctl_horizon_cost(h, ctl_add(h->id2_free, did), ctl_add(h->iq2_free, diq), torque, flux);
+    (void)full_cost(h, &ctl_vv_vsd[k], torque, flux);
 }
 
 /* VV-MPTC on simple states: a torque reference equal to one virtual vector's predicted torque
@@ -173,28 +182,15 @@ static void test_vvmptc_pruning_keeps_the_choice(void **state)
     int32_t n;
     (void)state;
     for (n = 0; n < 20000; n++) {
-        ctl_horizon_t h = horizon();
+        const ctl_horizon_t h = random_horizon(&rng);
         ctl_choice_t c;
         ctl_q torque;
         ctl_q flux;
-        ctl_q best;
+        ctl_q best = ctl_horizon_cost(&h, h.id2_free, h.iq2_free, &torque, &flux);
         int16_t best_k = CTL_VV_NONE;
         int16_t k;
-        ctl_sincos_pu(ctl_from_float((float)test_rng_range(&rng, 0.0, 1.0)), &h.sin1, &h.cos1);
-        h.id2_free = ctl_from_float((float)test_rng_range(&rng, -0.6, 0.6));
-        h.iq2_free = ctl_from_float((float)test_rng_range(&rng, -0.6, 0.6));
-        h.torque_ref = ctl_from_float((float)test_rng_range(&rng, -1.5, 1.5));
-        h.flux_ref = ctl_from_float((float)test_rng_range(&rng, 0.3, 0.6));
-        h.lambda = ctl_from_float((float)test_rng_range(&rng, 0.0, 20.0));
-        ctl_horizon_prepare(&h);
-        best = ctl_horizon_cost(&h, h.id2_free, h.iq2_free, &torque, &flux);
         for (k = 0; k < CTL_VV_COUNT; k++) {
-            ctl_q did;
-            ctl_q diq;
-            ctl_q cost;
-            ctl_horizon_forced(&h, &ctl_vv_vsd[k], &did, &diq);
-            cost = ctl_horizon_cost(&h, ctl_add(h.id2_free, did), ctl_add(h.iq2_free, diq), &torque,
-                                    &flux);
+            const ctl_q cost = full_cost(&h, &ctl_vv_vsd[k], &torque, &flux);
             if (cost < best) {
                 best = cost;
                 best_k = k;
