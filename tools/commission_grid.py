@@ -15,9 +15,7 @@ to fail are listed in tools/commission_grid_known.txt (open work of issue 25; --
 listed one passes (take it off the list), or (--check) when the table differs.
 """
 import concurrent.futures
-import json
 import os
-import subprocess
 import sys
 
 import sim_doc_table
@@ -118,12 +116,8 @@ def sim_args(m):
 
 
 def run_one(sim, m, arith):
-    cmd = [sim, "run", "--controller", "ddc", "--scenario", "commission", "--arith", arith,
-           "--no-trace"] + sim_args(m)
-    out = subprocess.run(cmd, capture_output=True, text=True, check=False)
-    if out.returncode != 0:
-        raise RuntimeError("%s: %s" % (" ".join(cmd), out.stderr.strip()))
-    return json.loads(out.stdout)["commission"]
+    return sim_doc_table.run_json(sim, ["--controller", "ddc", "--scenario", "commission",
+                                        "--arith", arith] + sim_args(m))["commission"]
 
 
 def judge(c, key, limit):

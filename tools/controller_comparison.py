@@ -23,7 +23,6 @@ that trips is run again with it off and the row says so.
   tools/controller_comparison.py --check   run and compare with the committed tables
 """
 import concurrent.futures
-import json
 import math
 import os
 import re
@@ -101,14 +100,6 @@ def feasible_rate(worst_us_high):
     return math.floor(fs / RATE_STEP) * RATE_STEP
 
 
-def run(sim, args):
-    cmd = [sim, "run", "--no-trace"] + args
-    out = subprocess.run(cmd, capture_output=True, text=True, check=False)
-    if out.returncode != 0:
-        raise RuntimeError("%s: %s" % (" ".join(cmd), out.stderr.strip()))
-    return json.loads(out.stdout)
-
-
 def interval(values):
     mean = statistics.fmean(values)
     half = T_95_4DOF * statistics.stdev(values) / math.sqrt(len(values)) if len(values) > 1 else 0
@@ -123,7 +114,7 @@ class Runs:
         self.pool = concurrent.futures.ThreadPoolExecutor(max_workers=jobs)
 
     def batch(self, arg_lists):
-        return list(self.pool.map(lambda a: run(self.sim, a), arg_lists))
+        return list(self.pool.map(lambda a: sim_doc_table.run_json(self.sim, a), arg_lists))
 
     def seeds(self, args):
         return self.batch([args + ["--seed", str(s)] for s in SEEDS])

@@ -13,9 +13,7 @@ the open phase's leg isolated); a commissioning sequence ends failed with reason
 nothing applied. Exit status 1 when a row breaks its limit or (--check) the table differs.
 """
 import concurrent.futures
-import json
 import os
-import subprocess
 import sys
 
 import sim_doc_table
@@ -58,12 +56,8 @@ CASES = (
 
 def run_one(sim, case, phase, arith):
     _, point, args, _ = case
-    cmd = [sim, "run", "--controller", "ddc", "--arith", arith, "--open-phase", phase,
-           "--no-trace"] + args
-    out = subprocess.run(cmd, capture_output=True, text=True, check=False)
-    if out.returncode != 0:
-        raise RuntimeError("%s: %s" % (" ".join(cmd), out.stderr.strip()))
-    return point, phase, arith, json.loads(out.stdout)
+    return point, phase, arith, sim_doc_table.run_json(
+        sim, ["--controller", "ddc", "--arith", arith, "--open-phase", phase] + args)
 
 
 def judge(case, phase, m):

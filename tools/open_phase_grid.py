@@ -18,7 +18,6 @@ reports, it does not judge: a run isolated later than 10 ms is a number in the t
 failure.
 """
 import concurrent.futures
-import json
 import statistics
 import subprocess
 import sys
@@ -43,13 +42,10 @@ FA_SEEDS = range(1, 11)
 
 
 def run_one(sim, speed, load, phase, seed, arith):
-    cmd = [sim, "run", "--controller", "ddc", "--arith", arith, "--scenario", "fault-open-phase",
-           "--ride-through", "--speed", str(speed), "--load", "%g" % load, "--open-phase", phase,
-           "--seed", str(seed), "--no-trace"]
-    out = subprocess.run(cmd, capture_output=True, text=True, check=False)
-    if out.returncode != 0:
-        raise RuntimeError("%s: %s" % (" ".join(cmd), out.stderr.strip()))
-    m = json.loads(out.stdout)
+    m = sim_doc_table.run_json(sim, [
+        "--controller", "ddc", "--arith", arith, "--scenario", "fault-open-phase",
+        "--ride-through", "--speed", str(speed), "--load", "%g" % load, "--open-phase", phase,
+        "--seed", str(seed)])
     op = m["open_phase"]
     isolated = op["isolated_leg"] == PHASES.index(phase)
     return {"speed": speed, "load": load, "ms": op["isolation_ms"] if isolated else None,
@@ -87,14 +83,6 @@ def table(sim, jobs):
     return "\n".join(lines) + "\n", len(runs)
 
 
-def sim_json(sim, args):
-    cmd = [sim, "run", "--no-trace"] + args
-    out = subprocess.run(cmd, capture_output=True, text=True, check=False)
-    if out.returncode != 0:
-        raise RuntimeError("%s: %s" % (" ".join(cmd), out.stderr.strip()))
-    return json.loads(out.stdout)
-
-
 def fault_scenarios(sim):
     """The fault-<name> scenarios the simulator lists in its help."""
     out = subprocess.run([sim, "help"], capture_output=True, text=True, check=False)
@@ -112,8 +100,8 @@ def false_alarms(sim, jobs):
     faulty = [["--controller", "ddc", "--scenario", sc, "--seed", str(seed), "--arith", a]
               for sc in fault_scenarios(sim) for seed in FA_SEEDS for a in ARITHS]
     with concurrent.futures.ThreadPoolExecutor(max_workers=jobs) as pool:
-        h = list(pool.map(lambda args: sim_json(sim, args), healthy))
-        f = list(pool.map(lambda args: sim_json(sim, args), faulty))
+        h = list(pool.map(lambda args: sim_doc_table.run_json(sim, args), healthy))
+        f = list(pool.map(lambda args: sim_doc_table.run_json(sim, args), faulty))
     lines = ["| runs | what | kept | not kept |", "|---|---|---|---|"]
     for c in FA_CONTROLLERS:
         mine = [m for m in h if m["controller"] == c]

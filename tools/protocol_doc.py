@@ -6,9 +6,7 @@ the command table and one field table per payload, each between its markers.
   tools/protocol_doc.py --write --exe build/host/tests/protocol-doc   rewrite the tables
   tools/protocol_doc.py --check --exe build/host/tests/protocol-doc   compare (exit 1 if stale)
 """
-import argparse
 import os
-import subprocess
 import sys
 
 import sim_doc_table
@@ -18,28 +16,16 @@ BLOCKS = ("commands", "ST", "PF", "FR", "TL", "OP", "CA", "CS", "CT", "CR2")
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    mode = ap.add_mutually_exclusive_group(required=True)
-    mode.add_argument("--write", action="store_true")
-    mode.add_argument("--check", action="store_true")
-    ap.add_argument("--exe", required=True, help="the protocol-doc program")
-    a = ap.parse_args()
-    if not os.access(a.exe, os.X_OK):
-        print("protocol_doc: no program at %s (build the protocol-doc target)" % a.exe,
-              file=sys.stderr)
-        return 1
+    a = sim_doc_table.program_parser(__doc__.splitlines()[0], "protocol-doc").parse_args()
     status = 0
     for name in BLOCKS:
-        out = subprocess.run([a.exe, name], capture_output=True, text=True, check=False)
-        if out.returncode != 0:
-            print("protocol_doc: %s %s failed: %s" % (a.exe, name, out.stderr.strip()),
-                  file=sys.stderr)
+        table = sim_doc_table.program_output("protocol_doc", a.exe, "protocol-doc", [name])
+        if table is None:
             return 1
         begin = "<!-- protocol-doc %s: tools/protocol_doc.py --write -->" % name
         end = "<!-- /protocol-doc %s -->" % name
-        status |= sim_doc_table.update_block("protocol_doc", DOC, begin, end, out.stdout, a)
+        status |= sim_doc_table.update_block("protocol_doc", DOC, begin, end, table, a)
     return status
-
 
 if __name__ == "__main__":
     sys.exit(main())

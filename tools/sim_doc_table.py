@@ -1,8 +1,11 @@
-"""What the simulator-driven doc tables share (tools/open_phase_envelope.py,
-tools/commission_grid.py): the command line (--write | --check, --sim, --jobs) and the block
-between two markers of a doc, rewritten or compared."""
+"""What the generated doc tables share: the command line (--write | --check, with --sim and
+--jobs for the simulator-driven ones, --exe for those a program of the build prints), one
+simulator run's metrics, one program's output, and the block between two markers of a doc,
+rewritten or compared."""
 import argparse
+import json
 import os
+import subprocess
 import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -18,6 +21,40 @@ def parser(description, doc_name):
         "SIXPHASE_SIM", os.path.join(ROOT, "build", "host", "host_sim", "sixphase-sim")))
     ap.add_argument("--jobs", type=int, default=2)
     return ap
+
+
+def program_parser(description, program):
+    """--write | --check and --exe, the program of the build that prints the tables."""
+    ap = argparse.ArgumentParser(description=description)
+    mode = ap.add_mutually_exclusive_group(required=True)
+    mode.add_argument("--write", action="store_true")
+    mode.add_argument("--check", action="store_true")
+    ap.add_argument("--exe", required=True, help="the %s program" % program)
+    return ap
+
+
+def program_output(tool, exe, program, args=()):
+    """What exe prints for args, or None after a one-line error (no program, or it failed)."""
+    if not os.access(exe, os.X_OK):
+        print("%s: no program at %s (build the %s target)" % (tool, exe, program),
+              file=sys.stderr)
+        return None
+    out = subprocess.run([exe] + list(args), capture_output=True, text=True, check=False)
+    if out.returncode != 0:
+        print("%s: %s %s failed: %s" % (tool, exe, " ".join(args), out.stderr.strip()),
+              file=sys.stderr)
+        return None
+    return out.stdout
+
+
+def run_json(sim, args):
+    """The metrics (JSON) of `sixphase-sim run --no-trace` with args; RuntimeError naming the
+    command and its error when the run fails."""
+    cmd = [sim, "run", "--no-trace"] + list(args)
+    out = subprocess.run(cmd, capture_output=True, text=True, check=False)
+    if out.returncode != 0:
+        raise RuntimeError("%s: %s" % (" ".join(cmd), out.stderr.strip()))
+    return json.loads(out.stdout)
 
 
 def usable(tool, a):
