@@ -705,20 +705,16 @@ static int cmd_single(const options_t *o, uint16_t cmd, const uint16_t *payload,
 
 static int run_faults(const options_t *o, int argc, char **argv)
 {
+    (void)argc;
     (void)argv;
-    if (argc != 1) {
-        return usage("this command takes no arguments");
-    }
     return o->print_only ? print_request(SXL_CMD_GET_FAULT_RECORD, NULL, 0u) : cmd_faults(o);
 }
 
 static int run_profile(const options_t *o, int argc, char **argv)
 {
     const uint16_t first_stage[SXL_PQ_SIZE] = {0u};
+    (void)argc;
     (void)argv;
-    if (argc != 1) {
-        return usage("this command takes no arguments");
-    }
     return o->print_only ? print_request(SXL_CMD_GET_PROFILE, first_stage, SXL_PQ_SIZE)
                          : cmd_profile(o);
 }
@@ -852,6 +848,9 @@ static int link_cli_dispatch(const options_t *o, const link_cli_t *c, int argc, 
                c->args, c->help);
         return 0;
     }
+    if (c->args[0] == '\0' && argc != 1) { /* the table lists no arguments for it */
+        return usage("this command takes no arguments");
+    }
     if (c->run != NULL) {
         return c->run(o, argc, argv);
     }
@@ -860,8 +859,6 @@ static int link_cli_dispatch(const options_t *o, const link_cli_t *c, int argc, 
         if (rc != 0) {
             return rc;
         }
-    } else if (argc != 1) {
-        return usage("this command takes no arguments");
     }
     return o->print_only ? print_request(cmd, payload, len) : cmd_single(o, cmd, payload, len);
 }
