@@ -159,7 +159,7 @@ def measure(runs, row, arith, fs):
     for group, metrics in ((steady, STEADY), (step, STEP), (rev, REVERSAL)):
         for key, label, fmt in metrics:
             values[label] = ([m[key] for m in group], fmt)
-    return note, values
+    return span, protect, note, values
 
 
 def equal_switching_rate(runs, row, arith, target, span, protect):
@@ -255,9 +255,8 @@ def build(sim, jobs):
         results = []
         for row in rows:
             fs = feasible_rate(cost[(row[3], arith)][3])
-            note, values = measure(runs, row, arith, fs)
-            span = float(re.match(r"\+-([0-9.]+) A", note).group(1)) * 2
-            setups[(row[0], arith)] = (span, "protection off" not in note)
+            span, protect, note, values = measure(runs, row, arith, fs)
+            setups[(row[0], arith)] = (span, protect)
             results.append((row, fs, note, values))
         out += ["#### At the rates the F28335 can execute (%s)" % arith, ""]
         out += table_a(results, arith, cost) + [""] + summary(results, arith) + [""]
