@@ -123,6 +123,13 @@ static double inv_phase_current(const plant_state_t *s, int k, double i_alpha, d
     return r[0] * i_alpha + r[1] * i_beta + r[2] * s->i_x + r[3] * s->i_y;
 }
 
+/* The state's stator current in the stationary frame (from its rotor-frame current). */
+static void inv_alpha_beta(const plant_state_t *s, double *i_alpha, double *i_beta)
+{
+    *i_alpha = s->i_d * s->cos_e - s->i_q * s->sin_e;
+    *i_beta = s->i_d * s->sin_e + s->i_q * s->cos_e;
+}
+
 /* The stationary-frame voltage of every leg state at the present DC link voltage (the products
  * p->vdc_v * u_table are formed once, not per interval). */
 static const double (*inv_voltages(inverter_t *inv, const plant_params_t *p))[4]
@@ -146,10 +153,9 @@ static const double (*inv_voltages(inverter_t *inv, const plant_params_t *p))[4]
 static int inv_float_decide(const inverter_t *inv, const plant_params_t *p, const plant_state_t *s,
                             const double (*u)[4], unsigned eff, int k)
 {
-    const double i_alpha = s->i_d * s->cos_e - s->i_q * s->sin_e;
-    const double i_beta = s->i_d * s->sin_e + s->i_q * s->cos_e;
-    const double i_k = inv_phase_current(s, k, i_alpha, i_beta);
-    double v;
+    double i_alpha, i_beta, i_k, v;
+    inv_alpha_beta(s, &i_alpha, &i_beta);
+    i_k = inv_phase_current(s, k, i_alpha, i_beta);
     if ((inv->float_state[k] == 1 && i_k > 0.0) || (inv->float_state[k] == 2 && i_k < 0.0)) {
         return inv->float_state[k];
     }
@@ -160,8 +166,9 @@ static int inv_float_decide(const inverter_t *inv, const plant_params_t *p, cons
 /* A conducting diode whose current reached zero or reversed within the last step. */
 static bool inv_float_blocked(const inverter_t *inv, const plant_state_t *s, int k)
 {
-    const double i_k = inv_phase_current(s, k, s->i_d * s->cos_e - s->i_q * s->sin_e,
-                                         s->i_d * s->sin_e + s->i_q * s->cos_e);
+    double i_alpha, i_beta, i_k;
+    inv_alpha_beta(s, &i_alpha, &i_beta);
+    i_k = inv_phase_current(s, k, i_alpha, i_beta);
     return (inv->float_state[k] == 1 && i_k <= 0.0) || (inv->float_state[k] == 2 && i_k >= 0.0);
 }
 
@@ -229,8 +236,7 @@ static unsigned inv_effective_legs(unsigned nominal, unsigned dead, const plant_
     if (dead == 0u) {
         return eff;
     }
-    i_alpha = s->i_d * s->cos_e - s->i_q * s->sin_e;
-    i_beta = s->i_d * s->sin_e + s->i_q * s->cos_e;
+    inv_alpha_beta(s, &i_alpha, &i_beta);
     for (k = 0; k < PLANT_PHASES; k++) {
         if ((dead & INV_LEG_BIT(k)) != 0u) {
             const double i_k = inv_phase_current(s, k, i_alpha, i_beta);
@@ -248,10 +254,9 @@ static unsigned inv_effective_legs(unsigned nominal, unsigned dead, const plant_
  * measure: each transition's energy grows with the current it commutates). */
 static double inv_switched_current(const plant_state_t *s, unsigned changed)
 {
-    const double i_alpha = s->i_d * s->cos_e - s->i_q * s->sin_e;
-    const double i_beta = s->i_d * s->sin_e + s->i_q * s->cos_e;
-    double sum = 0.0;
+    double i_alpha, i_beta, sum = 0.0;
     int k;
+    inv_alpha_beta(s, &i_alpha, &i_beta);
     for (k = 0; k < PLANT_PHASES; k++) {
         if ((changed & INV_LEG_BIT(k)) != 0u) {
             sum += fabs(inv_phase_current(s, k, i_alpha, i_beta));
