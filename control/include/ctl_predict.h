@@ -33,6 +33,7 @@ typedef struct {
     ctl_q lxy;
     ctl_q psi_f;
     ctl_q ts; /* sample time, per unit */
+    ctl_q omega_max; /* the range analysis' speed for this sample time (ctl_range.h) */
     int16_t pole_pairs;
 } ctl_model_t;
 
@@ -41,17 +42,21 @@ typedef struct {
 bool ctl_model_init(ctl_model_t *m, float r_ohm, float ld_h, float lq_h, float lxy_h,
                     float psi_f_wb, int16_t pole_pairs, float ts_s);
 
+/* The predictions, fluxes and forced responses below use the bounded forms: ctl_model_init
+ * admits a model only when they stay below CTL_RANGE_BOUND for inputs of the domain
+ * (ctl_range.h, docs/range-analysis.md). */
+
 /* One Euler step of the d-q currents under an average voltage (u_d, u_q). */
 static inline void ctl_predict_dq(const ctl_model_t *m, ctl_q id, ctl_q iq, ctl_q w, ctl_q ud,
                                   ctl_q uq, ctl_q *id_next, ctl_q *iq_next)
 {
-    const ctl_q w_id = ctl_mul(w, id);
-    const ctl_q w_iq = ctl_mul(w, iq);
-    ctl_q d = ctl_mul_add(m->a_d, id, m->b_d, w_iq);
-    ctl_q q = ctl_mul_sub(m->a_q, iq, m->b_q, w_id);
-    d = ctl_mul_acc(d, m->c_d, ud);
-    q = ctl_mul_dec(q, m->e_q, w);
-    q = ctl_mul_acc(q, m->c_q, uq);
+    const ctl_q w_id = ctl_mul_bnd(w, id);
+    const ctl_q w_iq = ctl_mul_bnd(w, iq);
+    ctl_q d = ctl_mul_add_bnd(m->a_d, id, m->b_d, w_iq);
+    ctl_q q = ctl_mul_sub_bnd(m->a_q, iq, m->b_q, w_id);
+    d = ctl_mul_acc_bnd(d, m->c_d, ud);
+    q = ctl_mul_dec_bnd(q, m->e_q, w);
+    q = ctl_mul_acc_bnd(q, m->c_q, uq);
     *id_next = d;
     *iq_next = q;
 }
@@ -60,34 +65,34 @@ static inline void ctl_predict_dq(const ctl_model_t *m, ctl_q id, ctl_q iq, ctl_
 static inline void ctl_predict_dq_free(const ctl_model_t *m, ctl_q id, ctl_q iq, ctl_q w,
                                        ctl_q *id_next, ctl_q *iq_next)
 {
-    const ctl_q w_id = ctl_mul(w, id);
-    const ctl_q w_iq = ctl_mul(w, iq);
-    *id_next = ctl_mul_add(m->a_d, id, m->b_d, w_iq);
-    *iq_next = ctl_mul_dec(ctl_mul_sub(m->a_q, iq, m->b_q, w_id), m->e_q, w);
+    const ctl_q w_id = ctl_mul_bnd(w, id);
+    const ctl_q w_iq = ctl_mul_bnd(w, iq);
+    *id_next = ctl_mul_add_bnd(m->a_d, id, m->b_d, w_iq);
+    *iq_next = ctl_mul_dec_bnd(ctl_mul_sub_bnd(m->a_q, iq, m->b_q, w_id), m->e_q, w);
 }
 
 /* One Euler step of one x-y current component. */
 static inline ctl_q ctl_predict_xy(const ctl_model_t *m, ctl_q i, ctl_q u)
 {
-    return ctl_mul_add(m->a_xy, i, m->c_xy, u);
+    return ctl_mul_add_bnd(m->a_xy, i, m->c_xy, u);
 }
 
 /* Stator flux components from rotor-frame currents. */
 static inline ctl_q ctl_flux_d(const ctl_model_t *m, ctl_q id)
 {
-    return ctl_mul_acc(m->psi_f, m->ld, id);
+    return ctl_mul_acc_bnd(m->psi_f, m->ld, id);
 }
-static inline ctl_q ctl_flux_q(const ctl_model_t *m, ctl_q iq) { return ctl_mul(m->lq, iq); }
+static inline ctl_q ctl_flux_q(const ctl_model_t *m, ctl_q iq) { return ctl_mul_bnd(m->lq, iq); }
 
 /* Te = Pn (psi_d i_q - psi_q i_d), per unit (torque base is per pole pair), from rotor-frame
- * currents; psi_d and psi_q out for the flux magnitude, whose root is left to the caller
+ * currents, saturated once at the end (no bound: Pn up to 64 times products near the bound); psi_d and psi_q out for the flux magnitude, whose root is left to the caller
  * (the searches take it only where they need it). */
 static inline ctl_q ctl_torque_psi(const ctl_model_t *m, ctl_q id, ctl_q iq, ctl_q *psi_d,
                                    ctl_q *psi_q)
 {
     *psi_d = ctl_flux_d(m, id);
     *psi_q = ctl_flux_q(m, iq);
-    return ctl_mul_int(ctl_mul_sub(*psi_d, iq, *psi_q, id), m->pole_pairs);
+    return ctl_mul_sub_int(*psi_d, iq, *psi_q, id, m->pole_pairs); /* saturated: see above */
 }
 
 /* |psi_s| from its rotor-frame components. */

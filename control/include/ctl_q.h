@@ -19,6 +19,8 @@
 #include <stdbool.h>
 #include <stdint.h>
 
+#include "ctl_range.h"
+
 #ifndef CTL_MATH_FLOAT
 #define CTL_MATH_FLOAT 0
 #endif
@@ -128,6 +130,25 @@ static inline ctl_q ctl_abs(ctl_q a)
 #else
     return (a < 0.0f) ? -a : a;
 #endif
+}
+/* The bounded forms (below, fixed point) are the plain operations in float. */
+static inline ctl_q ctl_mul_bnd(ctl_q a, ctl_q b) { return ctl_mul(a, b); }
+static inline ctl_q ctl_add_bnd(ctl_q a, ctl_q b) { return ctl_add(a, b); }
+static inline ctl_q ctl_sub_bnd(ctl_q a, ctl_q b) { return ctl_sub(a, b); }
+static inline ctl_q ctl_mul_add_bnd(ctl_q a, ctl_q b, ctl_q c, ctl_q d)
+{
+    return ctl_mul_add(a, b, c, d);
+}
+static inline ctl_q ctl_mul_sub_bnd(ctl_q a, ctl_q b, ctl_q c, ctl_q d)
+{
+    return ctl_mul_sub(a, b, c, d);
+}
+static inline ctl_q ctl_mul_acc_bnd(ctl_q acc, ctl_q a, ctl_q b) { return ctl_mul_acc(acc, a, b); }
+static inline ctl_q ctl_mul_dec_bnd(ctl_q acc, ctl_q a, ctl_q b) { return ctl_mul_dec(acc, a, b); }
+static inline ctl_q ctl_mul_sub_int(ctl_q a, ctl_q b, ctl_q c, ctl_q d, int16_t n)
+{
+    CTL_COUNT_OP(CTL_OP_MUL);
+    return (a * b - c * d) * (float)n;
 }
 static inline float ctl_to_float(ctl_q a) { return a; }
 static inline ctl_q ctl_from_float(float x) { return x; }
@@ -247,6 +268,91 @@ static inline ctl_q ctl_mul_dec(ctl_q acc, ctl_q a, ctl_q b)
     CTL_COUNT_OP(CTL_OP_MUL);
     CTL_COUNT_OP(CTL_OP_ADD);
     return ctl_q48_to_q24((int64_t)acc * (int64_t)CTL_Q_ONE - (int64_t)a * (int64_t)b);
+}
+
+/* (a*b - c*d) * n with one saturation, at the end: the difference of two Q48 products lies
+ * within (-2^63, 2^63), rounded to Q24 it is below 2^39 and times n (|n| <= 2^15) below 2^54,
+ * so nothing before the last step can overflow. The same value as
+ * ctl_mul_int(ctl_mul_sub(a, b, c, d), n) for n > 0, one saturation test instead of two. */
+static inline ctl_q ctl_mul_sub_int(ctl_q a, ctl_q b, ctl_q c, ctl_q d, int16_t n)
+{
+    const int64_t diff = (int64_t)a * (int64_t)b - (int64_t)c * (int64_t)d;
+    CTL_COUNT_OP(CTL_OP_MUL);
+    CTL_COUNT_OP(CTL_OP_MUL);
+    CTL_COUNT_OP(CTL_OP_ADD);
+    CTL_COUNT_OP(CTL_OP_MUL);
+    return ctl_sat64(((diff + ((int64_t)1 << (CTL_Q_FRAC_BITS - 1))) >> CTL_Q_FRAC_BITS) *
+                     (int64_t)n);
+}
+
+/*
+ * Bounded forms (CMSIS-DSP's way: a wide accumulator, no saturation test): the same rounding as
+ * the saturating operation of the same name without _bnd, for operands whose result the range
+ * analysis (docs/range-analysis.md) proves inside the Q24 range: the step's inputs clamped into
+ * the domain of ctl_range.h, the parameter set refused by ctl_model_init unless its model keeps
+ * every bounded quantity below CTL_RANGE_BOUND. Never undefined: a result outside int32 would
+ * be converted modulo 2^32 (implementation-defined, not UB). A build with CTL_RANGE_CHECK counts
+ * every bounded result above CTL_RANGE_BOUND in ctl_range_violations (tests/control/test_range.c).
+ * Each product has an operand far below 2^30 in magnitude (a coefficient, a sine, a bounded
+ * current), so a sum of two Q48 products cannot overflow int64 either.
+ */
+#if defined(CTL_RANGE_CHECK)
+extern uint32_t ctl_range_violations;
+static inline ctl_q ctl_bnd_of(int64_t v)
+{
+    const int64_t bound = (int64_t)CTL_RANGE_BOUND * CTL_Q_ONE;
+    if (v > bound || v < -bound) {
+        ctl_range_violations++;
+    }
+    return (ctl_q)v;
+}
+#else
+static inline ctl_q ctl_bnd_of(int64_t v) { return (ctl_q)v; }
+#endif
+static inline ctl_q ctl_q48_to_q24_bnd(int64_t p)
+{
+    return ctl_bnd_of((p + ((int64_t)1 << (CTL_Q_FRAC_BITS - 1))) >> CTL_Q_FRAC_BITS);
+}
+static inline ctl_q ctl_mul_bnd(ctl_q a, ctl_q b)
+{
+    CTL_COUNT_OP(CTL_OP_MUL);
+    return ctl_q48_to_q24_bnd((int64_t)a * (int64_t)b);
+}
+static inline ctl_q ctl_add_bnd(ctl_q a, ctl_q b)
+{
+    CTL_COUNT_OP(CTL_OP_ADD);
+    return ctl_bnd_of((int64_t)a + (int64_t)b);
+}
+static inline ctl_q ctl_sub_bnd(ctl_q a, ctl_q b)
+{
+    CTL_COUNT_OP(CTL_OP_ADD);
+    return ctl_bnd_of((int64_t)a - (int64_t)b);
+}
+static inline ctl_q ctl_mul_add_bnd(ctl_q a, ctl_q b, ctl_q c, ctl_q d)
+{
+    CTL_COUNT_OP(CTL_OP_MUL);
+    CTL_COUNT_OP(CTL_OP_MUL);
+    CTL_COUNT_OP(CTL_OP_ADD);
+    return ctl_q48_to_q24_bnd((int64_t)a * (int64_t)b + (int64_t)c * (int64_t)d);
+}
+static inline ctl_q ctl_mul_sub_bnd(ctl_q a, ctl_q b, ctl_q c, ctl_q d)
+{
+    CTL_COUNT_OP(CTL_OP_MUL);
+    CTL_COUNT_OP(CTL_OP_MUL);
+    CTL_COUNT_OP(CTL_OP_ADD);
+    return ctl_q48_to_q24_bnd((int64_t)a * (int64_t)b - (int64_t)c * (int64_t)d);
+}
+static inline ctl_q ctl_mul_acc_bnd(ctl_q acc, ctl_q a, ctl_q b)
+{
+    CTL_COUNT_OP(CTL_OP_MUL);
+    CTL_COUNT_OP(CTL_OP_ADD);
+    return ctl_q48_to_q24_bnd((int64_t)acc * (int64_t)CTL_Q_ONE + (int64_t)a * (int64_t)b);
+}
+static inline ctl_q ctl_mul_dec_bnd(ctl_q acc, ctl_q a, ctl_q b)
+{
+    CTL_COUNT_OP(CTL_OP_MUL);
+    CTL_COUNT_OP(CTL_OP_ADD);
+    return ctl_q48_to_q24_bnd((int64_t)acc * (int64_t)CTL_Q_ONE - (int64_t)a * (int64_t)b);
 }
 
 static inline ctl_q ctl_div(ctl_q a, ctl_q b)

@@ -42,12 +42,12 @@ static inline void ctl_horizon_prepare(ctl_horizon_t *h)
 #if CTL_MATH_FLOAT
     (void)h; /* the float build's forced response keeps the model's product order */
 #else
-    const ctl_q cd = ctl_mul(h->model->c_d, h->vdc);
-    const ctl_q cq = ctl_mul(h->model->c_q, h->vdc);
-    h->kd_alpha = ctl_mul(cd, h->cos1);
-    h->kd_beta = ctl_mul(cd, h->sin1);
-    h->kq_alpha = ctl_sub(CTL_Q(0.0), ctl_mul(cq, h->sin1));
-    h->kq_beta = ctl_mul(cq, h->cos1);
+    const ctl_q cd = ctl_mul_bnd(h->model->c_d, h->vdc); /* bounded: ctl_model_init */
+    const ctl_q cq = ctl_mul_bnd(h->model->c_q, h->vdc);
+    h->kd_alpha = ctl_mul_bnd(cd, h->cos1);
+    h->kd_beta = ctl_mul_bnd(cd, h->sin1);
+    h->kq_alpha = ctl_sub_bnd(CTL_Q(0.0), ctl_mul_bnd(cq, h->sin1));
+    h->kq_beta = ctl_mul_bnd(cq, h->cos1);
 #endif
 }
 
@@ -78,8 +78,8 @@ static inline void ctl_horizon_forced(const ctl_horizon_t *h, const ctl_vsd_t *v
 #else
     /* fixed: two multiplies per axis with the coefficients of ctl_horizon_prepare (the same
      * commands on the benchmark's points, a quarter of the work) */
-    *did = ctl_mul_add(h->kd_alpha, vec->alpha, h->kd_beta, vec->beta);
-    *diq = ctl_mul_add(h->kq_alpha, vec->alpha, h->kq_beta, vec->beta);
+    *did = ctl_mul_add_bnd(h->kd_alpha, vec->alpha, h->kd_beta, vec->beta);
+    *diq = ctl_mul_add_bnd(h->kq_alpha, vec->alpha, h->kq_beta, vec->beta);
 #endif
 }
 
@@ -110,8 +110,8 @@ static inline void ctl_choice_consider(const ctl_horizon_t *h, ctl_q did, ctl_q 
     ctl_q psi_q;
     ctl_q flux;
     ctl_q cost;
-    const ctl_q torque = ctl_torque_psi(h->model, ctl_add(h->id2_free, did),
-                                        ctl_add(h->iq2_free, diq), &psi_d, &psi_q);
+    const ctl_q torque = ctl_torque_psi(h->model, ctl_add_bnd(h->id2_free, did),
+                                        ctl_add_bnd(h->iq2_free, diq), &psi_d, &psi_q);
     if (!(ctl_abs(ctl_sub(torque, h->torque_ref)) < out->cost)) {
         return;
     }

@@ -25,11 +25,34 @@ void ctl_vsd_inverse(const ctl_vsd_t *v, ctl_q phase[6]);
 /* The phase currents of an alpha-beta current alone (x = y = 0): each phase's share of it. */
 void ctl_vsd_alpha_beta_phases(ctl_q alpha, ctl_q beta, ctl_q phase[6]);
 
-/* Rotation into the rotor frame by an angle given as its sine and cosine. */
+/* The step's sampled inputs held in the domain of the range analysis (ctl_range.h): the
+ * currents after the VSD, the speed (omega_max: the model's, ctl_predict.h) and the DC link. A real sample lies inside it (the board
+ * reads at most 2 per unit of current and 1.48 of DC link); one beyond it is an input the
+ * protection trips on, and the step still computes nothing outside the proven bounds. */
+static inline void ctl_range_clamp(ctl_vsd_t *i, ctl_q *omega, ctl_q *vdc, ctl_q omega_max)
+{
+#if CTL_MATH_FLOAT
+    (void)i; /* single precision has no range to protect here: the float step takes them as */
+    (void)omega; /* they come, as it always has */
+    (void)vdc;
+    (void)omega_max;
+#else
+    const ctl_q current = CTL_Q(CTL_RANGE_CURRENT);
+    i->alpha = ctl_clamp(i->alpha, -current, current);
+    i->beta = ctl_clamp(i->beta, -current, current);
+    i->x = ctl_clamp(i->x, -current, current);
+    i->y = ctl_clamp(i->y, -current, current);
+    *omega = ctl_clamp(*omega, -omega_max, omega_max);
+    *vdc = ctl_clamp(*vdc, CTL_Q(0.0), CTL_Q(CTL_RANGE_VDC));
+#endif
+}
+
+/* Rotation into the rotor frame by an angle given as its sine and cosine: bounded (a rotation
+ * keeps |(d, q)| = |(alpha, beta)|, below 6 for currents of the domain and 2 for the voltages). */
 static inline void ctl_park(ctl_q alpha, ctl_q beta, ctl_q s, ctl_q c, ctl_q *d, ctl_q *q)
 {
-    *d = ctl_add(ctl_mul(alpha, c), ctl_mul(beta, s));
-    *q = ctl_sub(ctl_mul(beta, c), ctl_mul(alpha, s));
+    *d = ctl_add_bnd(ctl_mul_bnd(alpha, c), ctl_mul_bnd(beta, s));
+    *q = ctl_sub_bnd(ctl_mul_bnd(beta, c), ctl_mul_bnd(alpha, s));
 }
 
 static inline void ctl_park_inverse(ctl_q d, ctl_q q, ctl_q s, ctl_q c, ctl_q *alpha, ctl_q *beta)

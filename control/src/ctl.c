@@ -195,23 +195,25 @@ CTL_RAMFUNC_FLOAT SIXPHASE_NOINLINE static void command_from_virtual(int16_t k, 
 SIXPHASE_RAMFUNC static inline void advance_angle(ctl_q theta_e, ctl_q s0, ctl_q c0, ctl_q delta,
                                                   ctl_q *s, ctl_q *c)
 {
-    if (ctl_abs(delta) <= CTL_Q(0.5)) {
-        const ctl_q d2 = ctl_mul(delta, delta);
-        const ctl_q sd = ctl_mul(delta, ctl_mul_dec(CTL_Q(1.0), d2, CTL_K_ONE_SIXTH));
-        const ctl_q cd = ctl_mul_dec(CTL_Q(1.0), ctl_mul(d2, CTL_Q(0.5)),
-                                     ctl_mul_dec(CTL_Q(1.0), d2, CTL_K_ONE_TWELFTH));
-        *s = ctl_mul_add(s0, cd, c0, sd);
-        *c = ctl_mul_sub(c0, cd, s0, sd);
+    if (ctl_abs(delta) <= CTL_Q(0.5)) { /* bounded: every term below 1.1 */
+        const ctl_q d2 = ctl_mul_bnd(delta, delta);
+        const ctl_q sd = ctl_mul_bnd(delta, ctl_mul_dec_bnd(CTL_Q(1.0), d2, CTL_K_ONE_SIXTH));
+        const ctl_q cd = ctl_mul_dec_bnd(CTL_Q(1.0), ctl_mul_bnd(d2, CTL_Q(0.5)),
+                                         ctl_mul_dec_bnd(CTL_Q(1.0), d2, CTL_K_ONE_TWELFTH));
+        *s = ctl_mul_add_bnd(s0, cd, c0, sd);
+        *c = ctl_mul_sub_bnd(c0, cd, s0, sd);
     } else {
         ctl_sincos_pu(ctl_add(theta_e, ctl_mul(delta, CTL_K_INV_TWO_PI)), s, c);
     }
 }
 
-/* Measured currents at k in the rotor and x-y frames. */
+/* Measured currents at k in the rotor and x-y frames; with the speed and the DC link, held in
+ * the range analysis' domain (ctl_range_clamp). */
 typedef struct {
     ctl_vsd_t vsd;
     ctl_q s0, c0; /* sine and cosine of the sample angle */
     ctl_q id, iq;
+    ctl_q omega_e, vdc;
 } ctl_sample_t;
 
 /* The option ctl_params_t.mid_period_angle: each period's voltage enters the prediction at
@@ -221,8 +223,9 @@ SIXPHASE_RAMFUNC static void mid_period_angles(const ctl_meas_t *m, const ctl_sa
                                                ctl_q delta, ctl_q *s_in_force, ctl_q *c_in_force,
                                                ctl_horizon_t *h)
 {
-    advance_angle(m->theta_e, smp->s0, smp->c0, ctl_mul(delta, CTL_Q(0.5)), s_in_force, c_in_force);
-    advance_angle(m->theta_e, smp->s0, smp->c0, ctl_mul(delta, CTL_Q(1.5)), &h->sin1, &h->cos1);
+    advance_angle(m->theta_e, smp->s0, smp->c0, ctl_mul_bnd(delta, CTL_Q(0.5)), s_in_force,
+                  c_in_force);
+    advance_angle(m->theta_e, smp->s0, smp->c0, ctl_mul_bnd(delta, CTL_Q(1.5)), &h->sin1, &h->cos1);
 }
 
 /* Delay compensation k -> k+1 under the command already in force (period average), then the
@@ -234,7 +237,7 @@ SIXPHASE_RAMFUNC static void predict(const ctl_t *c, const ctl_config_t *cfg, co
     const ctl_vsd_t *applied = (c->applied_virtual != CTL_VV_NONE)
                                    ? &ctl_vv_vsd[c->applied_virtual]
                                    : &ctl_vector_vsd[c->applied_vector];
-    const ctl_q delta = ctl_mul(m->omega_e, cfg->model.ts); /* rotation over one period */
+    const ctl_q delta = ctl_mul_bnd(smp->omega_e, cfg->model.ts); /* rotation over one period */
     ctl_vsd_t u0 = {CTL_Q(0.0), CTL_Q(0.0), CTL_Q(0.0), CTL_Q(0.0)};
     ctl_q ud0 = CTL_Q(0.0);
     ctl_q uq0 = CTL_Q(0.0);
@@ -247,20 +250,20 @@ SIXPHASE_RAMFUNC static void predict(const ctl_t *c, const ctl_config_t *cfg, co
         mid_period_angles(m, smp, delta, &s_in_force, &c_in_force, h);
     }
     if (c->applied_duty != CTL_Q(0.0)) { /* a zero vector in force applies no voltage */
-        const ctl_q applied_scale = ctl_mul(c->applied_duty, m->vdc);
-        u0.alpha = ctl_mul(applied->alpha, applied_scale);
-        u0.beta = ctl_mul(applied->beta, applied_scale);
-        u0.x = ctl_mul(applied->x, applied_scale);
-        u0.y = ctl_mul(applied->y, applied_scale);
-        ud0 = ctl_mul_add(u0.alpha, c_in_force, u0.beta, s_in_force);
-        uq0 = ctl_mul_sub(u0.beta, c_in_force, u0.alpha, s_in_force);
+        const ctl_q applied_scale = ctl_mul_bnd(c->applied_duty, smp->vdc); /* bounded: <= 2 */
+        u0.alpha = ctl_mul_bnd(applied->alpha, applied_scale);
+        u0.beta = ctl_mul_bnd(applied->beta, applied_scale);
+        u0.x = ctl_mul_bnd(applied->x, applied_scale);
+        u0.y = ctl_mul_bnd(applied->y, applied_scale);
+        ud0 = ctl_mul_add_bnd(u0.alpha, c_in_force, u0.beta, s_in_force);
+        uq0 = ctl_mul_sub_bnd(u0.beta, c_in_force, u0.alpha, s_in_force);
     }
-    ctl_predict_dq(&cfg->model, smp->id, smp->iq, m->omega_e, ud0, uq0, id1, iq1);
+    ctl_predict_dq(&cfg->model, smp->id, smp->iq, smp->omega_e, ud0, uq0, id1, iq1);
     *ix1 = ctl_predict_xy(&cfg->model, smp->vsd.x, u0.x);
     *iy1 = ctl_predict_xy(&cfg->model, smp->vsd.y, u0.y);
     h->model = &cfg->model;
-    ctl_predict_dq_free(&cfg->model, *id1, *iq1, m->omega_e, &h->id2_free, &h->iq2_free);
-    h->vdc = m->vdc;
+    ctl_predict_dq_free(&cfg->model, *id1, *iq1, smp->omega_e, &h->id2_free, &h->iq2_free);
+    h->vdc = smp->vdc;
     h->lambda = cfg->lambda;
     ctl_horizon_prepare(h);
 }
@@ -299,10 +302,13 @@ SIXPHASE_RAMFUNC void ctl_healthy_step(ctl_t *c, const ctl_meas_t *m, ctl_cmd_t 
 
     /* Measured state at k, references. */
     ctl_vsd_forward(m->i_phase, &smp.vsd);
+    smp.omega_e = m->omega_e;
+    smp.vdc = m->vdc;
+    ctl_range_clamp(&smp.vsd, &smp.omega_e, &smp.vdc, cfg->model.omega_max);
     ctl_sincos_pu(m->theta_e, &smp.s0, &smp.c0);
     ctl_park(smp.vsd.alpha, smp.vsd.beta, smp.s0, smp.c0, &smp.id, &smp.iq);
     if (c->loop_mode == CTL_LOOP_SPEED) {
-        h.torque_ref = ctl_speed_pi_run(&c->speed_pi, c->speed_ref, m->omega_e);
+        h.torque_ref = ctl_speed_pi_run(&c->speed_pi, c->speed_ref, smp.omega_e);
     } else {
         h.torque_ref = ctl_clamp(c->torque_ref_direct, -cfg->torque_limit, cfg->torque_limit);
     }

@@ -61,8 +61,8 @@ static inline void ctl_ddc_levels_search(const ctl_horizon_t *h, const ctl_ddc_c
     best_err = torque_err[zero_level];
     for (k = (int16_t)(zero_level - 1); k >= 0; k--) { /* ties: the larger duty, as before */
         const ctl_q d = cfg->levels[k];
-        torque[k] = ctl_torque_psi(h->model, ctl_mul_acc(h->id2_free, d, did),
-                                   ctl_mul_acc(h->iq2_free, d, diq), &psi_d[k], &psi_q[k]);
+        torque[k] = ctl_torque_psi(h->model, ctl_mul_acc_bnd(h->id2_free, d, did),
+                                   ctl_mul_acc_bnd(h->iq2_free, d, diq), &psi_d[k], &psi_q[k]);
         torque_err[k] = ctl_abs(ctl_sub(torque[k], h->torque_ref));
         if (torque_err[k] <= best_err) {
             best_err = torque_err[k];

@@ -30,8 +30,10 @@ void ctl_foc_current_ref(const ctl_foc_config_t *f, const ctl_flux_ref_t *span,
     }
     bracket = ctl_mul_acc(model->psi_f, ctl_sub(model->ld, model->lq), id);
     bracket = ctl_max(bracket, ctl_mul(model->psi_f, CTL_Q(0.25)));
-    *id_ref = id;
-    *iq_ref = ctl_div(torque_ref, ctl_mul_int(bracket, model->pole_pairs));
+    /* held to the range analysis' current: a reference beyond it is one no PI could reach */
+    *id_ref = ctl_clamp(id, -CTL_Q(CTL_RANGE_CURRENT), CTL_Q(CTL_RANGE_CURRENT));
+    *iq_ref = ctl_clamp(ctl_div(torque_ref, ctl_mul_int(bracket, model->pole_pairs)),
+                        -CTL_Q(CTL_RANGE_CURRENT), CTL_Q(CTL_RANGE_CURRENT));
 }
 
 /* The spread of one three-phase set's phase voltages (legs first..first+2) and its middle: the
@@ -176,9 +178,13 @@ void ctl_foc_healthy_step(ctl_t *c, const ctl_meas_t *m, ctl_cmd_t *cmd)
     ctl_q iq;
     ctl_q torque_ref;
     ctl_q flux_ref;
+    ctl_meas_t held;
 
     /* Measured state at k and references, as the predictive controllers'. */
     ctl_vsd_forward(m->i_phase, &i);
+    held = *m;
+    ctl_range_clamp(&i, &held.omega_e, &held.vdc, cfg->model.omega_max);
+    m = &held; /* the speed and DC link of the range analysis' domain from here on */
     ctl_sincos_pu(m->theta_e, &s0, &c0);
     ctl_park(i.alpha, i.beta, s0, c0, &id, &iq);
     if (c->loop_mode == CTL_LOOP_SPEED) {

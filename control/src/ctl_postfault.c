@@ -357,6 +357,7 @@ void ctl_postfault_step(ctl_t *c, const ctl_meas_t *m, ctl_cmd_t *cmd)
     pf_currents_t i0;
     ctl_choice_t choice;
     ctl_vsd_t vsd;
+    ctl_meas_t held;
     ctl_q s0;
     ctl_q c0;
     if (!c->initialised) {
@@ -365,6 +366,9 @@ void ctl_postfault_step(ctl_t *c, const ctl_meas_t *m, ctl_cmd_t *cmd)
     }
     p.pf = ctl_postfault_config(c);
     ctl_vsd_forward(m->i_phase, &vsd);
+    held = *m;
+    ctl_range_clamp(&vsd, &held.omega_e, &held.vdc, cfg->model.omega_max);
+    m = &held; /* the speed and DC link of the range analysis' domain from here on */
     ctl_sincos_pu(m->theta_e, &s0, &c0);
     ctl_park(vsd.alpha, vsd.beta, s0, c0, &i0.d, &i0.q);
     i0.x = vsd.x;

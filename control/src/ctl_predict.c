@@ -1,9 +1,46 @@
 #include "ctl_predict.h"
 
+#include "ctl_placement.h"
 #include "ctl_pu.h"
 
 /* Coefficients must be comfortably inside the Q24 range (|x| < 128). */
 static bool coefficient_fits(float x) { return x > -100.0f && x < 100.0f; }
+
+/* The range analysis (docs/range-analysis.md) of this model: the largest magnitude each quantity
+ * the steps compute with the bounded forms (ctl_q.h) can reach from inputs of the domain
+ * (ctl_range.h), by the triangle inequality; true when all stay below CTL_RANGE_BOUND. A sine or
+ * cosine counts as 1.01 (the one-period angle series overshoots 1 by less than 1e-4). The
+ * coefficients are those of ctl_model_init, all positive; the largest quantity is kept in one
+ * running maximum. Not inlined, and no helper: its frame would add to ctl_model_init's on the
+ * background's deepest path (tools/check_stack_bound.sh). */
+SIXPHASE_NOINLINE static bool range_fits(const float *coef, float w)
+{
+    const float u = (float)CTL_RANGE_VDC * (float)CTL_RANGE_VECTOR_SUM * 1.01f; /* |u_d|, |u_x| */
+    float i = (float)CTL_RANGE_CURRENT * 1.4142136f * 1.01f; /* |i_d|, |i_q| at k */
+    float largest = (coef[2] > coef[6]) ? coef[2] : coef[6];
+    float id;
+    float iq;
+    int16_t step;
+    largest *= (float)CTL_RANGE_VDC; /* c V of ctl_horizon_prepare */
+    /* x-y at k+1: a_xy i + c_xy u */
+    id = coef[7] * (float)CTL_RANGE_CURRENT + coef[8] * u;
+    largest = (id > largest) ? id : largest;
+    /* k+1 under the command in force, then k+2: the free response plus a candidate's forced
+     * part (c V times |v_alpha| + |v_beta|, which u covers); the speed term w i of k and k+1 */
+    for (step = 0; step < 2; step++) {
+        id = coef[0] * i + coef[1] * w * i + coef[2] * u;
+        iq = coef[3] * i + coef[4] * w * i + coef[5] * w + coef[6] * u;
+        largest = (w * i > largest) ? w * i : largest;
+        i = (id > i) ? id : i;
+        i = (iq > i) ? iq : i;
+    }
+    /* the fluxes of any of these currents: psi_f + L_d i, L_q i */
+    id = coef[12] + coef[9] * i;
+    iq = coef[10] * i;
+    largest = (id > largest) ? id : largest;
+    largest = (iq > largest) ? iq : largest;
+    return largest < (float)CTL_RANGE_BOUND;
+}
 
 bool ctl_model_init(ctl_model_t *m, float r_ohm, float ld_h, float lq_h, float lxy_h,
                     float psi_f_wb, int16_t pole_pairs, float ts_s)
@@ -16,6 +53,7 @@ bool ctl_model_init(ctl_model_t *m, float r_ohm, float ld_h, float lq_h, float l
     float psi;
     float ts;
     float coef[13];
+    float omega_max;
     int16_t i;
     if (!(r_ohm >= 0.0f && ld_h > 0.0f && lq_h > 0.0f && lxy_h > 0.0f && psi_f_wb >= 0.0f &&
           ts_s > 0.0f && pole_pairs > 0 && pole_pairs <= 64)) {
@@ -49,6 +87,11 @@ bool ctl_model_init(ctl_model_t *m, float r_ohm, float ld_h, float lq_h, float l
     if (coef[0] <= 0.0f || coef[3] <= 0.0f || coef[7] <= 0.0f || ts > 1.0f) {
         return false;
     }
+    omega_max = (float)CTL_RANGE_ANGLE / ts;
+    omega_max = (omega_max < (float)CTL_RANGE_SPEED) ? omega_max : (float)CTL_RANGE_SPEED;
+    if (!range_fits(coef, omega_max)) {
+        return false;
+    }
     m->a_d = ctl_from_float(coef[0]);
     m->b_d = ctl_from_float(coef[1]);
     m->c_d = ctl_from_float(coef[2]);
@@ -63,6 +106,7 @@ bool ctl_model_init(ctl_model_t *m, float r_ohm, float ld_h, float lq_h, float l
     m->lxy = ctl_from_float(lxy);
     m->psi_f = ctl_from_float(psi);
     m->ts = ctl_from_float(ts);
+    m->omega_max = ctl_from_float(omega_max);
     m->pole_pairs = pole_pairs;
     return true;
 }
