@@ -32,7 +32,7 @@ typedef struct {
     ctl_q lq;
     ctl_q lxy;
     ctl_q psi_f;
-    ctl_q ts; /* sample time, per unit */
+    ctl_q ts;        /* sample time, per unit */
     ctl_q omega_max; /* the range analysis' speed for this sample time (ctl_range.h) */
     int16_t pole_pairs;
 } ctl_model_t;
@@ -85,8 +85,9 @@ static inline ctl_q ctl_flux_d(const ctl_model_t *m, ctl_q id)
 static inline ctl_q ctl_flux_q(const ctl_model_t *m, ctl_q iq) { return ctl_mul_bnd(m->lq, iq); }
 
 /* Te = Pn (psi_d i_q - psi_q i_d), per unit (torque base is per pole pair), from rotor-frame
- * currents, saturated once at the end (no bound: Pn up to 64 times products near the bound); psi_d and psi_q out for the flux magnitude, whose root is left to the caller
- * (the searches take it only where they need it). */
+ * currents, saturated once at the end (no bound: Pn up to 64 times products near the bound);
+ * psi_d and psi_q out for the flux magnitude, whose root is left to the caller (the searches
+ * take it only where they need it). */
 static inline ctl_q ctl_torque_psi(const ctl_model_t *m, ctl_q id, ctl_q iq, ctl_q *psi_d,
                                    ctl_q *psi_q)
 {
