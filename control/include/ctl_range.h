@@ -8,10 +8,10 @@
 #ifndef CTL_RANGE_H
 #define CTL_RANGE_H
 
-#define CTL_RANGE_CURRENT 4 /* |i_alpha|, |i_beta|, |i_x|, |i_y|: 40 A, twice the board's sensors  \
-                             */
-#define CTL_RANGE_VDC 2     /* DC link 0 .. 1080 V (the board's divider reads up to 1.48) */
-#define CTL_RANGE_SPEED 4   /* |omega_e|: 12,000 r/min at three pole pairs */
+/* |i_alpha|, |i_beta|, |i_x|, |i_y|: 40 A, twice what the board's sensors read */
+#define CTL_RANGE_CURRENT 4
+#define CTL_RANGE_VDC 2   /* DC link 0 .. 1080 V (the board's divider reads up to 1.48) */
+#define CTL_RANGE_SPEED 4 /* |omega_e|: 12,000 r/min at three pole pairs */
 /* and at most this angle per period (rad): beyond it an Euler step of the rotor frame means
  * nothing; 4 per unit at 10 kHz is 0.38 rad, and at 2.3 kHz the bound is 1.8 per unit */
 #define CTL_RANGE_ANGLE 0.75
