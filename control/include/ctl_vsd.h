@@ -26,13 +26,14 @@ void ctl_vsd_inverse(const ctl_vsd_t *v, ctl_q phase[6]);
 void ctl_vsd_alpha_beta_phases(ctl_q alpha, ctl_q beta, ctl_q phase[6]);
 
 /* The step's sampled inputs held in the domain of the range analysis (ctl_range.h): the
- * currents after the VSD, the speed (omega_max: the model's, ctl_predict.h) and the DC link. A real sample lies inside it (the board
- * reads at most 2 per unit of current and 1.48 of DC link); one beyond it is an input the
- * protection trips on, and the step still computes nothing outside the proven bounds. */
+ * currents after the VSD, the speed (omega_max: the model's, ctl_predict.h) and the DC link. A
+ * real sample lies inside it (the board reads at most 2 per unit of current and 1.48 of DC
+ * link); one beyond it is an input the protection trips on, and the step still computes nothing
+ * outside the proven bounds. */
 static inline void ctl_range_clamp(ctl_vsd_t *i, ctl_q *omega, ctl_q *vdc, ctl_q omega_max)
 {
 #if CTL_MATH_FLOAT
-    (void)i; /* single precision has no range to protect here: the float step takes them as */
+    (void)i;     /* single precision has no range to protect here: the float step takes them as */
     (void)omega; /* they come, as it always has */
     (void)vdc;
     (void)omega_max;
