@@ -118,7 +118,8 @@ typedef struct {
     X(CTL_PARAM_INERTIA, CTL_RANGE_TEXT("inertia", CTL_INERTIA_MIN, CTL_INERTIA_MAX, " kg*m^2"))                                    \
     X(CTL_PARAM_SAMPLE_TIME,                                                                                                        \
       CTL_RANGE_TEXT("sample time", CTL_SAMPLE_TIME_MIN, CTL_SAMPLE_TIME_MAX, " s"))                                                \
-    X(CTL_PARAM_MODEL, "the discrete model does not fit: sample time too long for L/R")                                             \
+    X(CTL_PARAM_MODEL, "the discrete model does not fit: sample time too long for L/R, or "                                         \
+                       "currents beyond the Q24 range analysis")                                                                    \
     X(CTL_PARAM_FLUX_REF, "flux reference mode unknown or " CTL_RANGE_TEXT(                                                         \
                               "constant flux", CTL_FLUX_REF_MIN, CTL_FLUX_REF_MAX, " Wb"))                                          \
     X(CTL_PARAM_SPEED_GAINS,                                                                                                        \
