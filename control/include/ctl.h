@@ -160,9 +160,12 @@ void ctl_healthy_step(ctl_t *c, const ctl_meas_t *m, ctl_cmd_t *cmd);
 
 const ctl_diag_t *ctl_diag(const ctl_t *c);
 
-/* |psi_s|(k) of a diagnostic record: its root is taken here, by whoever reads it (background,
- * simulator), not in every control period. */
-ctl_q ctl_diag_flux_est(const ctl_diag_t *d);
+/* Te and |psi_s| of rotor-frame currents with the model in force, and those of the diagnostics'
+ * measured currents at k: computed by whoever reads them (background, capture, the protection's
+ * encoder check when it needs one, the simulator), not in every control period (issue 28). */
+ctl_q ctl_torque_estimate(const ctl_t *c, ctl_q i_d, ctl_q i_q);
+ctl_q ctl_diag_torque_est(const ctl_t *c);
+ctl_q ctl_diag_flux_est(const ctl_t *c);
 
 /* Stage boundaries of every following ctl_step go to hook (0 removes it). */
 void ctl_set_stage_hook(ctl_t *c, ctl_stage_hook_t hook);

@@ -1,7 +1,8 @@
 /*
- * What a control step leaves for its diagnostics (ctl_diag, ctl.h): the measured currents and
- * the estimates from them, the references and the choice. Below ctl.h, so the steps' shared
- * recorder (ctl_diag_record.h) does not include the controller it records for.
+ * What a control step leaves for its diagnostics (ctl_diag, ctl.h): the measured currents, the
+ * references and the choice. The estimates from the currents are left to their readers. Below
+ * ctl.h, so the steps' shared recorder (ctl_diag_record.h) does not include the controller it
+ * records for.
  */
 #ifndef CTL_DIAG_H
 #define CTL_DIAG_H
@@ -12,9 +13,8 @@
 #include "ctl_q.h"
 
 typedef struct {
-    ctl_q i_d, i_q, i_x, i_y;   /* measured, at sample k */
-    ctl_q torque_est;           /* Te(k) from measured currents */
-    ctl_q psi_d_est, psi_q_est; /* psi_s(k) in the rotor frame; |psi_s|: ctl_diag_flux_est */
+    ctl_q i_d, i_q, i_x, i_y; /* measured, at sample k; Te(k) and |psi_s|(k) from them:
+                               * ctl_diag_torque_est, ctl_diag_flux_est (ctl.h) */
     ctl_q torque_ref;
     ctl_q flux_ref;
     ctl_q torque_pred; /* chosen candidate, at k+2 */

@@ -23,6 +23,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 
+#include "ctl_predict.h"
 #include "ctl_q.h"
 
 /* Fault bits (uint16_t: 0x8000 does not fit the 16-bit int of the C28x, so no enum). */
@@ -125,7 +126,9 @@ typedef struct {
     ctl_q vdc;
     ctl_q theta_e;
     ctl_q omega_e;
-    ctl_q torque_est; /* from measured currents */
+    ctl_q i_d, i_q;           /* measured, rotor frame (the step's diagnostics) */
+    const ctl_model_t *model; /* the machine's in force, for the torque of i_d, i_q when the
+                               * encoder check or a record needs it (0: none, no torque) */
     int16_t raw_phase[6];
     int16_t raw_vdc;
     bool encoder_healthy;
@@ -145,7 +148,7 @@ typedef struct {
     ctl_q vdc;
     ctl_q theta_e;
     ctl_q omega_e;
-    ctl_q torque_est;
+    ctl_q torque_est; /* from the measured currents, estimated when recorded */
     ctl_q torque_ref;
     int16_t vector; /* command in force */
     ctl_q duty;

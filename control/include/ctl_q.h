@@ -131,6 +131,7 @@ static inline ctl_q ctl_abs(ctl_q a)
     return (a < 0.0f) ? -a : a;
 #endif
 }
+
 /* The bounded forms (below, fixed point) are the plain operations in float. */
 static inline ctl_q ctl_mul_bnd(ctl_q a, ctl_q b) { return ctl_mul(a, b); }
 static inline ctl_q ctl_add_bnd(ctl_q a, ctl_q b) { return ctl_add(a, b); }

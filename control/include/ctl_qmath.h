@@ -38,6 +38,14 @@ int16_t ctl_turn_sector(ctl_q angle_turn, int16_t n);
  * by comparisons against tan(15 deg) multiples (no atan, no division). (0, 0) gives 0. */
 int16_t ctl_sector24(ctl_q y, ctl_q x);
 
+/* Index s in 0..11 of the 30-degree sector [30s - 15, 30s + 15) deg that holds (x, y): a pair of
+ * ctl_sector24's, the last half of sector 0 wrapping round (a shift and a test, no division). */
+static inline int16_t ctl_sector12(ctl_q y, ctl_q x)
+{
+    const int16_t half = (int16_t)((uint16_t)(ctl_sector24(y, x) + 1) >> 1);
+    return (half == 12) ? 0 : half;
+}
+
 /* sqrt on float without libm. */
 float ctl_sqrtf(float x);
 

@@ -25,24 +25,24 @@ void ctl_vsd_inverse(const ctl_vsd_t *v, ctl_q phase[6]);
 /* The phase currents of an alpha-beta current alone (x = y = 0): each phase's share of it. */
 void ctl_vsd_alpha_beta_phases(ctl_q alpha, ctl_q beta, ctl_q phase[6]);
 
-/* The step's sampled inputs held in the domain of the range analysis (ctl_range.h): the
- * currents after the VSD, the speed (omega_max: the model's, ctl_predict.h) and the DC link. A
- * real sample lies inside it (the board reads at most 2 per unit of current and 1.48 of DC
- * link); one beyond it is an input the protection trips on, and the step still computes nothing
- * outside the proven bounds. */
-static inline void ctl_range_clamp(ctl_vsd_t *i, ctl_q *omega, ctl_q *vdc, ctl_q omega_max)
+/* The VSD of a step's sampled phase currents, held to the domain of the range analysis
+ * (ctl_range.h: each of alpha, beta, x, y within +-CTL_RANGE_CURRENT). A real sample lies inside
+ * it (the board reads at most 2 per unit); one beyond it is an input the protection trips on,
+ * and the step still computes nothing outside the proven bounds. Fixed point: the rows of
+ * ctl_vsd_forward exactly in 64 bits, then the clamp (the same values as ctl_vsd_forward and a
+ * clamp whenever no sum of the former saturates, without its saturation tests); float: the
+ * VSD as it comes (single precision has no range to protect here). */
+void ctl_vsd_forward_in_range(const ctl_q phase[6], ctl_vsd_t *out);
+
+/* The step's sampled speed (omega_max: the model's, ctl_predict.h) and DC link held to the
+ * same domain; float: as they come. */
+static inline void ctl_range_clamp(ctl_q *omega, ctl_q *vdc, ctl_q omega_max)
 {
 #if CTL_MATH_FLOAT
-    (void)i;     /* single precision has no range to protect here: the float step takes them as */
-    (void)omega; /* they come, as it always has */
+    (void)omega;
     (void)vdc;
     (void)omega_max;
 #else
-    const ctl_q current = CTL_Q(CTL_RANGE_CURRENT);
-    i->alpha = ctl_clamp(i->alpha, -current, current);
-    i->beta = ctl_clamp(i->beta, -current, current);
-    i->x = ctl_clamp(i->x, -current, current);
-    i->y = ctl_clamp(i->y, -current, current);
     *omega = ctl_clamp(*omega, -omega_max, omega_max);
     *vdc = ctl_clamp(*vdc, CTL_Q(0.0), CTL_Q(CTL_RANGE_VDC));
 #endif

@@ -128,9 +128,26 @@ void ctl_set_loop_mode(ctl_t *c, ctl_loop_mode_t mode) { c->loop_mode = mode; }
 void ctl_set_speed_ref(ctl_t *c, ctl_q omega_e_pu) { c->speed_ref = omega_e_pu; }
 void ctl_set_torque_ref(ctl_t *c, ctl_q torque_pu) { c->torque_ref_direct = torque_pu; }
 const ctl_diag_t *ctl_diag(const ctl_t *c) { return &c->diag; }
-SIXPHASE_RAMFUNC ctl_q ctl_diag_flux_est(const ctl_diag_t *d)
+/* The currents held to the range analysis' domain (ctl_range.h): a record or a caller may hold
+ * anything, and the bounded forms of the flux take no more. */
+SIXPHASE_RAMFUNC ctl_q ctl_torque_estimate(const ctl_t *c, ctl_q i_d, ctl_q i_q)
 {
-    return ctl_flux_magnitude(d->psi_d_est, d->psi_q_est);
+    const ctl_q lim = CTL_Q(CTL_RANGE_CURRENT);
+    ctl_q psi_d;
+    ctl_q psi_q;
+    return ctl_torque_psi(&ctl_config(c)->model, ctl_clamp(i_d, -lim, lim),
+                          ctl_clamp(i_q, -lim, lim), &psi_d, &psi_q);
+}
+SIXPHASE_RAMFUNC ctl_q ctl_diag_torque_est(const ctl_t *c)
+{
+    return ctl_torque_estimate(c, c->diag.i_d, c->diag.i_q);
+}
+SIXPHASE_RAMFUNC ctl_q ctl_diag_flux_est(const ctl_t *c)
+{
+    const ctl_model_t *m = &ctl_config(c)->model;
+    const ctl_q lim = CTL_Q(CTL_RANGE_CURRENT);
+    return ctl_flux_magnitude(ctl_flux_d(m, ctl_clamp(c->diag.i_d, -lim, lim)),
+                              ctl_flux_q(m, ctl_clamp(c->diag.i_q, -lim, lim)));
 }
 void ctl_set_stage_hook(ctl_t *c, ctl_stage_hook_t hook) { c->stage_hook = hook; }
 
@@ -301,10 +318,10 @@ SIXPHASE_RAMFUNC void ctl_healthy_step(ctl_t *c, const ctl_meas_t *m, ctl_cmd_t 
     ctl_q iy1;
 
     /* Measured state at k, references. */
-    ctl_vsd_forward(m->i_phase, &smp.vsd);
+    ctl_vsd_forward_in_range(m->i_phase, &smp.vsd);
     smp.omega_e = m->omega_e;
     smp.vdc = m->vdc;
-    ctl_range_clamp(&smp.vsd, &smp.omega_e, &smp.vdc, cfg->model.omega_max);
+    ctl_range_clamp(&smp.omega_e, &smp.vdc, cfg->model.omega_max);
     ctl_sincos_pu(m->theta_e, &smp.s0, &smp.c0);
     ctl_park(smp.vsd.alpha, smp.vsd.beta, smp.s0, smp.c0, &smp.id, &smp.iq);
     if (c->loop_mode == CTL_LOOP_SPEED) {
@@ -341,6 +358,6 @@ SIXPHASE_RAMFUNC void ctl_healthy_step(ctl_t *c, const ctl_meas_t *m, ctl_cmd_t 
     c->applied_virtual = virtual_vector;
     c->applied_vector = cmd->vector;
     c->applied_duty = cmd->duty;
-    ctl_diag_record(&c->diag, cfg, smp.id, smp.iq, smp.vsd.x, smp.vsd.y, &h, &choice);
+    ctl_diag_record(&c->diag, smp.id, smp.iq, smp.vsd.x, smp.vsd.y, &h, &choice);
     CTL_STAGE_MARK(c->stage_hook, CTL_STAGE_SEARCH);
 }

@@ -27,8 +27,7 @@ SIXPHASE_RAMFUNC void ctl_ddc_select(const ctl_horizon_t *h, const ctl_ddc_flux_
                                      ctl_choice_t *out)
 {
     /* Flux sector s spans [30s - 15, 30s + 15) deg, i.e. the 15-degree sectors 2s - 1, 2s. */
-    const int16_t sector =
-        (int16_t)(((ctl_sector24(flux->psi_beta, flux->psi_alpha) + 1) / 2) % CTL_SECTORS);
+    const int16_t sector = ctl_sector12(flux->psi_beta, flux->psi_alpha);
     const int16_t xy_sector = ctl_sector24(flux->psi_y, flux->psi_x);
     ctl_ddc_state_t zero;
     int16_t torque_half;

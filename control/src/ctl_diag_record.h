@@ -6,21 +6,18 @@
 #ifndef CTL_DIAG_RECORD_H
 #define CTL_DIAG_RECORD_H
 
-#include "ctl_config.h"
 #include "ctl_diag.h"
 #include "ctl_search.h"
 
-/* The sampled d-q and x-y currents and the estimates from them, the references of the horizon
- * and the choice, into dg (the controller's ctl_t.diag). */
-static inline void ctl_diag_record(ctl_diag_t *dg, const ctl_config_t *cfg, ctl_q id, ctl_q iq,
-                                   ctl_q ix, ctl_q iy, const ctl_horizon_t *h,
-                                   const ctl_choice_t *choice)
+/* The sampled d-q and x-y currents, the references of the horizon and the choice, into dg (the
+ * controller's ctl_t.diag); the estimates from the currents are their readers' (ctl.h). */
+static inline void ctl_diag_record(ctl_diag_t *dg, ctl_q id, ctl_q iq, ctl_q ix, ctl_q iy,
+                                   const ctl_horizon_t *h, const ctl_choice_t *choice)
 {
     dg->i_d = id;
     dg->i_q = iq;
     dg->i_x = ix;
     dg->i_y = iy;
-    dg->torque_est = ctl_torque_psi(&cfg->model, id, iq, &dg->psi_d_est, &dg->psi_q_est);
     dg->torque_ref = h->torque_ref;
     dg->flux_ref = h->flux_ref;
     dg->torque_pred = choice->torque;

@@ -154,7 +154,6 @@ static void foc_diag(ctl_t *c, const ctl_config_t *cfg, const ctl_vsd_t *i, ctl_
     dg->i_q = iq;
     dg->i_x = i->x;
     dg->i_y = i->y;
-    dg->torque_est = ctl_torque_psi(&cfg->model, id, iq, &dg->psi_d_est, &dg->psi_q_est);
     dg->torque_ref = torque_ref;
     dg->flux_ref = flux_ref;
     dg->torque_pred = ctl_torque_psi(&cfg->model, fw->id_ref, fw->iq_ref, &pd, &pq);
@@ -181,9 +180,9 @@ void ctl_foc_healthy_step(ctl_t *c, const ctl_meas_t *m, ctl_cmd_t *cmd)
     ctl_meas_t held;
 
     /* Measured state at k and references, as the predictive controllers'. */
-    ctl_vsd_forward(m->i_phase, &i);
+    ctl_vsd_forward_in_range(m->i_phase, &i);
     held = *m;
-    ctl_range_clamp(&i, &held.omega_e, &held.vdc, cfg->model.omega_max);
+    ctl_range_clamp(&held.omega_e, &held.vdc, cfg->model.omega_max);
     m = &held; /* the speed and DC link of the range analysis' domain from here on */
     ctl_sincos_pu(m->theta_e, &s0, &c0);
     ctl_park(i.alpha, i.beta, s0, c0, &id, &iq);

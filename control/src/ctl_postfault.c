@@ -209,7 +209,7 @@ static void pf_select_ddc(const ctl_t *c, const ctl_config_t *cfg, const pf_hori
     int16_t lower;
     int16_t sign;
     ctl_park_inverse(psi_d1, psi_q1, p->h.sin_k1, p->h.cos_k1, &psi_alpha, &psi_beta);
-    sector = (int16_t)(((ctl_sector24(psi_beta, psi_alpha) + 1) / 2) % CTL_SECTORS);
+    sector = ctl_sector12(psi_beta, psi_alpha);
     zero.torque = ctl_torque_psi(mdl, p->h.id2_free, p->h.iq2_free, &zero.psi_d, &zero.psi_q);
     half = (zero.torque > p->h.torque_ref) ? 1 : 0;
     lower = (ctl_mul_add(psi_d1, psi_d1, psi_q1, psi_q1) >= ctl_mul(flux_ref, flux_ref)) ? 1 : 0;
@@ -365,9 +365,9 @@ void ctl_postfault_step(ctl_t *c, const ctl_meas_t *m, ctl_cmd_t *cmd)
         return;
     }
     p.pf = ctl_postfault_config(c);
-    ctl_vsd_forward(m->i_phase, &vsd);
+    ctl_vsd_forward_in_range(m->i_phase, &vsd);
     held = *m;
-    ctl_range_clamp(&vsd, &held.omega_e, &held.vdc, cfg->model.omega_max);
+    ctl_range_clamp(&held.omega_e, &held.vdc, cfg->model.omega_max);
     m = &held; /* the speed and DC link of the range analysis' domain from here on */
     ctl_sincos_pu(m->theta_e, &s0, &c0);
     ctl_park(vsd.alpha, vsd.beta, s0, c0, &i0.d, &i0.q);
@@ -392,6 +392,6 @@ void ctl_postfault_step(ctl_t *c, const ctl_meas_t *m, ctl_cmd_t *cmd)
         pf_select_mptc(cfg, &p, &choice);
     }
     pf_command(c, cfg, p.pf, &choice, cmd);
-    ctl_diag_record(&c->diag, cfg, i0.d, i0.q, i0.x, i0.y, &p.h, &choice);
+    ctl_diag_record(&c->diag, i0.d, i0.q, i0.x, i0.y, &p.h, &choice);
     CTL_STAGE_MARK(c->stage_hook, CTL_STAGE_SEARCH);
 }

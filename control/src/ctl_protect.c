@@ -178,7 +178,7 @@ SIXPHASE_RAMFUNC static bool any_nan(const ctl_protect_input_t *in)
 #if CTL_MATH_FLOAT
     int16_t k;
     bool nan = !(in->vdc == in->vdc) || !(in->theta_e == in->theta_e) ||
-               !(in->omega_e == in->omega_e) || !(in->torque_est == in->torque_est);
+               !(in->omega_e == in->omega_e) || !(in->i_d == in->i_d) || !(in->i_q == in->i_q);
     for (k = 0; k < 6; k++) {
         nan = nan || !(in->i_phase[k] == in->i_phase[k]);
     }
@@ -193,6 +193,38 @@ SIXPHASE_RAMFUNC static bool any_nan(const ctl_protect_input_t *in)
 SIXPHASE_RAMFUNC static ctl_q turn_difference(ctl_q a, ctl_q b)
 {
     return ctl_sub(ctl_wrap_turn(ctl_add(ctl_sub(a, b), CTL_Q(0.5))), CTL_Q(0.5));
+}
+
+/* Te from the input's measured currents with its model, held to the range analysis' domain
+ * (ctl_range.h: an estimate beyond 40 A is above any threshold, and the bounded forms take no
+ * more); 0 without a model. */
+SIXPHASE_RAMFUNC static ctl_q protect_torque(const ctl_protect_input_t *in)
+{
+    const ctl_q lim = CTL_Q(CTL_RANGE_CURRENT);
+    ctl_q psi_d;
+    ctl_q psi_q;
+    if (in->model == 0) {
+        return CTL_Q(0.0);
+    }
+    return ctl_torque_psi(in->model, ctl_clamp(in->i_d, -lim, lim), ctl_clamp(in->i_q, -lim, lim),
+                          &psi_d, &psi_q);
+}
+
+/* No count this period: while torque acts, the motion a free rotor would have made since the
+ * last count (speed grows linearly, angle with its sum). The torque is estimated here, the only
+ * period work that needs it (issue 28: the step no longer does). */
+SIXPHASE_RAMFUNC static void expect_motion(ctl_protect_t *p, const ctl_protect_limits_t *l,
+                                           const ctl_protect_input_t *in, uint16_t *f)
+{
+    const ctl_q torque = protect_torque(in);
+    if (ctl_abs(torque) <= l->encoder_torque) {
+        return;
+    }
+    p->expected_speed = ctl_add(p->expected_speed, ctl_abs(ctl_mul(torque, l->torque_to_dspeed)));
+    p->expected_angle = ctl_add(p->expected_angle, ctl_mul(p->expected_speed, l->ts_turns));
+    if (p->expected_angle > l->encoder_expected_turn) {
+        *f |= CTL_FAULT_ENCODER;
+    }
 }
 
 SIXPHASE_RAMFUNC static uint16_t check_encoder(ctl_protect_t *p, const ctl_protect_limits_t *l,
@@ -219,15 +251,8 @@ SIXPHASE_RAMFUNC static uint16_t check_encoder(ctl_protect_t *p, const ctl_prote
         if (step != CTL_Q(0.0)) {
             p->expected_speed = CTL_Q(0.0);
             p->expected_angle = CTL_Q(0.0);
-        } else if (ctl_abs(in->torque_est) > l->encoder_torque) {
-            /* No count this period while torque acts: the motion a free rotor would have
-             * made since the last count (speed grows linearly, angle with its sum). */
-            p->expected_speed =
-                ctl_add(p->expected_speed, ctl_abs(ctl_mul(in->torque_est, l->torque_to_dspeed)));
-            p->expected_angle = ctl_add(p->expected_angle, ctl_mul(p->expected_speed, l->ts_turns));
-            if (p->expected_angle > l->encoder_expected_turn) {
-                f |= CTL_FAULT_ENCODER;
-            }
+        } else {
+            expect_motion(p, l, in, &f);
         }
     }
     p->last_theta = in->theta_e;
@@ -485,7 +510,7 @@ static void fill_record(ctl_fault_record_t *r, const ctl_protect_t *p, uint16_t 
     r->vdc = in->vdc;
     r->theta_e = in->theta_e;
     r->omega_e = in->omega_e;
-    r->torque_est = in->torque_est;
+    r->torque_est = protect_torque(in);
     r->torque_ref = torque_ref;
     r->vector = vector;
     r->duty = duty;

@@ -243,7 +243,7 @@ SIXPHASE_RAMFUNC int16_t ctl_sector24(ctl_q y, ctl_q x)
     if (ax == CTL_Q(0.0)) {
         return (int16_t)((y > CTL_Q(0.0)) ? 6 : 18);
     }
-    if (ay >= ctl_mul(ax, tan15[2])) {
+    if (ay >= ax) { /* tan 45 deg = 1: ax itself, as ctl_mul(ax, 1) gives it */
         s = (ay >= ctl_mul(ax, tan15[3])) ? ((ay >= ctl_mul(ax, tan15[4])) ? 5 : 4) : 3;
     } else {
         s = (ay >= ctl_mul(ax, tan15[1])) ? 2 : ((ay >= ctl_mul(ax, tan15[0])) ? 1 : 0);

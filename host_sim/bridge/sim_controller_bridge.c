@@ -223,8 +223,8 @@ static void bridge_status(sim_ctl_status_t *st)
     const ctl_params_t *prm = ctl_params(c);
     const ctl_diag_t *dg = &c->diag;
     bridge_period_status(st);
-    st->torque_est_nm = q2d(dg->torque_est) * CTL_BASE_TORQUE_NM;
-    st->flux_est_wb = q2d(ctl_diag_flux_est(dg)) * CTL_BASE_FLUX_WB;
+    st->torque_est_nm = q2d(ctl_diag_torque_est(c)) * CTL_BASE_TORQUE_NM;
+    st->flux_est_wb = q2d(ctl_diag_flux_est(c)) * CTL_BASE_FLUX_WB;
     st->candidates = (int)dg->candidates;
     st->braking = dg->braking ? 1 : 0;
     st->p_lambda = (double)prm->lambda_nm_per_wb;

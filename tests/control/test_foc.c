@@ -309,7 +309,7 @@ static void test_current_loops_on_the_model(void **state)
             assert_true(fabs(x.ix) < 2e-3 && fabs(x.iy) < 2e-3); /* 0.02 A */
         }
     }
-    assert_near(f(ctl_diag(&ctl)->torque_est), f(t_ref), 0.02 * f(t_ref));
+    assert_near(f(ctl_diag_torque_est(&ctl)), f(t_ref), 0.02 * f(t_ref));
 }
 
 /* Another controller's set and back: FOC starts from a clean state (integrators and the voltage

@@ -7,6 +7,7 @@
 
 #include <cmocka.h>
 
+#include "ctl_machine.h"
 #include "ctl_protect.h"
 #include "ctl_pu.h"
 #include "hal_board.h"
@@ -16,6 +17,7 @@
 
 static ctl_protect_t prot;
 static ctl_protect_limits_t limits;
+static ctl_model_t model; /* the reference machine's: the inputs' torque */
 
 /* The board's control period and ADC scaling (hal_board.h). */
 #define TS_S (1.0 / HAL_BOARD_PWM_HZ)
@@ -26,12 +28,22 @@ static int setup(void **state)
     ctl_protect_settings_t s;
     (void)state;
     ctl_protect_settings_default(&s);
+    assert_true(ctl_model_init(&model, (float)CTL_MACHINE_R_OHM, (float)CTL_MACHINE_LD_H,
+                               (float)CTL_MACHINE_LQ_H, (float)CTL_MACHINE_LXY_H,
+                               (float)CTL_MACHINE_PSI_F_WB, CTL_MACHINE_POLE_PAIRS, (float)TS_S));
     ctl_protect_limits_build(&limits, &s, (float)TS_S, 3, 0.01f);
     ctl_protect_init(&prot);
     return 0;
 }
 
 static ctl_q amps(double a) { return ctl_from_float((float)(a / CTL_BASE_CURRENT_A)); }
+
+/* The q-axis current (i_d = 0) of the reference machine that gives torque_nm: Te = 3 Pn psi_f i_q
+ * (T_b = 3 psi_b I_b per pole pair, ctl_pu.h). */
+static ctl_q iq_for_torque(double torque_nm)
+{
+    return amps(torque_nm / (3.0 * CTL_MACHINE_POLE_PAIRS * CTL_MACHINE_PSI_F_WB));
+}
 
 /* A healthy running sample: balanced 3 A currents at angle theta, 540 V, 1500 r/min. */
 static ctl_protect_input_t healthy(int32_t n)
@@ -50,7 +62,9 @@ static ctl_protect_input_t healthy(int32_t n)
     in.raw_vdc = (int16_t)(540.0 / HAL_BOARD_VDC_V_PER_COUNT);
     in.theta_e = ctl_wrap_turn(ctl_from_float((float)fmod(theta / (2.0 * TEST_PI), 1.0)));
     in.omega_e = ctl_from_float((float)(w / CTL_BASE_OMEGA_RAD_S));
-    in.torque_est = ctl_from_float((float)(7.0 / CTL_BASE_TORQUE_NM));
+    in.i_d = CTL_Q(0.0);
+    in.i_q = iq_for_torque(7.0);
+    in.model = &model;
     in.encoder_healthy = true;
     in.overrun = false;
     in.hw_trip = false;
@@ -354,7 +368,8 @@ static ctl_protect_input_t running_with_frozen_word(int32_t n)
     ctl_protect_input_t in = stopped_with_frozen_word(n);
     in.running = true;
     in.omega_e = CTL_Q(0.0);
-    in.torque_est = CTL_Q(0.0);
+    in.i_d = CTL_Q(0.0);
+    in.i_q = CTL_Q(0.0);
     return in;
 }
 

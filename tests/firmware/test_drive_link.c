@@ -175,6 +175,15 @@ static void test_ping_and_unknown(void **state)
     assert_int_equal(send(SXL_CMD_PING), SXL_ERR_LENGTH);
 }
 
+/* The q-axis current (i_d = 0) at which the set in force estimates torque_nm: Te = 3 Pn psi_f i_q
+ * (T_b = 3 psi_b I_b per pole pair, ctl_pu.h). */
+static ctl_q iq_for_torque(double torque_nm)
+{
+    const ctl_params_t *p = ctl_params(&d.ctl);
+    return ctl_from_float(
+        (float)(torque_nm / (3.0 * p->pole_pairs * (double)p->pm_flux_wb) / CTL_BASE_CURRENT_A));
+}
+
 static void test_status(void **state)
 {
     const uint16_t *st;
@@ -183,7 +192,8 @@ static void test_status(void **state)
     d.encoder.healthy = true;
     d.isr_count = 123456u;
     d.isr_cycles_max = 4321u;
-    mock_diag.torque_est = ctl_from_float((float)(2.0 / CTL_BASE_TORQUE_NM));
+    mock_diag.i_d = CTL_Q(0.0);
+    mock_diag.i_q = iq_for_torque(2.0);
     mock_diag.torque_ref = ctl_from_float((float)(-1.5 / CTL_BASE_TORQUE_NM));
     drive_set_speed_ref_rpm(&d, 1500.5f);
     mock_rec.pwm_off = true;
@@ -348,7 +358,8 @@ static uint32_t trip_overcurrent_then_overrun(void)
     assert_int_equal(d.state, DRIVE_STATE_RUN);
 
     /* what the controller had in force, as the record should report it */
-    d.ctl.diag.torque_est = ctl_from_float((float)(7.1 / CTL_BASE_TORQUE_NM));
+    d.ctl.diag.i_d = CTL_Q(0.0);
+    d.ctl.diag.i_q = iq_for_torque(7.1);
     d.ctl.diag.torque_ref = ctl_from_float((float)(-8.4 / CTL_BASE_TORQUE_NM));
     d.ctl.applied_vector = 45;
     d.ctl.applied_duty = CTL_Q(0.6);
@@ -492,7 +503,9 @@ static void test_fault_record_saturates(void **state)
     d.protect_in.vdc = CTL_Q_MAX;
     d.protect_in.theta_e = CTL_Q(-0.25);
     d.protect_in.omega_e = CTL_Q_MIN;
-    d.protect_in.torque_est = CTL_Q_MAX;
+    d.protect_in.i_d = CTL_Q(0.0);
+    d.protect_in.i_q = CTL_Q_MAX; /* the estimate holds it to the range analysis' 4 per unit */
+    d.protect_in.model = &ctl_config(&d.ctl)->model;
     d.params_bg.pole_pairs = 0; /* unusable set: read as one pole pair, no division by 0 */
     drive_trip(&d, DRIVE_FAULT_OVERRUN);
     fr = get_record();
@@ -502,7 +515,12 @@ static void test_fault_record_saturates(void **state)
     assert_int_equal(sxl_get_i16(&fr[SXL_FR_VDC]), INT16_MAX);
     assert_int_equal(sxl_get_u16(&fr[SXL_FR_THETA]), 49152u); /* 0.75 turn */
     assert_near(sxl_get_i32(&fr[SXL_FR_SPEED]), -128 * 90000, 2);
-    assert_true(sxl_get_i32(&fr[SXL_FR_TORQUE]) > 0);
+    /* 3 Pn psi_f i_q at i_q = 40 A (the domain's edge), in mN*m */
+    assert_near(sxl_get_i32(&fr[SXL_FR_TORQUE]),
+                (int32_t)(3.0 * ctl_params(&d.ctl)->pole_pairs *
+                          (double)ctl_params(&d.ctl)->pm_flux_wb * CTL_RANGE_CURRENT *
+                          CTL_BASE_CURRENT_A * 1000.0),
+                100);
 }
 
 /* The protocol's names agree with the drive's codes and their protection bits. */

@@ -191,7 +191,9 @@ int LLVMFuzzerTestOneInput(const unsigned char *data, size_t size)
             in.vdc = m.vdc;
             in.theta_e = m.theta_e;
             in.omega_e = m.omega_e;
-            in.torque_est = ctl_diag(&c)->torque_est;
+            in.i_d = ctl_diag(&c)->i_d;
+            in.i_q = ctl_diag(&c)->i_q;
+            in.model = &ctl_config(&c)->model;
             in.raw_vdc = (int16_t)(take32(&s) % 4096u);
             in.encoder_healthy = (tag & 1u) != 0u;
             in.overrun = false;

@@ -224,8 +224,20 @@ const ctl_diag_t *ctl_diag(const ctl_t *c)
     return &mock_diag;
 }
 
-/* The capture's flux signal: |psi_s| of the diagnostics (the real core takes a root). */
-ctl_q ctl_diag_flux_est(const ctl_diag_t *d)
+/* The estimates from the diagnostics' currents (mock_diag's), with the model in force: the real
+ * core's formulas (ctl_predict.h), pure functions of the configuration. */
+ctl_q ctl_torque_estimate(const ctl_t *c, ctl_q i_d, ctl_q i_q)
 {
-    return ctl_add(ctl_abs(d->psi_d_est), ctl_abs(d->psi_q_est));
+    ctl_q psi_d;
+    ctl_q psi_q;
+    return ctl_torque_psi(&ctl_config(c)->model, i_d, i_q, &psi_d, &psi_q);
+}
+ctl_q ctl_diag_torque_est(const ctl_t *c)
+{
+    return ctl_torque_estimate(c, mock_diag.i_d, mock_diag.i_q);
+}
+ctl_q ctl_diag_flux_est(const ctl_t *c)
+{
+    const ctl_model_t *m = &ctl_config(c)->model;
+    return ctl_flux_magnitude(ctl_flux_d(m, mock_diag.i_d), ctl_flux_q(m, mock_diag.i_q));
 }

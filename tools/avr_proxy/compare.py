@@ -18,7 +18,7 @@ import sys
 SIZES = {"u8": 1, "u16": 2, "i16": 2, "u32": 4, "q": 4}
 
 CONFIG = ([(n, "q") for n in ("a_d", "b_d", "c_d", "a_q", "b_q", "e_q", "c_q", "a_xy", "c_xy",
-                               "ld", "lq", "lxy", "psi_f", "ts")] +
+                               "ld", "lq", "lxy", "psi_f", "ts", "omega_max")] +
           [("pole_pairs", "i16")] +
           [(n, "q") for n in ("lambda", "torque_limit", "speed_kp", "speed_ki_ts")] +
           # a FOC set: w_c, its i_d table [0..8], 0, 0 in these 12 fields (they share the place)
@@ -43,7 +43,7 @@ STEP = ([("vector", "i16"), ("duty", "q")] + [("leg_duty[%d]" % i, "q") for i in
         [("enable", "u8"), ("faults", "u16"), ("latched", "u16"), ("active", "u16"),
          ("log_write", "u16"), ("flux_sector", "i16"), ("xy_sector", "i16"),
          ("candidates", "i16"), ("braking", "u8")] +
-        [(n, "q") for n in ("i_d", "i_q", "i_x", "i_y", "torque_est", "psi_d_est", "psi_q_est",
+        [(n, "q") for n in ("i_d", "i_q", "i_x", "i_y", "torque_est", "flux_est",
                             "torque_ref", "flux_ref", "torque_pred", "flux_pred", "cost",
                             "speed_integ")])
 COMMAND = {"vector", "duty", "enable"} | {"leg_duty[%d]" % i for i in range(6)}

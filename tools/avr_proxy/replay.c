@@ -238,6 +238,7 @@ static void emit_config(const ctl_config_t *c)
     wr_q(m->lxy);
     wr_q(m->psi_f);
     wr_q(m->ts);
+    wr_q(m->omega_max);
     wr_i16(m->pole_pairs);
     wr_q(c->lambda);
     wr_q(c->torque_limit);
@@ -418,9 +419,8 @@ static void emit_step(uint16_t faults)
     wr_q(d->i_q);
     wr_q(d->i_x);
     wr_q(d->i_y);
-    wr_q(d->torque_est);
-    wr_q(d->psi_d_est);
-    wr_q(d->psi_q_est);
+    wr_q(ctl_diag_torque_est(&ctl_state));
+    wr_q(ctl_diag_flux_est(&ctl_state));
     wr_q(d->torque_ref);
     wr_q(d->flux_ref);
     wr_q(d->torque_pred);
@@ -455,7 +455,9 @@ static void do_step(void)
         prot_in.running = (flags & 16u) != 0u;
         prot_in.currents_calibrated = (flags & 32u) != 0u;
         prot_in.xy_held = prot_in.running && ctl_state.xy_held;
-        prot_in.torque_est = prot_in.running ? ctl_state.diag.torque_est : CTL_Q(0.0);
+        prot_in.i_d = prot_in.running ? ctl_state.diag.i_d : CTL_Q(0.0);
+        prot_in.i_q = prot_in.running ? ctl_state.diag.i_q : CTL_Q(0.0);
+        prot_in.model = &ctl_config(&ctl_state)->model;
         port_mark(MARK_PROT_BEGIN);
         faults = ctl_protect_check(&prot_state, &ctl_config(&ctl_state)->protect, &prot_in,
                                    ctl_state.diag.torque_ref, ctl_state.applied_vector,

@@ -129,8 +129,11 @@ uint32_t bench_protect_run(int32_t reps)
     int32_t r;
     size_t i;
     int16_t k;
+    ctl_model_t model;
     ctl_protect_settings_default(&settings);
+    (void)ctl_model_init(&model, 2.0f, 0.035f, 0.055f, 0.01f, 0.225f, 3, 1e-4f);
     ctl_protect_limits_build(&l, &settings, 1e-4f, 3, 0.01f);
+    in.model = &model;
     in.encoder_healthy = true;
     in.overrun = false;
     in.hw_trip = false;
@@ -148,7 +151,8 @@ uint32_t bench_protect_run(int32_t reps)
             in.raw_vdc = raw_vdc[i];
             in.theta_e = meas[i].theta_e;
             in.omega_e = meas[i].omega_e;
-            in.torque_est = torque_ref[i];
+            in.i_d = CTL_Q(0.0); /* the encoder check's torque: the point's reference, as i_q */
+            in.i_q = torque_ref[i];
             checksum = checksum * 31u +
                        ctl_protect_check(&protect_state, &l, &in, torque_ref[i], 0, CTL_Q(0.0));
         }

@@ -94,7 +94,9 @@ static void drive_init_protection(drive_t *d)
     d->protect_in.vdc = CTL_Q(0.0);
     d->protect_in.theta_e = CTL_Q(0.0);
     d->protect_in.omega_e = CTL_Q(0.0);
-    d->protect_in.torque_est = CTL_Q(0.0);
+    d->protect_in.i_d = CTL_Q(0.0);
+    d->protect_in.i_q = CTL_Q(0.0);
+    d->protect_in.model = 0;
     d->protect_in.raw_vdc = 0;
     d->protect_in.encoder_healthy = false;
     d->protect_in.overrun = false;
@@ -340,7 +342,9 @@ SIXPHASE_RAMFUNC static uint16_t drive_protect(drive_t *d, bool running)
     in->raw_vdc = (int16_t)d->adc.vdc;
     in->theta_e = d->meas.theta_e;
     in->omega_e = d->meas.omega_e;
-    in->torque_est = (running && !d->phase_verifying) ? d->ctl.diag.torque_est : CTL_Q(0.0);
+    in->i_d = (running && !d->phase_verifying) ? d->ctl.diag.i_d : CTL_Q(0.0);
+    in->i_q = (running && !d->phase_verifying) ? d->ctl.diag.i_q : CTL_Q(0.0);
+    in->model = d->ctl.initialised ? &ctl_config(&d->ctl)->model : 0;
     in->encoder_healthy = d->encoder.healthy;
     if (d->state == DRIVE_STATE_COMMISSION) {
         /* the sequence may run before the index: only an error after it is unhealthy, and the

@@ -33,11 +33,11 @@ SIXPHASE_RAMFUNC static ctl_q capture_pu(const drive_t *d, int16_t signal)
     case CAPTURE_IY:
         return g->i_y;
     case CAPTURE_TORQUE:
-        return g->torque_est;
+        return ctl_diag_torque_est(&d->ctl);
     case CAPTURE_TORQUE_REF:
         return g->torque_ref;
     case CAPTURE_FLUX:
-        return ctl_diag_flux_est(g);
+        return ctl_diag_flux_est(&d->ctl);
     case CAPTURE_FLUX_REF:
         return g->flux_ref;
     case CAPTURE_SPEED:

@@ -74,7 +74,8 @@ void drive_link_status(const drive_t *d, uint16_t rx_errors, uint16_t *out)
     out[SXL_ST_CONTROLLER] = (uint16_t)((uint16_t)ctl_params(&d->ctl)->controller & 0xFFu);
     sxl_put_i32(&out[SXL_ST_SPEED], (int32_t)speed_01rpm);
     sxl_put_i32(&out[SXL_ST_SPEED_REF], float_to_i32(d->speed_ref_rpm * 10.0f));
-    sxl_put_i32(&out[SXL_ST_TORQUE], float_to_i32(ctl_to_float(diag->torque_est) * torque_scale));
+    sxl_put_i32(&out[SXL_ST_TORQUE],
+                float_to_i32(ctl_to_float(ctl_diag_torque_est(&d->ctl)) * torque_scale));
     sxl_put_i32(&out[SXL_ST_TORQUE_REF],
                 float_to_i32(ctl_to_float(diag->torque_ref) * torque_scale));
     sxl_put_u32(&out[SXL_ST_LAMBDA],
