@@ -151,6 +151,19 @@ static inline ctl_q ctl_mul_sub_int(ctl_q a, ctl_q b, ctl_q c, ctl_q d, int16_t 
     CTL_COUNT_OP(CTL_OP_MUL);
     return (a * b - c * d) * (float)n;
 }
+/* The held forms (below, fixed point) hold nothing in float: single precision has no range to
+ * protect there. */
+static inline ctl_q ctl_mul_dec_held(ctl_q acc, ctl_q a, ctl_q b, ctl_q lim)
+{
+    (void)lim;
+    return ctl_mul_dec(acc, a, b);
+}
+static inline ctl_q ctl_dot4_held(ctl_q a, ctl_q b, ctl_q c, ctl_q d, ctl_q e, ctl_q f, ctl_q g,
+                                  ctl_q h, ctl_q lim)
+{
+    (void)lim;
+    return ctl_add(ctl_mul_add(a, b, c, d), ctl_mul_add(e, f, g, h));
+}
 static inline float ctl_to_float(ctl_q a) { return a; }
 static inline ctl_q ctl_from_float(float x) { return x; }
 
@@ -354,6 +367,43 @@ static inline ctl_q ctl_mul_dec_bnd(ctl_q acc, ctl_q a, ctl_q b)
     CTL_COUNT_OP(CTL_OP_MUL);
     CTL_COUNT_OP(CTL_OP_ADD);
     return ctl_q48_to_q24_bnd((int64_t)acc * (int64_t)CTL_Q_ONE - (int64_t)a * (int64_t)b);
+}
+
+/* Held forms: an expression ended by a clamp to [-lim, lim] (lim > 0, below 2^30) in place of
+ * the saturation to Q24's range, where the range analysis needs a smaller bound than Q24's
+ * (the open-phase step's projections, docs/range-analysis.md). The same values as the
+ * saturating form whenever that lies inside [-lim, lim]. */
+static inline ctl_q ctl_held(int64_t v, ctl_q lim)
+{
+    return (ctl_q)((v > lim) ? lim : ((v < -(int64_t)lim) ? -lim : v));
+}
+/* acc - a*b, rounded as ctl_mul_dec. */
+static inline ctl_q ctl_mul_dec_held(ctl_q acc, ctl_q a, ctl_q b, ctl_q lim)
+{
+    CTL_COUNT_OP(CTL_OP_MUL);
+    CTL_COUNT_OP(CTL_OP_ADD);
+    return ctl_held(((int64_t)acc * (int64_t)CTL_Q_ONE - (int64_t)a * (int64_t)b +
+                     ((int64_t)1 << (CTL_Q_FRAC_BITS - 1))) >>
+                        CTL_Q_FRAC_BITS,
+                    lim);
+}
+/* (a*b + c*d) + (e*f + g*h), each pair rounded as ctl_mul_add rounds it, the sum held. */
+static inline ctl_q ctl_dot4_held(ctl_q a, ctl_q b, ctl_q c, ctl_q d, ctl_q e, ctl_q f, ctl_q g,
+                                  ctl_q h, ctl_q lim)
+{
+    const int64_t half = (int64_t)1 << (CTL_Q_FRAC_BITS - 1);
+    const int64_t ab =
+        ((int64_t)a * (int64_t)b + (int64_t)c * (int64_t)d + half) >> CTL_Q_FRAC_BITS;
+    const int64_t ef =
+        ((int64_t)e * (int64_t)f + (int64_t)g * (int64_t)h + half) >> CTL_Q_FRAC_BITS;
+    CTL_COUNT_OP(CTL_OP_MUL);
+    CTL_COUNT_OP(CTL_OP_MUL);
+    CTL_COUNT_OP(CTL_OP_MUL);
+    CTL_COUNT_OP(CTL_OP_MUL);
+    CTL_COUNT_OP(CTL_OP_ADD);
+    CTL_COUNT_OP(CTL_OP_ADD);
+    CTL_COUNT_OP(CTL_OP_ADD);
+    return ctl_held(ab + ef, lim);
 }
 
 static inline ctl_q ctl_div(ctl_q a, ctl_q b)

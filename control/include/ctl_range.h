@@ -19,5 +19,9 @@
  * unit of the DC link: 0.644 * sqrt(2) = 0.911 at most (test_range.c checks the tables). */
 #define CTL_RANGE_VECTOR_SUM 0.9375
 #define CTL_RANGE_BOUND 64 /* every bounded quantity, half of Q24's 128 */
+/* The open-phase step's projected currents and forced responses are held to this (80 A): an
+ * oblique projection can magnify a current by sqrt(max/min) of the model's coefficients, so
+ * they end their expressions clamped here rather than at Q24's limit (ctl_postfault.c). */
+#define CTL_RANGE_PROJECTED 8
 
 #endif /* CTL_RANGE_H */

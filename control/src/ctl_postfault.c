@@ -39,24 +39,28 @@ static void pf_constraint_at(const ctl_model_t *mdl, const ctl_postfault_config_
     ctl_park(pf->c_alpha, pf->c_beta, s, co, &k->cd, &k->cq);
     k->cx = pf->c_x;
     k->cy = pf->c_y;
-    k->gd = ctl_mul(mdl->c_d, k->cd);
-    k->gq = ctl_mul(mdl->c_q, k->cq);
-    k->gx = ctl_mul(mdl->c_xy, k->cx);
-    k->gy = ctl_mul(mdl->c_xy, k->cy);
+    /* bounded: a coefficient times a component of the phase's row (at most 1) */
+    k->gd = ctl_mul_bnd(mdl->c_d, k->cd);
+    k->gq = ctl_mul_bnd(mdl->c_q, k->cq);
+    k->gx = ctl_mul_bnd(mdl->c_xy, k->cx);
+    k->gy = ctl_mul_bnd(mdl->c_xy, k->cy);
     cg = ctl_add(ctl_mul_add(k->cd, k->gd, k->cq, k->gq), ctl_mul_add(k->cx, k->gx, k->cy, k->gy));
     k->inv_cg = ctl_div(CTL_Q(1.0), cg);
 }
 
-/* Removes the open phase's current along g: afterwards c . i = 0 (to the arithmetic's rounding). */
+/* Removes the open phase's current along g: afterwards c . i = 0 (to the arithmetic's rounding).
+ * The projected currents end held to CTL_RANGE_PROJECTED (ctl_range.h), the bound the range
+ * analysis takes for them downstream (an oblique projection may magnify; a real one does not). */
 static void pf_project(const pf_constraint_t *k, pf_currents_t *i)
 {
+    const ctl_q lim = CTL_Q(CTL_RANGE_PROJECTED);
     const ctl_q viol =
         ctl_add(ctl_mul_add(k->cd, i->d, k->cq, i->q), ctl_mul_add(k->cx, i->x, k->cy, i->y));
     const ctl_q s = ctl_mul(viol, k->inv_cg);
-    i->d = ctl_mul_dec(i->d, k->gd, s);
-    i->q = ctl_mul_dec(i->q, k->gq, s);
-    i->x = ctl_mul_dec(i->x, k->gx, s);
-    i->y = ctl_mul_dec(i->y, k->gy, s);
+    i->d = ctl_mul_dec_held(i->d, k->gd, s, lim);
+    i->q = ctl_mul_dec_held(i->q, k->gq, s, lim);
+    i->x = ctl_mul_dec_held(i->x, k->gx, s, lim);
+    i->y = ctl_mul_dec_held(i->y, k->gy, s, lim);
 }
 
 void ctl_postfault_project(const ctl_model_t *model, const ctl_postfault_config_t *pf, ctl_q s,
@@ -86,25 +90,25 @@ static void pf_predict_k1(const ctl_t *c, const ctl_config_t *cfg, const ctl_mea
     const ctl_vsd_t *applied = (c->applied_virtual != CTL_VV_NONE)
                                    ? &ctl_vv_vsd[c->applied_virtual]
                                    : &ctl_vector_vsd[c->applied_vector];
-    const ctl_q delta = ctl_mul(m->omega_e, mdl->ts);
+    const ctl_q delta = ctl_mul_bnd(m->omega_e, mdl->ts); /* bounded as the healthy step's */
     const bool mid = cfg->params.mid_period_angle;
     ctl_vsd_t u0 = {CTL_Q(0.0), CTL_Q(0.0), CTL_Q(0.0), CTL_Q(0.0)};
     ctl_q ud0 = CTL_Q(0.0);
     ctl_q uq0 = CTL_Q(0.0);
     pf_constraint_t k1;
     if (c->applied_duty != CTL_Q(0.0)) {
-        const ctl_q scale = ctl_mul(c->applied_duty, m->vdc);
+        const ctl_q scale = ctl_mul_bnd(c->applied_duty, m->vdc);
         ctl_q s = s0;
         ctl_q co = c0;
         if (mid) {
             ctl_angle_advance(m->theta_e, s0, c0, ctl_mul(delta, CTL_Q(0.5)), &s, &co);
         }
-        u0.alpha = ctl_mul(applied->alpha, scale);
-        u0.beta = ctl_mul(applied->beta, scale);
-        u0.x = ctl_mul(applied->x, scale);
-        u0.y = ctl_mul(applied->y, scale);
-        ud0 = ctl_mul_add(u0.alpha, co, u0.beta, s);
-        uq0 = ctl_mul_sub(u0.beta, co, u0.alpha, s);
+        u0.alpha = ctl_mul_bnd(applied->alpha, scale);
+        u0.beta = ctl_mul_bnd(applied->beta, scale);
+        u0.x = ctl_mul_bnd(applied->x, scale);
+        u0.y = ctl_mul_bnd(applied->y, scale);
+        ud0 = ctl_mul_add_bnd(u0.alpha, co, u0.beta, s);
+        uq0 = ctl_mul_sub_bnd(u0.beta, co, u0.alpha, s);
     }
     ctl_predict_dq(mdl, i0->d, i0->q, m->omega_e, ud0, uq0, &p->i1.d, &p->i1.q);
     p->i1.x = ctl_predict_xy(mdl, i0->x, u0.x);
@@ -169,12 +173,14 @@ static void pf_predict_k2(const ctl_config_t *cfg, const ctl_meas_t *m, ctl_q s0
     pf_forced_coefficients(p, &k2);
 }
 
+/* A candidate's projected forced response, held as the projections are (pf_project). */
 static inline void pf_forced(const pf_horizon_t *p, const ctl_vsd_t *v, ctl_q *did, ctl_q *diq)
 {
-    *did = ctl_add(ctl_mul_add(p->kd[0], v->alpha, p->kd[1], v->beta),
-                   ctl_mul_add(p->kd[2], v->x, p->kd[3], v->y));
-    *diq = ctl_add(ctl_mul_add(p->kq[0], v->alpha, p->kq[1], v->beta),
-                   ctl_mul_add(p->kq[2], v->x, p->kq[3], v->y));
+    const ctl_q lim = CTL_Q(CTL_RANGE_PROJECTED);
+    *did =
+        ctl_dot4_held(p->kd[0], v->alpha, p->kd[1], v->beta, p->kd[2], v->x, p->kd[3], v->y, lim);
+    *diq =
+        ctl_dot4_held(p->kq[0], v->alpha, p->kq[1], v->beta, p->kq[2], v->x, p->kq[3], v->y, lim);
 }
 
 /* Index of the free x-y voltage sign the DDC table needs: 1 (negative) while the free x-y

@@ -33,7 +33,11 @@ SIXPHASE_NOINLINE static bool range_fits(const float *coef, float w)
         largest = (w * i > largest) ? w * i : largest;
         i = (id > i) ? id : i;
         i = (iq > i) ? iq : i;
+        /* the open-phase step's projections hold its k+1 and k+2 currents to this */
+        i = (i > (float)CTL_RANGE_PROJECTED) ? i : (float)CTL_RANGE_PROJECTED;
     }
+    /* there a candidate's k+2 current is a held free response plus a held forced response */
+    i = (i > 2.0f * (float)CTL_RANGE_PROJECTED) ? i : 2.0f * (float)CTL_RANGE_PROJECTED;
     /* the fluxes of any of these currents: psi_f + L_d i, L_q i */
     id = coef[12] + coef[9] * i;
     iq = coef[10] * i;
