@@ -1,5 +1,7 @@
 #!/usr/bin/env python3
-"""Plots for `sixphase-sim reproduce` (called by it with the output directory).
+"""Plots for `sixphase-sim reproduce` (called by it with the output directory and the part
+`traces-then-summary`: the runs' figures while its last runs compute, the summary's once it
+closes this script's standard input).
 
 Figures in the style of the paper's: phase currents, x-y currents, torque and
 speed, conventional MPTC-49 beside the discrete-duty method (DDC).
@@ -22,6 +24,9 @@ import plot_postfault  # noqa: E402  (beside this script)
 T, SPEED, IA, IB, IC, IX, IY, TE, TREF = 0, 1, 3, 4, 5, 11, 12, 13, 16
 USECOLS = tuple(range(0, 18))
 PROCESSES = 2  # drawing processes
+# what to draw: the runs' traces, summary.json's figures, or the traces and then, once its
+# standard input closes (the caller has written summary.json), the summary's
+PARTS = ("traces", "summary", "traces-then-summary")
 
 PAPER = {
     "lambda": [20, 100, 200],
@@ -134,8 +139,10 @@ def lambda_sweep(summary, out):
     plt.close(fig)
 
 
-def figure_jobs(base):
-    """The figures to draw: (function, arguments) each, independent of each other."""
+def figure_jobs(base, part):
+    """The figures to draw: (function, arguments) each, independent of each other. part
+    "traces": those of the runs' traces only (reproduce draws them while its later runs
+    compute); "summary": those of summary.json only; None: all."""
     runs = os.path.join(base, "runs")
     plots = os.path.join(base, "plots")
     jobs = []
@@ -152,8 +159,10 @@ def figure_jobs(base):
     jobs.append((comparison, (runs, "load-step_mptc49", "load-step_ddc",
                               os.path.join(plots, "load-step.png"), "Rated load step at 1500 r/min")))
     jobs.append((plot_postfault.plots, (runs, plots)))  # section 9's figures (open phase)
+    if part == "summary":
+        jobs = []
     summ = os.path.join(base, "summary.json")
-    if os.path.exists(summ):
+    if part != "traces" and os.path.exists(summ):
         with open(summ) as f:
             jobs.append((lambda_sweep, (json.load(f), os.path.join(plots, "lambda_sweep.png"))))
     return jobs
@@ -168,22 +177,31 @@ def main():
     """Draws the figures in two processes (forked after matplotlib is imported, so neither pays
     the import again): most of the time goes into laying out and rendering them, which a 2-core
     machine then does in about half the wall time."""
-    if len(sys.argv) != 2:
-        print("usage: plot_reproduce.py DIR", file=sys.stderr)
+    if len(sys.argv) not in (2, 3) or (len(sys.argv) == 3 and sys.argv[2] not in PARTS):
+        print("usage: plot_reproduce.py DIR [%s]" % "|".join(PARTS), file=sys.stderr)
         return 2
     base = sys.argv[1]
+    part = sys.argv[2] if len(sys.argv) == 3 else None
     os.makedirs(os.path.join(base, "plots"), exist_ok=True)
-    jobs = figure_jobs(base)
+    gated = part == "traces-then-summary"
+    stages = [figure_jobs(base, "traces"), None] if gated else [figure_jobs(base, part)]
     try:
         ctx = multiprocessing.get_context("fork")
     except ValueError:  # no fork on this platform: one process
         ctx = None
-    if ctx is None:
-        for job in jobs:
-            draw(job)
-        return 0
-    with ctx.Pool(PROCESSES) as pool:
-        pool.map(draw, jobs, chunksize=1)
+    pool = ctx.Pool(PROCESSES) if ctx is not None else None
+    for jobs in stages:
+        if jobs is None:  # the gate: summary.json is complete when stdin closes
+            sys.stdin.read()
+            jobs = figure_jobs(base, "summary")
+        if pool is None:
+            for job in jobs:
+                draw(job)
+        else:
+            pool.map(draw, jobs, chunksize=1)
+    if pool is not None:
+        pool.close()
+        pool.join()
     return 0
 
 

@@ -3,6 +3,9 @@
 
 #include "plots.h"
 
+#include "run/batch.h"
+
+#include <stdbool.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <string.h>
@@ -48,38 +51,91 @@ static const char *plot_last_line(char *text)
     return start ? start + 1 : text;
 }
 
-int sim_plot(sim_plot_t which, const char *dir)
+int sim_plot_start(sim_plot_t which, const char *dir, const char *part, sim_plot_job_t *job)
 {
-    char script[1200], output[16384];
-    int fds[2], status = 0;
+    int fds[2], gate[2];
     pid_t pid;
+    job->pid = -1;
+    job->fd = -1;
+    job->gate_fd = -1;
+    (void)snprintf(job->what, sizeof job->what, "%s on %s", plot_scripts[which], dir);
     if (SIM_PLOT_PYTHON[0] == '\0' || SIM_PLOT_DIR[0] == '\0') {
         fprintf(stderr, "sixphase-sim: no Python with matplotlib found at configure time; "
                         "no plot\n");
         return -1;
     }
-    (void)snprintf(script, sizeof script, "%s/%s", SIM_PLOT_DIR, plot_scripts[which]);
-    if (pipe(fds) != 0) {
-        fprintf(stderr, "sixphase-sim: %s not started on %s (no pipe)\n", plot_scripts[which], dir);
+    (void)snprintf(job->script, sizeof job->script, "%s/%s", SIM_PLOT_DIR, plot_scripts[which]);
+    if (pipe(fds) != 0 || pipe(gate) != 0) {
+        fprintf(stderr, "sixphase-sim: %s not started (no pipe)\n", job->what);
         return -1;
     }
     pid = fork();
     if (pid == 0) {
         (void)dup2(fds[1], 2);
+        (void)dup2(gate[0], 0);
         (void)close(fds[0]);
         (void)close(fds[1]);
-        execl(SIM_PLOT_PYTHON, SIM_PLOT_PYTHON, script, dir, (char *)NULL);
+        (void)close(gate[0]);
+        (void)close(gate[1]);
+        if (part) {
+            execl(SIM_PLOT_PYTHON, SIM_PLOT_PYTHON, job->script, dir, part, (char *)NULL);
+        } else {
+            execl(SIM_PLOT_PYTHON, SIM_PLOT_PYTHON, job->script, dir, (char *)NULL);
+        }
         _exit(127);
     }
     (void)close(fds[1]);
-    plot_collect(fds[0], output, sizeof output);
-    (void)close(fds[0]);
-    if (pid < 0 || waitpid(pid, &status, 0) < 0 || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+    (void)close(gate[0]);
+    if (pid < 0) {
+        (void)close(fds[0]);
+        (void)close(gate[1]);
+        fprintf(stderr, "sixphase-sim: %s not started (no fork)\n", job->what);
+        return -1;
+    }
+    job->pid = (int)pid;
+    job->fd = fds[0];
+    job->gate_fd = gate[1];
+    return 0;
+}
+
+void sim_plot_open_gate(sim_plot_job_t *job)
+{
+    if (job->gate_fd >= 0) {
+        (void)close(job->gate_fd);
+        job->gate_fd = -1;
+    }
+}
+
+int sim_plot_finish(sim_plot_job_t *job)
+{
+    char output[16384];
+    int status = 0;
+    bool waited;
+    if (job->pid < 0) {
+        return -1;
+    }
+    sim_plot_open_gate(job);
+    plot_collect(job->fd, output, sizeof output);
+    (void)close(job->fd);
+    /* a batch of runs may have reaped it while waiting for its workers (run/batch.h) */
+    waited = waitpid((pid_t)job->pid, &status, 0) == (pid_t)job->pid ||
+             sim_batch_reaped(job->pid, &status);
+    job->pid = -1;
+    if (!waited || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
         /* one line: the script's own last word, not its traceback */
-        fprintf(stderr, "sixphase-sim: %s failed on %s: %s\n", plot_scripts[which], dir,
+        fprintf(stderr, "sixphase-sim: %s failed: %s\n", job->what,
                 output[0] ? plot_last_line(output) : "no message");
         return -1;
     }
     fputs(output, stderr); /* warnings of a script that worked */
     return 0;
+}
+
+int sim_plot(sim_plot_t which, const char *dir)
+{
+    sim_plot_job_t job;
+    if (sim_plot_start(which, dir, NULL, &job) != 0) {
+        return -1;
+    }
+    return sim_plot_finish(&job);
 }

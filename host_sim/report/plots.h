@@ -15,4 +15,20 @@ typedef enum {
  * with matplotlib, or the script failed). */
 int sim_plot(sim_plot_t which, const char *dir);
 
+/* The same in parts, so that the figures are drawn while the caller goes on (reproduce draws its
+ * runs' figures while its last runs compute): start runs the script on dir, with part as its
+ * second argument when not NULL, in a child process whose standard input stays open until
+ * sim_plot_open_gate (the script's cue that the rest of its input is written); finish opens
+ * the gate if still closed and collects the script. */
+typedef struct {
+    int pid;     /* -1: not running */
+    int fd;      /* the script's stderr */
+    int gate_fd; /* the write end of its stdin, -1 once closed */
+    char script[1200];
+    char what[1400];
+} sim_plot_job_t;
+int sim_plot_start(sim_plot_t which, const char *dir, const char *part, sim_plot_job_t *job);
+void sim_plot_open_gate(sim_plot_job_t *job);
+int sim_plot_finish(sim_plot_job_t *job);
+
 #endif /* SIM_PLOTS_H */

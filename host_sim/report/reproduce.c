@@ -75,6 +75,8 @@ static int rep_write_all(const char *out_dir, const rep_case_t *cases, int n, do
 int sim_reproduce(const char *out_dir, int jobs, bool plots, int quiet)
 {
     rep_progress_t progress;
+    sim_plot_job_t plot;
+    bool drawing;
     const double t0 = rep_now();
     rep_case_t *cases;
     int n = 0, n1, n2, failures, rc, round;
@@ -100,6 +102,10 @@ int sim_reproduce(const char *out_dir, int jobs, bool plots, int quiet)
     progress.tty = !quiet && isatty(2);
     progress.t0 = t0;
     failures = sim_batch_run(cases, 0, n1, jobs, rep_case_done, &progress);
+    /* the runs' figures need only the first batch's traces: drawn while the rest computes, the
+     * summary's once the report is written (the script waits at its gate) */
+    drawing =
+        plots && sim_plot_start(SIM_PLOT_REPRODUCE, out_dir, "traces-then-summary", &plot) == 0;
     for (round = 1; round <= REP_EQSW_ROUNDS; round++) { /* equal switching frequency */
         const int from = n;
         if (rep_cases_equal_switching(cases, &n, out_dir, round) == 0) {
@@ -112,10 +118,8 @@ int sim_reproduce(const char *out_dir, int jobs, bool plots, int quiet)
     failures += sim_batch_run(cases, n2, n, jobs, rep_case_done, &progress);
     wall = rep_now() - t0;
     rc = rep_write_all(out_dir, cases, n, wall, jobs);
-    if (rc == 0 && plots) {
-        if (sim_plot(SIM_PLOT_REPRODUCE, out_dir) == 0 && !quiet) {
-            fprintf(stderr, "plots written to %s/plots\n", out_dir);
-        }
+    if (drawing && sim_plot_finish(&plot) == 0 && rc == 0 && !quiet) {
+        fprintf(stderr, "plots written to %s/plots\n", out_dir);
     }
     if (rc == 0 && !quiet) {
         fprintf(stderr,

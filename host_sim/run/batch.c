@@ -28,6 +28,38 @@ void sim_batch_free(sim_case_t *cases, int n)
     }
 }
 
+/* Children reaped here that were not workers: their statuses until their owner asks. */
+#define BATCH_OTHERS 8
+static struct {
+    pid_t pid;
+    int status;
+} batch_others[BATCH_OTHERS];
+
+static void batch_note_other(pid_t pid, int status)
+{
+    int k;
+    for (k = 0; k < BATCH_OTHERS; k++) {
+        if (batch_others[k].pid == 0) {
+            batch_others[k].pid = pid;
+            batch_others[k].status = status;
+            return;
+        }
+    }
+}
+
+bool sim_batch_reaped(int pid, int *status)
+{
+    int k;
+    for (k = 0; k < BATCH_OTHERS; k++) {
+        if (batch_others[k].pid == (pid_t)pid && pid > 0) {
+            *status = batch_others[k].status;
+            batch_others[k].pid = 0;
+            return true;
+        }
+    }
+    return false;
+}
+
 /* Run cases[first..last) in up to `jobs` forked workers; results come back
  * through a shared anonymous mapping. */
 int sim_batch_run(sim_case_t *shared, int first, int last, int jobs, sim_batch_done_fn done_fn,
@@ -73,25 +105,28 @@ int sim_batch_run(sim_case_t *shared, int first, int last, int jobs, sim_batch_d
                 }
                 break;
             }
-            for (i = 0; i < running; i++) {
-                if (pids[i] == done) {
-                    sim_case_t *c = &shared[idx[i]];
-                    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || !c->ok) {
-                        failures++;
-                        c->ok = 0;
-                        if (c->err[0] == '\0') {
-                            (void)snprintf(c->err, sizeof c->err, "worker crashed");
-                        }
+            for (i = 0; i < running && pids[i] != done; i++) {
+            }
+            if (i == running) {
+                batch_note_other(done, status); /* not a worker: a plot drawn meanwhile */
+                continue;
+            }
+            {
+                sim_case_t *c = &shared[idx[i]];
+                if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || !c->ok) {
+                    failures++;
+                    c->ok = 0;
+                    if (c->err[0] == '\0') {
+                        (void)snprintf(c->err, sizeof c->err, "worker crashed");
                     }
-                    finished++;
-                    if (done_fn) {
-                        done_fn(ctx, c, finished, last - first);
-                    }
-                    pids[i] = pids[running - 1];
-                    idx[i] = idx[running - 1];
-                    running--;
-                    break;
                 }
+                finished++;
+                if (done_fn) {
+                    done_fn(ctx, c, finished, last - first);
+                }
+                pids[i] = pids[running - 1];
+                idx[i] = idx[running - 1];
+                running--;
             }
         }
     }

@@ -25,6 +25,11 @@ typedef void (*sim_batch_done_fn)(void *ctx, const sim_case_t *c, int done, int 
 int sim_batch_run(sim_case_t *cases, int first, int last, int jobs, sim_batch_done_fn done,
                   void *ctx);
 
+/* sim_batch_run reaps whichever child exits while it waits for its workers; one that is not a
+ * worker (a plot drawn meanwhile, report/plots.c) leaves its exit status here, for its owner:
+ * true, with *status, when pid was reaped so (each status is handed out once). */
+bool sim_batch_reaped(int pid, int *status);
+
 /* An anonymous shared mapping for n cases (zeroed); NULL on failure. */
 sim_case_t *sim_batch_alloc(int n);
 void sim_batch_free(sim_case_t *cases, int n);

@@ -42,10 +42,18 @@ VALIDATION = [
 ]
 COMMAND_REFERENCE = os.path.join(os.path.dirname(os.path.abspath(__file__)),
                                  "command_reference.txt")
-# No step of a controller, one that takes a new parameter set included, may cost more than
-# this times the mean step of the same controller and arithmetic (the ISR budget must hold for
-# every period, whichever controller runs).
+# Budgets (the ISR must hold every period; issue 28 restated the two that were ratios to a mean
+# which the arithmetic's speed-up lowered while the dearest steps stayed):
+#  - the product's DDC: no step, one taking a new parameter set included, above WORST_STEP_BUDGET
+#    times its mean step (no spikes in the product's period);
+#  - every configuration: no step taking a new set dearer than the larger of its dearest step
+#    that takes none and WORST_STEP_BUDGET times its mean (taking a set adds no spike);
+#  - the product's DDC with a phase open: its dearest step, priced at the cost model's high end,
+#    within POSTFAULT_PERIOD_SHARE of the period (the rest: ADC, protection, PWM, interrupt entry).
 WORST_STEP_BUDGET = 1.5
+POSTFAULT_PERIOD_SHARE = 0.60
+# Issue 28's targets for the DDC, host instructions of the step itself per period.
+TARGETS = {"ddc_fixed": 1500, "ddc_float": 1000}
 CPU_HZ = 150e6
 PERIOD_US = 100.0
 
@@ -230,6 +238,7 @@ def step_statistics(steps):
             "steps": len(rows), "mean": sum(r[0] for r in rows) / len(rows),
             "worst": worst[0], "worst_step": worst[1], "worst_takes": worst[2],
             "taking": len(taking), "taking_worst": max(taking)[0] if taking else 0,
+            "others_worst": max((r[0] for r in rows if not r[2]), default=0),
         }
     missing = [c for c in CONFIGS if c not in result]
     if missing:
@@ -259,33 +268,45 @@ def postfault_steps(sim, tools, work):
                 "worst_step": max(r)[1]} for c, r in steps.items()}
 
 
-def postfault_violations(pf, worst, budget):
-    """The product's DDC with a phase open: no step above budget times the healthy DDC's mean
-    step of the same arithmetic."""
+def postfault_us_high(costs, points, pf, arith):
+    """The DDC's dearest post-fault step in us at the cost model's high end, priced at the
+    healthy DDC's cycles per host instruction (as the F28335 table prices it)."""
+    n, _, hi = (x / points for x in c28x_cost.totals(costs["ddc_" + arith]))
+    return us(hi / n * pf["ddc_" + arith]["worst"])
+
+
+def postfault_violations(pf, costs, points):
+    """The product's DDC with a phase open: its dearest step within POSTFAULT_PERIOD_SHARE of the
+    period at the cost model's high end."""
     bad = []
     for arith in ("fixed", "float"):
         c = "ddc_" + arith
         if c not in pf:
             bad.append("%s: no post-fault steps measured" % c)
-        elif pf[c]["worst"] > budget * worst[c]["mean"]:
-            bad.append("%s with a phase open: step %d costs %d instructions, %.2f times the "
-                       "healthy mean %.0f (budget %.1f)" % (c, pf[c]["worst_step"], pf[c]["worst"],
-                                                          pf[c]["worst"] / worst[c]["mean"],
-                                                          worst[c]["mean"], budget))
+            continue
+        t = postfault_us_high(costs, points, pf, arith)
+        if t > POSTFAULT_PERIOD_SHARE * PERIOD_US:
+            bad.append("%s with a phase open: step %d takes up to %.1f us, over %.0f %% of the "
+                       "%.0f us period" % (c, pf[c]["worst_step"], t,
+                                           100.0 * POSTFAULT_PERIOD_SHARE, PERIOD_US))
     return bad
 
 
 def budget_violations(worst, budget):
-    """Every configuration whose worst step - any step, those that take a new parameter set
-    included - costs more than budget times its own mean step."""
+    """The DDC's dearest step (one taking a new set included) above budget times its mean; any
+    configuration's dearest step taking a new set above both its dearest other step and budget
+    times its mean."""
     bad = []
     for c in CONFIGS:
         r = worst[c]
-        for what, cost in (("step %d" % r["worst_step"], r["worst"]),
-                           ("a step taking a new set", r["taking_worst"])):
-            if cost > budget * r["mean"]:
-                bad.append("%s: %s costs %d instructions, %.2f times the mean %.0f (budget %.1f)"
-                           % (c, what, cost, cost / r["mean"], r["mean"], budget))
+        if c.startswith("ddc_") and r["worst"] > budget * r["mean"]:
+            bad.append("%s: step %d costs %d instructions, %.2f times the mean %.0f (budget %.1f)"
+                       % (c, r["worst_step"], r["worst"], r["worst"] / r["mean"], r["mean"],
+                          budget))
+        if r["taking_worst"] > max(r["others_worst"], budget * r["mean"]):
+            bad.append("%s: a step taking a new set costs %d instructions, above the dearest "
+                       "other step (%d) and %.1f times the mean %.0f" % (
+                           c, r["taking_worst"], r["others_worst"], budget, r["mean"]))
     return bad
 
 
@@ -369,8 +390,7 @@ def f28335_section(w, costs, validation, points, worst, pf, ops):
               us(lo / n * r["mean"]), us(hi / n * r["mean"]), us(lo / n * r["worst"]),
               us(hi / n * r["worst"]), 100.0 * us(hi / n * r["worst"]) / PERIOD_US))
     w("")
-    w("Host instructions here leave out the harness, so they are a little below the table")
-    w("\"Cost per control step\". The paper measured %.1f us (DDC) and %.1f us (MPTC) on this"
+    w("The paper measured %.1f us (DDC) and %.1f us (MPTC) on this"
       % (PAPER_US["ddc"], PAPER_US["mptc49"]))
     w("chip. The low end prices every instruction at its cheapest plausible C28x sequence, the")
     w("high end every one at its dearest at once; the truth lies between and is most likely")
@@ -521,8 +541,9 @@ def main():
     ap.add_argument("--rebase-commands", action="store_true",
                     help="record this build's commands as the reference (a deliberate change)")
     ap.add_argument("--budget", type=float, default=WORST_STEP_BUDGET,
-                    help="fail if a step costs more than this times the mean step of its "
-                         "controller and arithmetic")
+                    help="the DDC fails if a step costs more than this times its mean step; "
+                         "any configuration if a step taking a new set costs more than this "
+                         "times its mean and more than its dearest other step")
     ap.add_argument("--no-avr", action="store_true",
                     help="skip the AVR proxy (CI runs it as a step of its own)")
     a = ap.parse_args()
@@ -544,7 +565,10 @@ def main():
     memory = target_memory(root, work)
     avr = None if a.no_avr else avr_comparison(root, a.sim, work)
     ops = {"fixed": op_counts(a.opcount_fixed, traces), "float": op_counts(a.opcount_float, traces)}
-    per_step = {c: counts[c] / points for c in CONFIGS}
+    # the step itself: the replay harness (bench_run's loop and checksum) left out, as the cost
+    # model leaves it out
+    per_step = {c: c28x_cost.totals(costs[c])[0] / points for c in CONFIGS}
+    harness = {c: counts[c] / points - per_step[c] for c in CONFIGS}
 
     L = []
     w = L.append
@@ -563,9 +587,13 @@ def main():
     w("  the torque reference of each period are replayed through `ctl_step` of each controller")
     w("  in torque mode (the speed PI is not part of the comparison); each controller keeps its")
     w("  own command in force, so its delay compensation and search run as in closed loop.")
-    w("- Instruction counts: `valgrind --tool=callgrind`, counting only the replay loop of each")
+    w("- Instruction counts: `valgrind --tool=callgrind` over the replay loop of each")
     w("  configuration (client requests toggle collection and dump each configuration")
-    w("  separately). Repeatable for the same binary and input, whatever else the machine does.")
+    w("  separately), with the executed count of every instruction address; the step's own")
+    w("  instructions are those outside the replay harness (`bench_run`'s loop and checksum, by")
+    w("  address: %.0f per step in fixed point, %.0f in float), as the F28335 cost model counts"
+      % (harness["ddc_fixed"], harness["ddc_float"]))
+    w("  them. Repeatable for the same binary and input, whatever else the machine does.")
     w("- Wall time: the same loop, 5 repetitions, native; indicative only.")
     w("- Commands (vector, duty and leg duties to the last bit) against the reference build's on")
     w("  the same points (tools/bench/command_reference.txt): %s." % commands)
@@ -588,6 +616,12 @@ def main():
       % (per_step["ddc_fixed"] / per_step["mptc49_fixed"],
          per_step["ddc_float"] / per_step["mptc49_float"]))
     w("")
+    w("Targets of issue 28 for the DDC's step: %s." % "; ".join(
+        "%s at most %d host instructions: %.0f, %s" % (
+            c.split("_")[1], TARGETS[c], per_step[c],
+            "met" if per_step[c] <= TARGETS[c] else "**not met**") for c in ("ddc_fixed",
+                                                                          "ddc_float")))
+    w("")
     w("## Worst single step, parameter changes included")
     w("")
     w("Every step of the same replay measured on its own (callgrind, one dump per step), with a")
@@ -595,10 +629,14 @@ def main():
     w("direction reading, torque guard, flux reference mode and torque limit vary, so the MTPA")
     w("table is rebuilt each time); the step after each request takes the new set. The set is")
     w("built outside the ISR (ctl_request_params) and the step only switches buffers")
-    w("(ctl_config_take). Budget: no step of any configuration, the steps taking a new set")
-    w("included, above %.1f times the mean step of the same configuration (`run_benchmark.py`"
+    w("(ctl_config_take). Budgets (`run_benchmark.py` fails otherwise; CI runs it): no step of")
+    w("the product's DDC, those taking a new set included, above %.1f times its mean step; in"
       % a.budget)
-    w("fails otherwise; CI runs it).")
+    w("every configuration no step taking a new set dearer than both its dearest other step and")
+    w("%.1f times its mean (taking a set adds no spike). The baselines' dearest steps are" % a.budget)
+    w("reported: their spread is their search's pruning (a candidate whose torque error alone")
+    w("reaches the best cost skips its root), and whether they fit the period is the F28335")
+    w("table's last column. These counts include the harness (one dump per step).")
     w("")
     w("| configuration | steps | mean | worst | worst / mean | steps taking a new set | worst of those |")
     w("|---|---|---|---|---|---|---|")
@@ -614,10 +652,13 @@ def main():
       % pf["ddc_fixed"]["steps"])
     w("through `ctl_step` with the open phase configured (`postfault-cost --worst-step`), against")
     w("the healthy mean step of the same controller and arithmetic above. Budget for the")
-    w("product's DDC: no such step above %.1f times the healthy DDC mean (`run_benchmark.py`"
-      % a.budget)
-    w("fails otherwise). The MPTC baselines are reported only: their post-fault candidates carry")
-    w("the projected four-term forced response.")
+    w("product's DDC: its dearest such step, priced by the F28335 cost model at its high end")
+    w("(below), within %.0f %% of the %.0f us period (`run_benchmark.py` fails otherwise): now"
+      % (100.0 * POSTFAULT_PERIOD_SHARE, PERIOD_US))
+    w("%.1f us in fixed point, %.1f us in float. The MPTC baselines are reported only: their" % (
+        postfault_us_high(costs, points, pf, "fixed"), postfault_us_high(costs, points, pf,
+                                                                         "float")))
+    w("post-fault candidates carry the projected four-term forced response.")
     w("")
     w("| configuration | steps | mean | worst | worst / healthy mean |")
     w("|---|---|---|---|---|")
@@ -685,7 +726,7 @@ def main():
     os.makedirs(os.path.dirname(os.path.abspath(a.out)), exist_ok=True)
     with open(a.out, "w") as f:
         f.write("\n".join(L) + "\n")
-    over = (budget_violations(worst, a.budget) + postfault_violations(pf, worst, a.budget) +
+    over = (budget_violations(worst, a.budget) + postfault_violations(pf, costs, points) +
             validation_violations(validation))
     if over:
         fail("worst step over budget: " + "; ".join(over))
