@@ -151,6 +151,11 @@ static inline ctl_q ctl_mul_sub_int(ctl_q a, ctl_q b, ctl_q c, ctl_q d, int16_t 
     CTL_COUNT_OP(CTL_OP_MUL);
     return (a * b - c * d) * (float)n;
 }
+static inline ctl_q ctl_abs_diff_nonneg(ctl_q a, ctl_q b)
+{
+    CTL_COUNT_OP(CTL_OP_ADD);
+    return ctl_abs(a - b);
+}
 /* The held forms (below, fixed point) hold nothing in float: single precision has no range to
  * protect there. */
 static inline ctl_q ctl_mul_dec_held(ctl_q acc, ctl_q a, ctl_q b, ctl_q lim)
@@ -367,6 +372,15 @@ static inline ctl_q ctl_mul_dec_bnd(ctl_q acc, ctl_q a, ctl_q b)
     CTL_COUNT_OP(CTL_OP_MUL);
     CTL_COUNT_OP(CTL_OP_ADD);
     return ctl_q48_to_q24_bnd((int64_t)acc * (int64_t)CTL_Q_ONE - (int64_t)a * (int64_t)b);
+}
+
+/* |a - b| of two non-negative values (a flux magnitude and its reference): their difference
+ * always fits int32 and is never INT32_MIN, so no saturation test can be needed. */
+static inline ctl_q ctl_abs_diff_nonneg(ctl_q a, ctl_q b)
+{
+    const ctl_q d = a - b;
+    CTL_COUNT_OP(CTL_OP_ADD);
+    return (d < 0) ? -d : d;
 }
 
 /* Held forms: an expression ended by a clamp to [-lim, lim] (lim > 0, below 2^30) in place of

@@ -87,7 +87,7 @@ static inline void ctl_horizon_forced(const ctl_horizon_t *h, const ctl_vsd_t *v
 static inline ctl_q ctl_horizon_cost_of(const ctl_horizon_t *h, ctl_q torque, ctl_q flux)
 {
     return ctl_add(ctl_abs(ctl_sub(torque, h->torque_ref)),
-                   ctl_mul(h->lambda, ctl_abs(ctl_sub(flux, h->flux_ref))));
+                   ctl_mul(h->lambda, ctl_abs_diff_nonneg(flux, h->flux_ref)));
 }
 
 /* Cost of the k+2 currents (id2, iq2); fills torque and flux. */

@@ -11,6 +11,7 @@
 #ifndef CTL_VSD_H
 #define CTL_VSD_H
 
+#include "ctl_constants.h"
 #include "ctl_q.h"
 
 typedef struct {
@@ -32,7 +33,43 @@ void ctl_vsd_alpha_beta_phases(ctl_q alpha, ctl_q beta, ctl_q phase[6]);
  * ctl_vsd_forward exactly in 64 bits, then the clamp (the same values as ctl_vsd_forward and a
  * clamp whenever no sum of the former saturates, without its saturation tests); float: the
  * VSD as it comes (single precision has no range to protect here). */
-void ctl_vsd_forward_in_range(const ctl_q phase[6], ctl_vsd_t *out);
+#if CTL_MATH_FLOAT
+static inline void ctl_vsd_forward_in_range(const ctl_q phase[6], ctl_vsd_t *out)
+{
+    ctl_vsd_forward(phase, out);
+}
+#else
+/* A Q48 value rounded to Q24 as ctl_q48_to_q24 rounds, not saturated. */
+static inline int64_t ctl_vsd_q24(int64_t q48)
+{
+    return (q48 + ((int64_t)1 << (CTL_Q_FRAC_BITS - 1))) >> CTL_Q_FRAC_BITS;
+}
+/* A VSD current held to the range analysis' domain. */
+static inline ctl_q ctl_vsd_in_range(int64_t v)
+{
+    const int64_t lim = (int64_t)CTL_RANGE_CURRENT * CTL_Q_ONE;
+    return (ctl_q)((v > lim) ? lim : ((v < -lim) ? -lim : v));
+}
+/* Inline: one call fewer in each step's period. |phase| < 2^31 keeps every product below 2^56
+ * and every sum inside int64. */
+static inline void ctl_vsd_forward_in_range(const ctl_q phase[6], ctl_vsd_t *out)
+{
+    const int64_t a = ctl_vsd_q24((int64_t)phase[0] * CTL_K_ONE_THIRD -
+                                  ((int64_t)phase[1] + phase[2]) * CTL_K_ONE_SIXTH);
+    const int64_t p = ctl_vsd_q24(((int64_t)phase[3] - phase[4]) * CTL_K_SQRT3_OVER_6);
+    const int64_t b = ctl_vsd_q24(((int64_t)phase[3] + phase[4]) * CTL_K_ONE_SIXTH -
+                                  (int64_t)phase[5] * CTL_K_ONE_THIRD);
+    const int64_t q = ctl_vsd_q24(((int64_t)phase[1] - phase[2]) * CTL_K_SQRT3_OVER_6);
+#if defined(CTL_COUNT_OPS)
+    ctl_op_counts[CTL_OP_MUL] += 6u; /* as ctl_vsd_forward: six multiplies, ten adds */
+    ctl_op_counts[CTL_OP_ADD] += 10u;
+#endif
+    out->alpha = ctl_vsd_in_range(a + p);
+    out->x = ctl_vsd_in_range(a - p);
+    out->beta = ctl_vsd_in_range(b + q);
+    out->y = ctl_vsd_in_range(b - q);
+}
+#endif
 
 /* The step's sampled speed (omega_max: the model's, ctl_predict.h) and DC link held to the
  * same domain; float: as they come. */
@@ -60,6 +97,14 @@ static inline void ctl_park_inverse(ctl_q d, ctl_q q, ctl_q s, ctl_q c, ctl_q *a
 {
     *alpha = ctl_sub(ctl_mul(d, c), ctl_mul(q, s));
     *beta = ctl_add(ctl_mul(d, s), ctl_mul(q, c));
+}
+/* The same rotation in the bounded forms (the same values), for a (d, q) whose |d| + |q| the
+ * range analysis bounds: the predicted flux and currents at k+1 (ctl_model_init). */
+static inline void ctl_park_inverse_bnd(ctl_q d, ctl_q q, ctl_q s, ctl_q c, ctl_q *alpha,
+                                        ctl_q *beta)
+{
+    *alpha = ctl_sub_bnd(ctl_mul_bnd(d, c), ctl_mul_bnd(q, s));
+    *beta = ctl_add_bnd(ctl_mul_bnd(d, s), ctl_mul_bnd(q, c));
 }
 
 #endif /* CTL_VSD_H */

@@ -292,10 +292,10 @@ SIXPHASE_RAMFUNC static void select_ddc(const ctl_t *c, const ctl_config_t *cfg,
     ctl_ddc_flux_t f;
     const ctl_q psi_d1 = ctl_flux_d(&cfg->model, id1);
     const ctl_q psi_q1 = ctl_flux_q(&cfg->model, iq1);
-    ctl_park_inverse(psi_d1, psi_q1, h->sin_k1, h->cos_k1, &f.psi_alpha, &f.psi_beta);
+    ctl_park_inverse_bnd(psi_d1, psi_q1, h->sin_k1, h->cos_k1, &f.psi_alpha, &f.psi_beta);
     f.psi_mag_sq = ctl_mul_add(psi_d1, psi_d1, psi_q1, psi_q1);
-    f.psi_x = ctl_mul(cfg->model.lxy, ix1);
-    f.psi_y = ctl_mul(cfg->model.lxy, iy1);
+    f.psi_x = ctl_mul_bnd(cfg->model.lxy, ix1); /* bounded: ctl_model_init */
+    f.psi_y = ctl_mul_bnd(cfg->model.lxy, iy1);
 #if CTL_PROFILE
     ctl_ddc_select(h, &f, &cfg->ctrl.ddc, c->stage_hook, choice);
 #else

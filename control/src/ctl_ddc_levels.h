@@ -82,7 +82,7 @@ static inline void ctl_ddc_levels_search(const ctl_horizon_t *h, const ctl_ddc_c
             continue;
         }
         flux = ctl_flux_magnitude(psi_d[k], psi_q[k]);
-        cost = ctl_add(torque_err[k], ctl_mul(h->lambda, ctl_abs(ctl_sub(flux, h->flux_ref))));
+        cost = ctl_add(torque_err[k], ctl_mul(h->lambda, ctl_abs_diff_nonneg(flux, h->flux_ref)));
         if (cost < out->cost) {
             out->cost = cost;
             out->duty = cfg->levels[k];

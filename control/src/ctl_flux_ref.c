@@ -130,8 +130,9 @@ SIXPHASE_RAMFUNC ctl_q ctl_flux_ref_run(const ctl_flux_ref_t *f, ctl_q torque_re
     if (f->mode == CTL_FLUX_REF_CONSTANT) {
         return f->constant;
     }
-    /* Torque magnitude to table position; beyond the span the last point holds. */
-    pos = ctl_mul(ctl_min(ctl_abs(torque_ref_pu), f->torque_max), f->points_per_torque);
+    /* Torque magnitude to table position; beyond the span the last point holds. Bounded: at most
+     * torque_max times (points - 1) / torque_max, the table's last index. */
+    pos = ctl_mul_bnd(ctl_min(ctl_abs(torque_ref_pu), f->torque_max), f->points_per_torque);
     if (!(pos < CTL_Q(CTL_FLUX_REF_TABLE_POINTS - 1))) { /* at or past the end, or NaN */
         return f->table[CTL_FLUX_REF_TABLE_POINTS - 1];
     }

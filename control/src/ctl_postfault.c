@@ -189,7 +189,7 @@ static int16_t pf_free_sign(const ctl_postfault_config_t *pf, const pf_horizon_t
 {
     ctl_q ia;
     ctl_q ib;
-    ctl_park_inverse(p->i1.d, p->i1.q, p->h.sin_k1, p->h.cos_k1, &ia, &ib);
+    ctl_park_inverse_bnd(p->i1.d, p->i1.q, p->h.sin_k1, p->h.cos_k1, &ia, &ib);
     {
         const ctl_q free_i = ctl_mul_sub(pf->c_x, p->i1.y, pf->c_y, p->i1.x);
         const ctl_q free_ref = ctl_mul_add(pf->free_ref_alpha, ia, pf->free_ref_beta, ib);
@@ -214,7 +214,7 @@ static void pf_select_ddc(const ctl_t *c, const ctl_config_t *cfg, const pf_hori
     int16_t half;
     int16_t lower;
     int16_t sign;
-    ctl_park_inverse(psi_d1, psi_q1, p->h.sin_k1, p->h.cos_k1, &psi_alpha, &psi_beta);
+    ctl_park_inverse_bnd(psi_d1, psi_q1, p->h.sin_k1, p->h.cos_k1, &psi_alpha, &psi_beta);
     sector = ctl_sector12(psi_beta, psi_alpha);
     zero.torque = ctl_torque_psi(mdl, p->h.id2_free, p->h.iq2_free, &zero.psi_d, &zero.psi_q);
     half = (zero.torque > p->h.torque_ref) ? 1 : 0;

@@ -25,6 +25,8 @@ SIXPHASE_NOINLINE static bool range_fits(const float *coef, float w)
     /* x-y at k+1: a_xy i + c_xy u */
     id = coef[7] * (float)CTL_RANGE_CURRENT + coef[8] * u;
     largest = (id > largest) ? id : largest;
+    id *= coef[11]; /* its flux, L_xy i_x, for the x-y sector */
+    largest = (id > largest) ? id : largest;
     /* k+1 under the command in force, then k+2: the free response plus a candidate's forced
      * part (c V times |v_alpha| + |v_beta|, which u covers); the speed term w i of k and k+1 */
     for (step = 0; step < 2; step++) {
@@ -35,6 +37,9 @@ SIXPHASE_NOINLINE static bool range_fits(const float *coef, float w)
         i = (iq > i) ? iq : i;
         /* the open-phase step's projections hold its k+1 and k+2 currents to this */
         i = (i > (float)CTL_RANGE_PROJECTED) ? i : (float)CTL_RANGE_PROJECTED;
+        /* k+1's flux turned to alpha-beta (ctl_park_inverse_bnd): |psi_d| + |psi_q| */
+        id = (step == 0) ? coef[12] + (coef[9] + coef[10]) * i : 0.0f;
+        largest = (id > largest) ? id : largest;
     }
     /* there a candidate's k+2 current is a held free response plus a held forced response */
     i = (i > 2.0f * (float)CTL_RANGE_PROJECTED) ? i : 2.0f * (float)CTL_RANGE_PROJECTED;

@@ -32,43 +32,6 @@ SIXPHASE_RAMFUNC void ctl_vsd_forward(const ctl_q phase[6], ctl_vsd_t *out)
     out->y = ctl_sub(b, q);
 }
 
-#if !CTL_MATH_FLOAT
-/* A Q48 value rounded to Q24 as ctl_q48_to_q24 rounds, not saturated. */
-static inline int64_t vsd_q24(int64_t q48)
-{
-    return (q48 + ((int64_t)1 << (CTL_Q_FRAC_BITS - 1))) >> CTL_Q_FRAC_BITS;
-}
-/* A VSD current held to the range analysis' domain. */
-static inline ctl_q vsd_in_range(int64_t v)
-{
-    const int64_t lim = (int64_t)CTL_RANGE_CURRENT * CTL_Q_ONE;
-    return (ctl_q)((v > lim) ? lim : ((v < -lim) ? -lim : v));
-}
-#endif
-
-SIXPHASE_RAMFUNC void ctl_vsd_forward_in_range(const ctl_q phase[6], ctl_vsd_t *out)
-{
-#if CTL_MATH_FLOAT
-    ctl_vsd_forward(phase, out);
-#else
-    /* |phase| < 2^31: every product below 2^56, every sum inside int64 */
-    const int64_t a = vsd_q24((int64_t)phase[0] * CTL_K_ONE_THIRD -
-                              ((int64_t)phase[1] + phase[2]) * CTL_K_ONE_SIXTH);
-    const int64_t p = vsd_q24(((int64_t)phase[3] - phase[4]) * CTL_K_SQRT3_OVER_6);
-    const int64_t b = vsd_q24(((int64_t)phase[3] + phase[4]) * CTL_K_ONE_SIXTH -
-                              (int64_t)phase[5] * CTL_K_ONE_THIRD);
-    const int64_t q = vsd_q24(((int64_t)phase[1] - phase[2]) * CTL_K_SQRT3_OVER_6);
-#if defined(CTL_COUNT_OPS)
-    ctl_op_counts[CTL_OP_MUL] += 6u; /* as ctl_vsd_forward: six multiplies, ten adds */
-    ctl_op_counts[CTL_OP_ADD] += 10u;
-#endif
-    out->alpha = vsd_in_range(a + p);
-    out->x = vsd_in_range(a - p);
-    out->beta = vsd_in_range(b + q);
-    out->y = vsd_in_range(b - q);
-#endif
-}
-
 SIXPHASE_RAMFUNC void ctl_vsd_alpha_beta_phases(ctl_q alpha, ctl_q beta, ctl_q phase[6])
 {
     int16_t k;
