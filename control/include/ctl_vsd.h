@@ -85,6 +85,22 @@ static inline void ctl_range_clamp(ctl_q *omega, ctl_q *vdc, ctl_q omega_max)
 #endif
 }
 
+/* The period average of state v held for duty at DC link vdc, u (VSD, per unit), and its d-q
+ * part at the angle (s, c): bounded (duty at most 1, vdc in the domain, v within the vector
+ * bound, docs/range-analysis.md). The command in force, as the healthy and open-phase steps
+ * predict with it. */
+static inline void ctl_voltage_in_force(const ctl_vsd_t *v, ctl_q duty, ctl_q vdc, ctl_q s, ctl_q c,
+                                        ctl_vsd_t *u, ctl_q *ud, ctl_q *uq)
+{
+    const ctl_q scale = ctl_mul_bnd(duty, vdc);
+    u->alpha = ctl_mul_bnd(v->alpha, scale);
+    u->beta = ctl_mul_bnd(v->beta, scale);
+    u->x = ctl_mul_bnd(v->x, scale);
+    u->y = ctl_mul_bnd(v->y, scale);
+    *ud = ctl_mul_add_bnd(u->alpha, c, u->beta, s);
+    *uq = ctl_mul_sub_bnd(u->beta, c, u->alpha, s);
+}
+
 /* Rotation into the rotor frame by an angle given as its sine and cosine: bounded (a rotation
  * keeps |(d, q)| = |(alpha, beta)|, below 6 for currents of the domain and 2 for the voltages). */
 static inline void ctl_park(ctl_q alpha, ctl_q beta, ctl_q s, ctl_q c, ctl_q *d, ctl_q *q)

@@ -267,13 +267,8 @@ SIXPHASE_RAMFUNC static void predict(const ctl_t *c, const ctl_config_t *cfg, co
         mid_period_angles(m, smp, delta, &s_in_force, &c_in_force, h);
     }
     if (c->applied_duty != CTL_Q(0.0)) { /* a zero vector in force applies no voltage */
-        const ctl_q applied_scale = ctl_mul_bnd(c->applied_duty, smp->vdc); /* bounded: <= 2 */
-        u0.alpha = ctl_mul_bnd(applied->alpha, applied_scale);
-        u0.beta = ctl_mul_bnd(applied->beta, applied_scale);
-        u0.x = ctl_mul_bnd(applied->x, applied_scale);
-        u0.y = ctl_mul_bnd(applied->y, applied_scale);
-        ud0 = ctl_mul_add_bnd(u0.alpha, c_in_force, u0.beta, s_in_force);
-        uq0 = ctl_mul_sub_bnd(u0.beta, c_in_force, u0.alpha, s_in_force);
+        ctl_voltage_in_force(applied, c->applied_duty, smp->vdc, s_in_force, c_in_force, &u0, &ud0,
+                             &uq0);
     }
     ctl_predict_dq(&cfg->model, smp->id, smp->iq, smp->omega_e, ud0, uq0, id1, iq1);
     *ix1 = ctl_predict_xy(&cfg->model, smp->vsd.x, u0.x);

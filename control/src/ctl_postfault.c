@@ -97,18 +97,12 @@ static void pf_predict_k1(const ctl_t *c, const ctl_config_t *cfg, const ctl_mea
     ctl_q uq0 = CTL_Q(0.0);
     pf_constraint_t k1;
     if (c->applied_duty != CTL_Q(0.0)) {
-        const ctl_q scale = ctl_mul_bnd(c->applied_duty, m->vdc);
         ctl_q s = s0;
         ctl_q co = c0;
         if (mid) {
             ctl_angle_advance(m->theta_e, s0, c0, ctl_mul(delta, CTL_Q(0.5)), &s, &co);
         }
-        u0.alpha = ctl_mul_bnd(applied->alpha, scale);
-        u0.beta = ctl_mul_bnd(applied->beta, scale);
-        u0.x = ctl_mul_bnd(applied->x, scale);
-        u0.y = ctl_mul_bnd(applied->y, scale);
-        ud0 = ctl_mul_add_bnd(u0.alpha, co, u0.beta, s);
-        uq0 = ctl_mul_sub_bnd(u0.beta, co, u0.alpha, s);
+        ctl_voltage_in_force(applied, c->applied_duty, m->vdc, s, co, &u0, &ud0, &uq0);
     }
     ctl_predict_dq(mdl, i0->d, i0->q, m->omega_e, ud0, uq0, &p->i1.d, &p->i1.q);
     p->i1.x = ctl_predict_xy(mdl, i0->x, u0.x);
