@@ -47,10 +47,13 @@ COMMAND_REFERENCE = os.path.join(os.path.dirname(os.path.abspath(__file__)),
 #  - the product's DDC: no step, one taking a new parameter set included, above WORST_STEP_BUDGET
 #    times its mean step (no spikes in the product's period);
 #  - every configuration: no step taking a new set dearer than the larger of its dearest step
-#    that takes none and WORST_STEP_BUDGET times its mean (taking a set adds no spike);
+#    that takes none plus TAKE_ALLOWANCE and WORST_STEP_BUDGET times its mean (taking a set adds
+#    no more than the buffer switch: a take that coincides with a dear search step is allowed
+#    the switch itself, a table rebuilt in the ISR would be thousands);
 #  - the product's DDC with a phase open: its dearest step, priced at the cost model's high end,
 #    within POSTFAULT_PERIOD_SHARE of the period (the rest: ADC, protection, PWM, interrupt entry).
 WORST_STEP_BUDGET = 1.5
+TAKE_ALLOWANCE = 100  # host instructions: ctl_config_take's flag test, index flip and copies
 POSTFAULT_PERIOD_SHARE = 0.60
 # Issue 28's targets for the DDC, host instructions of the step itself per period.
 TARGETS = {"ddc_fixed": 1500, "ddc_float": 1000}
@@ -303,10 +306,11 @@ def budget_violations(worst, budget):
             bad.append("%s: step %d costs %d instructions, %.2f times the mean %.0f (budget %.1f)"
                        % (c, r["worst_step"], r["worst"], r["worst"] / r["mean"], r["mean"],
                           budget))
-        if r["taking_worst"] > max(r["others_worst"], budget * r["mean"]):
+        if r["taking_worst"] > max(r["others_worst"] + TAKE_ALLOWANCE, budget * r["mean"]):
             bad.append("%s: a step taking a new set costs %d instructions, above the dearest "
-                       "other step (%d) and %.1f times the mean %.0f" % (
-                           c, r["taking_worst"], r["others_worst"], budget, r["mean"]))
+                       "other step (%d) plus %d and %.1f times the mean %.0f" % (
+                           c, r["taking_worst"], r["others_worst"], TAKE_ALLOWANCE, budget,
+                           r["mean"]))
     return bad
 
 
@@ -632,11 +636,13 @@ def main():
     w("(ctl_config_take). Budgets (`run_benchmark.py` fails otherwise; CI runs it): no step of")
     w("the product's DDC, those taking a new set included, above %.1f times its mean step; in"
       % a.budget)
-    w("every configuration no step taking a new set dearer than both its dearest other step and")
-    w("%.1f times its mean (taking a set adds no spike). The baselines' dearest steps are" % a.budget)
-    w("reported: their spread is their search's pruning (a candidate whose torque error alone")
-    w("reaches the best cost skips its root), and whether they fit the period is the F28335")
-    w("table's last column. These counts include the harness (one dump per step).")
+    w("every configuration no step taking a new set dearer than both its dearest other step plus")
+    w("%d (the buffer switch) and %.1f times its mean (taking a set adds no spike). The" % (
+        TAKE_ALLOWANCE, a.budget))
+    w("baselines' dearest steps are reported: their spread is their search's pruning (a")
+    w("candidate whose torque error alone reaches the best cost skips its root), and whether")
+    w("they fit the period is the F28335 table's last column. These counts include the harness")
+    w("(one dump per step).")
     w("")
     w("| configuration | steps | mean | worst | worst / mean | steps taking a new set | worst of those |")
     w("|---|---|---|---|---|---|---|")
