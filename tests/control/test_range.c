@@ -3,8 +3,8 @@
  * the core that counts every bounded result beyond CTL_RANGE_BOUND (CTL_RANGE_CHECK):
  *   - the voltage tables lie inside the analysis' vector bound;
  *   - for the machine at each edge of the admitted region (a parameter pushed until
- *     ctl_model_init refuses), every controller, healthy and with a phase open, computes nothing
- *     beyond the bound over steps at the corners of the domain: currents beyond it (the clamp's
+ *     ctl_model_init refuses), every controller, healthy and with phase A, C or F open, computes
+ * nothing beyond the bound over steps at the corners of the domain: currents beyond it (the clamp's
  *     work), the largest speed, the largest DC link, every command in force, both torque limits;
  *   - one step past each edge the set is refused as the model's (CTL_PARAM_MODEL), and the
  *     reference machine lies at least twice inside each edge.
@@ -175,8 +175,11 @@ static void test_edges_compute_inside_the_bound(void **state)
         assert_true(s >= 2.0f);
         assert_int_equal(beyond, edges[e].beyond);
         for (controller = 0; controller < CTL_CONTROLLER_COUNT; controller++) {
-            int16_t open;
-            for (open = CTL_POSTFAULT_NO_LEG; open <= 2; open = (int16_t)(open + 3)) {
+            /* healthy, and each of phases A, C and F open (the two sets' first, middle, last) */
+            static const int16_t opens[] = {CTL_POSTFAULT_NO_LEG, 0, 2, 5};
+            size_t o;
+            for (o = 0; o < sizeof opens / sizeof opens[0]; o++) {
+                const int16_t open = opens[o];
                 ctl_params_t run = p;
                 run.controller = (ctl_controller_t)controller;
                 run.open_phase = open;
