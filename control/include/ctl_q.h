@@ -149,6 +149,9 @@ static inline ctl_q ctl_mul_dec_bnd(ctl_q acc, ctl_q a, ctl_q b) { return ctl_mu
 static inline ctl_q ctl_mul_sub_int(ctl_q a, ctl_q b, ctl_q c, ctl_q d, int16_t n)
 {
     CTL_COUNT_OP(CTL_OP_MUL);
+    CTL_COUNT_OP(CTL_OP_MUL);
+    CTL_COUNT_OP(CTL_OP_ADD);
+    CTL_COUNT_OP(CTL_OP_MUL);
     return (a * b - c * d) * (float)n;
 }
 static inline ctl_q ctl_abs_diff_nonneg(ctl_q a, ctl_q b)

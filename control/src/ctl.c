@@ -320,7 +320,8 @@ SIXPHASE_RAMFUNC void ctl_healthy_step(ctl_t *c, const ctl_meas_t *m, ctl_cmd_t 
     ctl_sincos_pu(m->theta_e, &smp.s0, &smp.c0);
     ctl_park(smp.vsd.alpha, smp.vsd.beta, smp.s0, smp.c0, &smp.id, &smp.iq);
     if (c->loop_mode == CTL_LOOP_SPEED) {
-        h.torque_ref = ctl_speed_pi_run(&c->speed_pi, c->speed_ref, smp.omega_e);
+        /* the speed as measured: the domain's clamp is the prediction's, not the speed loop's */
+        h.torque_ref = ctl_speed_pi_run(&c->speed_pi, c->speed_ref, m->omega_e);
     } else {
         h.torque_ref = ctl_clamp(c->torque_ref_direct, -cfg->torque_limit, cfg->torque_limit);
     }

@@ -30,10 +30,8 @@ void ctl_foc_current_ref(const ctl_foc_config_t *f, const ctl_flux_ref_t *span,
     }
     bracket = ctl_mul_acc(model->psi_f, ctl_sub(model->ld, model->lq), id);
     bracket = ctl_max(bracket, ctl_mul(model->psi_f, CTL_Q(0.25)));
-    /* held to the range analysis' current: a reference beyond it is one no PI could reach */
-    *id_ref = ctl_clamp(id, -CTL_Q(CTL_RANGE_CURRENT), CTL_Q(CTL_RANGE_CURRENT));
-    *iq_ref = ctl_clamp(ctl_div(torque_ref, ctl_mul_int(bracket, model->pole_pairs)),
-                        -CTL_Q(CTL_RANGE_CURRENT), CTL_Q(CTL_RANGE_CURRENT));
+    *id_ref = id;
+    *iq_ref = ctl_div(torque_ref, ctl_mul_int(bracket, model->pole_pairs));
 }
 
 /* The spread of one three-phase set's phase voltages (legs first..first+2) and its middle: the
@@ -156,7 +154,11 @@ static void foc_diag(ctl_t *c, const ctl_config_t *cfg, const ctl_vsd_t *i, ctl_
     dg->i_y = i->y;
     dg->torque_ref = torque_ref;
     dg->flux_ref = flux_ref;
-    dg->torque_pred = ctl_torque_psi(&cfg->model, fw->id_ref, fw->iq_ref, &pd, &pq);
+    /* the references' torque, of references held to the range analysis' current (its fluxes
+     * are the bounded forms'; a reference beyond 40 A is one no PI reaches) */
+    dg->torque_pred = ctl_torque_psi(
+        &cfg->model, ctl_clamp(fw->id_ref, -CTL_Q(CTL_RANGE_CURRENT), CTL_Q(CTL_RANGE_CURRENT)),
+        ctl_clamp(fw->iq_ref, -CTL_Q(CTL_RANGE_CURRENT), CTL_Q(CTL_RANGE_CURRENT)), &pd, &pq);
     dg->flux_pred = flux_ref;
     dg->cost = CTL_Q(0.0);
     dg->flux_sector = -1;
@@ -181,13 +183,12 @@ void ctl_foc_healthy_step(ctl_t *c, const ctl_meas_t *m, ctl_cmd_t *cmd)
 
     /* Measured state at k and references, as the predictive controllers'. */
     ctl_vsd_forward_in_range(m->i_phase, &i);
-    held = *m;
+    held = *m; /* the speed and DC link of the range analysis' domain, for all but the speed loop */
     ctl_range_clamp(&held.omega_e, &held.vdc, cfg->model.omega_max);
-    m = &held; /* the speed and DC link of the range analysis' domain from here on */
     ctl_sincos_pu(m->theta_e, &s0, &c0);
     ctl_park(i.alpha, i.beta, s0, c0, &id, &iq);
     if (c->loop_mode == CTL_LOOP_SPEED) {
-        torque_ref = ctl_speed_pi_run(&c->speed_pi, c->speed_ref, m->omega_e);
+        torque_ref = ctl_speed_pi_run(&c->speed_pi, c->speed_ref, m->omega_e); /* as measured */
     } else {
         torque_ref = ctl_clamp(c->torque_ref_direct, -cfg->torque_limit, cfg->torque_limit);
     }
@@ -196,16 +197,16 @@ void ctl_foc_healthy_step(ctl_t *c, const ctl_meas_t *m, ctl_cmd_t *cmd)
                         &fw.iq_ref);
     CTL_STAGE_MARK(c->stage_hook, CTL_STAGE_TRANSFORMS);
 
-    foc_predict(s, &cfg->model, &i, id, iq, m->omega_e, s0, c0, &fw);
+    foc_predict(s, &cfg->model, &i, id, iq, held.omega_e, s0, c0, &fw);
     CTL_STAGE_MARK(c->stage_hook, CTL_STAGE_PREDICT);
     CTL_STAGE_MARK(c->stage_hook, CTL_STAGE_TABLE); /* no tables: the stage is empty */
 
     ctl_foc_gains(&cfg->ctrl.foc, &cfg->model, &fw.g);
-    foc_pis(s, cfg, m->omega_e, &fw);
-    ctl_angle_advance(m->theta_e, s0, c0, ctl_mul(m->omega_e, ctl_mul(cfg->model.ts, CTL_Q(1.5))),
+    foc_pis(s, cfg, held.omega_e, &fw);
+    ctl_angle_advance(m->theta_e, s0, c0, ctl_mul(held.omega_e, ctl_mul(cfg->model.ts, CTL_Q(1.5))),
                       &fw.s_cmd, &fw.c_cmd);
     ctl_park_inverse(fw.vd, fw.vq, fw.s_cmd, fw.c_cmd, &fw.v.alpha, &fw.v.beta);
-    c->applied_edges = ctl_foc_modulate(&fw.v, m->vdc, cmd->leg_duty, &fw.realised);
+    c->applied_edges = ctl_foc_modulate(&fw.v, held.vdc, cmd->leg_duty, &fw.realised);
     foc_integrate(s, &fw);
     /* no one switching state stands for a carrier-PWM command: the predictive controllers, should
      * the next set be one of them, see a zero vector in force, and no virtual vector */

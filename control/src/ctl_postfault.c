@@ -366,9 +366,8 @@ void ctl_postfault_step(ctl_t *c, const ctl_meas_t *m, ctl_cmd_t *cmd)
     }
     p.pf = ctl_postfault_config(c);
     ctl_vsd_forward_in_range(m->i_phase, &vsd);
-    held = *m;
+    held = *m; /* the speed and DC link of the range analysis' domain, for all but the speed loop */
     ctl_range_clamp(&held.omega_e, &held.vdc, cfg->model.omega_max);
-    m = &held; /* the speed and DC link of the range analysis' domain from here on */
     ctl_sincos_pu(m->theta_e, &s0, &c0);
     ctl_park(vsd.alpha, vsd.beta, s0, c0, &i0.d, &i0.q);
     i0.x = vsd.x;
@@ -380,8 +379,8 @@ void ctl_postfault_step(ctl_t *c, const ctl_meas_t *m, ctl_cmd_t *cmd)
     }
     p.h.flux_ref = ctl_flux_ref_run(&cfg->flux_ref, p.h.torque_ref);
     CTL_STAGE_MARK(c->stage_hook, CTL_STAGE_TRANSFORMS);
-    pf_predict_k1(c, cfg, m, &i0, s0, c0, &p);
-    pf_predict_k2(cfg, m, s0, c0, &p);
+    pf_predict_k1(c, cfg, &held, &i0, s0, c0, &p);
+    pf_predict_k2(cfg, &held, s0, c0, &p);
     CTL_STAGE_MARK(c->stage_hook, CTL_STAGE_PREDICT);
     /* FOC-VSD has no five-leg mode: with an open phase it rides through on the post-fault
      * MPTC-13 (the else branch), as the MPTC baselines on theirs */

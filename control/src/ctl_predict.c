@@ -21,7 +21,7 @@ SIXPHASE_NOINLINE static bool range_fits(const float *coef, float w)
     float id;
     float iq;
     int16_t step;
-    largest *= (float)CTL_RANGE_VDC; /* c V of ctl_horizon_prepare */
+    largest *= (float)CTL_RANGE_VDC * 1.01f; /* c V (and c V cos) of ctl_horizon_prepare */
     /* x-y at k+1: a_xy i + c_xy u */
     id = coef[7] * (float)CTL_RANGE_CURRENT + coef[8] * u;
     largest = (id > largest) ? id : largest;
@@ -37,12 +37,14 @@ SIXPHASE_NOINLINE static bool range_fits(const float *coef, float w)
         i = (iq > i) ? iq : i;
         /* the open-phase step's projections hold its k+1 and k+2 currents to this */
         i = (i > (float)CTL_RANGE_PROJECTED) ? i : (float)CTL_RANGE_PROJECTED;
+        largest = (i > largest) ? i : largest; /* the currents themselves */
         /* k+1's flux turned to alpha-beta (ctl_park_inverse_bnd): |psi_d| + |psi_q| */
-        id = (step == 0) ? coef[12] + (coef[9] + coef[10]) * i : 0.0f;
+        id = (step == 0) ? (coef[12] + (coef[9] + coef[10]) * i) * 1.01f : 0.0f;
         largest = (id > largest) ? id : largest;
     }
     /* there a candidate's k+2 current is a held free response plus a held forced response */
     i = (i > 2.0f * (float)CTL_RANGE_PROJECTED) ? i : 2.0f * (float)CTL_RANGE_PROJECTED;
+    largest = (i > largest) ? i : largest;
     /* the fluxes of any of these currents: psi_f + L_d i, L_q i */
     id = coef[12] + coef[9] * i;
     iq = coef[10] * i;

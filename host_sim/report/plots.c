@@ -5,6 +5,9 @@
 
 #include "run/batch.h"
 
+#include <errno.h>
+#include <fcntl.h>
+#include <signal.h>
 #include <stdbool.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -65,7 +68,13 @@ int sim_plot_start(sim_plot_t which, const char *dir, const char *part, sim_plot
         return -1;
     }
     (void)snprintf(job->script, sizeof job->script, "%s/%s", SIM_PLOT_DIR, plot_scripts[which]);
-    if (pipe(fds) != 0 || pipe(gate) != 0) {
+    if (pipe(fds) != 0) {
+        fprintf(stderr, "sixphase-sim: %s not started (no pipe)\n", job->what);
+        return -1;
+    }
+    if (pipe(gate) != 0) {
+        (void)close(fds[0]);
+        (void)close(fds[1]);
         fprintf(stderr, "sixphase-sim: %s not started (no pipe)\n", job->what);
         return -1;
     }
@@ -92,6 +101,10 @@ int sim_plot_start(sim_plot_t which, const char *dir, const char *part, sim_plot
         fprintf(stderr, "sixphase-sim: %s not started (no fork)\n", job->what);
         return -1;
     }
+    /* the parent's ends stay out of the workers forked meanwhile: the script sees its gate
+     * open when this process opens it, whatever runs then */
+    (void)fcntl(fds[0], F_SETFD, FD_CLOEXEC);
+    (void)fcntl(gate[1], F_SETFD, FD_CLOEXEC);
     job->pid = (int)pid;
     job->fd = fds[0];
     job->gate_fd = gate[1];
@@ -110,6 +123,7 @@ int sim_plot_finish(sim_plot_job_t *job)
 {
     char output[16384];
     int status = 0;
+    pid_t got;
     bool waited;
     if (job->pid < 0) {
         return -1;
@@ -118,8 +132,10 @@ int sim_plot_finish(sim_plot_job_t *job)
     plot_collect(job->fd, output, sizeof output);
     (void)close(job->fd);
     /* a batch of runs may have reaped it while waiting for its workers (run/batch.h) */
-    waited = waitpid((pid_t)job->pid, &status, 0) == (pid_t)job->pid ||
-             sim_batch_reaped(job->pid, &status);
+    do {
+        got = waitpid((pid_t)job->pid, &status, 0);
+    } while (got < 0 && errno == EINTR);
+    waited = got == (pid_t)job->pid || sim_batch_reaped(job->pid, &status);
     job->pid = -1;
     if (!waited || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
         /* one line: the script's own last word, not its traceback */
@@ -129,6 +145,23 @@ int sim_plot_finish(sim_plot_job_t *job)
     }
     fputs(output, stderr); /* warnings of a script that worked */
     return 0;
+}
+
+void sim_plot_cancel(sim_plot_job_t *job)
+{
+    char output[256];
+    int status;
+    if (job->pid < 0) {
+        return;
+    }
+    (void)kill((pid_t)job->pid, SIGTERM);
+    sim_plot_open_gate(job);
+    plot_collect(job->fd, output, sizeof output);
+    (void)close(job->fd);
+    while (waitpid((pid_t)job->pid, &status, 0) < 0 && errno == EINTR) {
+    }
+    (void)sim_batch_reaped(job->pid, &status);
+    job->pid = -1;
 }
 
 int sim_plot(sim_plot_t which, const char *dir)

@@ -30,5 +30,8 @@ typedef struct {
 int sim_plot_start(sim_plot_t which, const char *dir, const char *part, sim_plot_job_t *job);
 void sim_plot_open_gate(sim_plot_job_t *job);
 int sim_plot_finish(sim_plot_job_t *job);
+/* Ends a started script before its gate (its remaining input will not come): stopped and
+ * collected, no message. */
+void sim_plot_cancel(sim_plot_job_t *job);
 
 #endif /* SIM_PLOTS_H */

@@ -118,7 +118,9 @@ int sim_reproduce(const char *out_dir, int jobs, bool plots, int quiet)
     failures += sim_batch_run(cases, n2, n, jobs, rep_case_done, &progress);
     wall = rep_now() - t0;
     rc = rep_write_all(out_dir, cases, n, wall, jobs);
-    if (drawing && sim_plot_finish(&plot) == 0 && rc == 0 && !quiet) {
+    if (drawing && rc != 0) {
+        sim_plot_cancel(&plot); /* no summary.json of this run to draw */
+    } else if (drawing && sim_plot_finish(&plot) == 0 && !quiet) {
         fprintf(stderr, "plots written to %s/plots\n", out_dir);
     }
     if (rc == 0 && !quiet) {

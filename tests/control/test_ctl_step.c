@@ -419,6 +419,32 @@ static void test_torque_mode_clamps_reference(void **state)
     assert_near((double)ctl_to_float(ctl_diag(&c)->torque_ref) * CTL_BASE_TORQUE_NM, -7.0, 1e-4);
 }
 
+/* The speed loop sees the speed as measured, also beyond the range analysis' omega_max (which
+ * only the prediction is held to): at the reference, no torque is asked for, in every step. */
+static void test_speed_loop_takes_the_measured_speed(void **state)
+{
+    int16_t controller;
+    (void)state;
+    for (controller = 0; controller < CTL_CONTROLLER_COUNT; controller++) {
+        ctl_params_t p;
+        ctl_t c;
+        ctl_meas_t m = {{0}, CTL_Q(1.0), CTL_Q(0.0), CTL_Q(6.0)};
+        ctl_cmd_t cmd;
+        int16_t open;
+        ctl_params_default(&p);
+        p.controller = (ctl_controller_t)controller;
+        for (open = CTL_POSTFAULT_NO_LEG; open <= 2; open = (int16_t)(open + 3)) {
+            p.open_phase = open;
+            assert_true(ctl_init(&c, &p));
+            assert_true(m.omega_e > ctl_config(&c)->model.omega_max);
+            ctl_set_loop_mode(&c, CTL_LOOP_SPEED);
+            ctl_set_speed_ref(&c, m.omega_e);
+            ctl_step(&c, &m, &cmd);
+            assert_int_equal(ctl_diag(&c)->torque_ref, CTL_Q(0.0));
+        }
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -433,6 +459,7 @@ int main(void)
         cmocka_unit_test(test_foc_step_leaves_no_virtual_vector_in_force),
         cmocka_unit_test(test_duty_levels_parameter),
         cmocka_unit_test(test_torque_mode_clamps_reference),
+        cmocka_unit_test(test_speed_loop_takes_the_measured_speed),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -195,12 +195,64 @@ static void test_edges_compute_inside_the_bound(void **state)
     }
 }
 
+/* A set with a long period and a small L_d (two edges at once): its k+1 and k+2 currents exceed
+ * the bound although every flux stays below it; refused as the model's. */
+static void test_joint_edge_refused(void **state)
+{
+    ctl_params_t p;
+    (void)state;
+    ctl_params_default(&p);
+    p.resistance_ohm = 0.5f;
+    p.ld_h = 0.002f;
+    p.lq_h = 0.006f;
+    p.l_xy_h = 0.01f;
+    p.sample_time_s = 1e-3f;
+    assert_int_equal(ctl_params_check(&p), CTL_PARAM_MODEL);
+}
+
+/* Random machines drawn across the parameter ranges (log-uniform), every one the core admits run
+ * at the domain's corners: the joint extremes the one-at-a-time edges above miss. */
+static void test_random_admitted_machines(void **state)
+{
+    test_rng_t rng;
+    int16_t k;
+    int16_t admitted = 0;
+    (void)state;
+    rng.state = 28u;
+    for (k = 0; k < 1000; k++) {
+        ctl_params_t p;
+        ctl_params_default(&p);
+        p.resistance_ohm = (float)exp(test_rng_range(&rng, log(0.01), log(20.0)));
+        p.ld_h = (float)exp(test_rng_range(&rng, log(5e-4), log(0.5)));
+        p.lq_h = (float)exp(test_rng_range(&rng, log(5e-4), log(0.5)));
+        p.l_xy_h = (float)exp(test_rng_range(&rng, log(5e-4), log(0.5)));
+        p.pm_flux_wb = (float)exp(test_rng_range(&rng, log(0.01), log(2.0)));
+        p.sample_time_s = (float)exp(test_rng_range(&rng, log(5e-5), log(2e-3)));
+        p.pole_pairs = (int16_t)(1 + (int16_t)(test_rng_u32(&rng) % 12u));
+        if (ctl_params_check(&p) != CTL_PARAM_OK) {
+            continue;
+        }
+        admitted++;
+        for (p.open_phase = CTL_POSTFAULT_NO_LEG; p.open_phase <= 2;
+             p.open_phase = (int16_t)(p.open_phase + 3)) {
+            ctl_range_violations = 0u;
+            p.controller = (k % 2 == 0) ? CTL_CONTROLLER_DDC : CTL_CONTROLLER_MPTC49;
+            run_corners(&p, (uint32_t)(5000 + k));
+            assert_int_equal(ctl_range_violations, 0);
+        }
+    }
+    printf("%d of 1000 random machines admitted, each run at the corners\n", admitted);
+    assert_true(admitted >= 50);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_the_check_counts),
         cmocka_unit_test(test_voltage_tables_inside_the_vector_bound),
         cmocka_unit_test(test_edges_compute_inside_the_bound),
+        cmocka_unit_test(test_joint_edge_refused),
+        cmocka_unit_test(test_random_admitted_machines),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -71,6 +71,9 @@ static void drive_latch_fault(drive_t *d, drive_fault_t fault)
 /* A fault found outside the protection's periodic check: logged there too. */
 static void drive_enter_fault(drive_t *d, drive_fault_t fault)
 {
+    /* the record's torque from the model in force now: the input's pointer is the last period's,
+     * and a buffer switched since may be the background's to rewrite */
+    d->protect_in.model = d->ctl.initialised ? &ctl_config(&d->ctl)->model : 0;
     ctl_protect_raise(&d->protect, drive_fault_to_mask(fault), &d->protect_in);
     drive_latch_fault(d, fault);
 }
