@@ -102,6 +102,25 @@ static inline ctl_q ctl_flux_magnitude(ctl_q psi_d, ctl_q psi_q)
     return ctl_sqrt(ctl_mul_add(psi_d, psi_d, psi_q, psi_q));
 }
 
+/* Te and |psi_s| of rotor-frame currents of any size (a record's, a reference): held to the range
+ * analysis' current first (ctl_range.h; the bounded forms of the fluxes take no more, and an
+ * estimate beyond 40 A is above every threshold that reads one). */
+static inline ctl_q ctl_current_held(ctl_q i)
+{
+    return ctl_clamp(i, -CTL_Q(CTL_RANGE_CURRENT), CTL_Q(CTL_RANGE_CURRENT));
+}
+static inline ctl_q ctl_torque_held(const ctl_model_t *m, ctl_q id, ctl_q iq)
+{
+    ctl_q psi_d;
+    ctl_q psi_q;
+    return ctl_torque_psi(m, ctl_current_held(id), ctl_current_held(iq), &psi_d, &psi_q);
+}
+static inline ctl_q ctl_flux_held(const ctl_model_t *m, ctl_q id, ctl_q iq)
+{
+    return ctl_flux_magnitude(ctl_flux_d(m, ctl_current_held(id)),
+                              ctl_flux_q(m, ctl_current_held(iq)));
+}
+
 /* Te and |psi_s| from rotor-frame currents; both from the same psi_d, psi_q. */
 static inline void ctl_torque_flux(const ctl_model_t *m, ctl_q id, ctl_q iq, ctl_q *torque,
                                    ctl_q *flux)

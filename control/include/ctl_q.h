@@ -231,12 +231,19 @@ static inline ctl_q ctl_sub(ctl_q a, ctl_q b)
 #endif
 }
 
+/* A Q48 value rounded half up to Q24, kept in 64 bits: the one rounding of every product and
+ * sum of products below, which then saturate, bound-check or hold it. */
+static inline int64_t ctl_q48_round(int64_t p)
+{
+    return (p + ((int64_t)1 << (CTL_Q_FRAC_BITS - 1))) >> CTL_Q_FRAC_BITS;
+}
+
 static inline ctl_q ctl_mul(ctl_q a, ctl_q b)
 {
     /* Q24 * Q24 = Q48; round half up, then back to Q24. */
     int64_t p = (int64_t)a * (int64_t)b;
     CTL_COUNT_OP(CTL_OP_MUL);
-    return ctl_sat64((p + ((int64_t)1 << (CTL_Q_FRAC_BITS - 1))) >> CTL_Q_FRAC_BITS);
+    return ctl_sat64(ctl_q48_round(p));
 }
 
 static inline ctl_q ctl_mul_int(ctl_q a, int16_t n)
@@ -246,10 +253,7 @@ static inline ctl_q ctl_mul_int(ctl_q a, int16_t n)
 }
 
 /* Q48 to Q24, rounded half up, saturated. */
-static inline ctl_q ctl_q48_to_q24(int64_t p)
-{
-    return ctl_sat64((p + ((int64_t)1 << (CTL_Q_FRAC_BITS - 1))) >> CTL_Q_FRAC_BITS);
-}
+static inline ctl_q ctl_q48_to_q24(int64_t p) { return ctl_sat64(ctl_q48_round(p)); }
 
 /* a*b + c*d and a*b - c*d with one rounding and one saturation (the exact sum of the Q48
  * products, rounded once). A Q48 product lies in (-2^62, 2^62], the top only for
@@ -303,8 +307,7 @@ static inline ctl_q ctl_mul_sub_int(ctl_q a, ctl_q b, ctl_q c, ctl_q d, int16_t 
     CTL_COUNT_OP(CTL_OP_MUL);
     CTL_COUNT_OP(CTL_OP_ADD);
     CTL_COUNT_OP(CTL_OP_MUL);
-    return ctl_sat64(((diff + ((int64_t)1 << (CTL_Q_FRAC_BITS - 1))) >> CTL_Q_FRAC_BITS) *
-                     (int64_t)n);
+    return ctl_sat64(ctl_q48_round(diff) * (int64_t)n);
 }
 
 /*
@@ -331,10 +334,7 @@ static inline ctl_q ctl_bnd_of(int64_t v)
 #else
 static inline ctl_q ctl_bnd_of(int64_t v) { return (ctl_q)v; }
 #endif
-static inline ctl_q ctl_q48_to_q24_bnd(int64_t p)
-{
-    return ctl_bnd_of((p + ((int64_t)1 << (CTL_Q_FRAC_BITS - 1))) >> CTL_Q_FRAC_BITS);
-}
+static inline ctl_q ctl_q48_to_q24_bnd(int64_t p) { return ctl_bnd_of(ctl_q48_round(p)); }
 static inline ctl_q ctl_mul_bnd(ctl_q a, ctl_q b)
 {
     CTL_COUNT_OP(CTL_OP_MUL);
@@ -399,20 +399,15 @@ static inline ctl_q ctl_mul_dec_held(ctl_q acc, ctl_q a, ctl_q b, ctl_q lim)
 {
     CTL_COUNT_OP(CTL_OP_MUL);
     CTL_COUNT_OP(CTL_OP_ADD);
-    return ctl_held(((int64_t)acc * (int64_t)CTL_Q_ONE - (int64_t)a * (int64_t)b +
-                     ((int64_t)1 << (CTL_Q_FRAC_BITS - 1))) >>
-                        CTL_Q_FRAC_BITS,
+    return ctl_held(ctl_q48_round((int64_t)acc * (int64_t)CTL_Q_ONE - (int64_t)a * (int64_t)b),
                     lim);
 }
 /* (a*b + c*d) + (e*f + g*h), each pair rounded as ctl_mul_add rounds it, the sum held. */
 static inline ctl_q ctl_dot4_held(ctl_q a, ctl_q b, ctl_q c, ctl_q d, ctl_q e, ctl_q f, ctl_q g,
                                   ctl_q h, ctl_q lim)
 {
-    const int64_t half = (int64_t)1 << (CTL_Q_FRAC_BITS - 1);
-    const int64_t ab =
-        ((int64_t)a * (int64_t)b + (int64_t)c * (int64_t)d + half) >> CTL_Q_FRAC_BITS;
-    const int64_t ef =
-        ((int64_t)e * (int64_t)f + (int64_t)g * (int64_t)h + half) >> CTL_Q_FRAC_BITS;
+    const int64_t ab = ctl_q48_round((int64_t)a * (int64_t)b + (int64_t)c * (int64_t)d);
+    const int64_t ef = ctl_q48_round((int64_t)e * (int64_t)f + (int64_t)g * (int64_t)h);
     CTL_COUNT_OP(CTL_OP_MUL);
     CTL_COUNT_OP(CTL_OP_MUL);
     CTL_COUNT_OP(CTL_OP_MUL);

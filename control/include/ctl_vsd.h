@@ -39,11 +39,6 @@ static inline void ctl_vsd_forward_in_range(const ctl_q phase[6], ctl_vsd_t *out
     ctl_vsd_forward(phase, out);
 }
 #else
-/* A Q48 value rounded to Q24 as ctl_q48_to_q24 rounds, not saturated. */
-static inline int64_t ctl_vsd_q24(int64_t q48)
-{
-    return (q48 + ((int64_t)1 << (CTL_Q_FRAC_BITS - 1))) >> CTL_Q_FRAC_BITS;
-}
 /* A VSD current held to the range analysis' domain. */
 static inline ctl_q ctl_vsd_in_range(int64_t v)
 {
@@ -54,12 +49,12 @@ static inline ctl_q ctl_vsd_in_range(int64_t v)
  * and every sum inside int64. */
 static inline void ctl_vsd_forward_in_range(const ctl_q phase[6], ctl_vsd_t *out)
 {
-    const int64_t a = ctl_vsd_q24((int64_t)phase[0] * CTL_K_ONE_THIRD -
-                                  ((int64_t)phase[1] + phase[2]) * CTL_K_ONE_SIXTH);
-    const int64_t p = ctl_vsd_q24(((int64_t)phase[3] - phase[4]) * CTL_K_SQRT3_OVER_6);
-    const int64_t b = ctl_vsd_q24(((int64_t)phase[3] + phase[4]) * CTL_K_ONE_SIXTH -
-                                  (int64_t)phase[5] * CTL_K_ONE_THIRD);
-    const int64_t q = ctl_vsd_q24(((int64_t)phase[1] - phase[2]) * CTL_K_SQRT3_OVER_6);
+    const int64_t a = ctl_q48_round((int64_t)phase[0] * CTL_K_ONE_THIRD -
+                                    ((int64_t)phase[1] + phase[2]) * CTL_K_ONE_SIXTH);
+    const int64_t p = ctl_q48_round(((int64_t)phase[3] - phase[4]) * CTL_K_SQRT3_OVER_6);
+    const int64_t b = ctl_q48_round(((int64_t)phase[3] + phase[4]) * CTL_K_ONE_SIXTH -
+                                    (int64_t)phase[5] * CTL_K_ONE_THIRD);
+    const int64_t q = ctl_q48_round(((int64_t)phase[1] - phase[2]) * CTL_K_SQRT3_OVER_6);
 #if defined(CTL_COUNT_OPS)
     ctl_op_counts[CTL_OP_MUL] += 6u; /* as ctl_vsd_forward: six multiplies, ten adds */
     ctl_op_counts[CTL_OP_ADD] += 10u;

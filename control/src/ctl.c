@@ -128,15 +128,9 @@ void ctl_set_loop_mode(ctl_t *c, ctl_loop_mode_t mode) { c->loop_mode = mode; }
 void ctl_set_speed_ref(ctl_t *c, ctl_q omega_e_pu) { c->speed_ref = omega_e_pu; }
 void ctl_set_torque_ref(ctl_t *c, ctl_q torque_pu) { c->torque_ref_direct = torque_pu; }
 const ctl_diag_t *ctl_diag(const ctl_t *c) { return &c->diag; }
-/* The currents held to the range analysis' domain (ctl_range.h): a record or a caller may hold
- * anything, and the bounded forms of the flux take no more. */
 SIXPHASE_RAMFUNC ctl_q ctl_torque_estimate(const ctl_t *c, ctl_q i_d, ctl_q i_q)
 {
-    const ctl_q lim = CTL_Q(CTL_RANGE_CURRENT);
-    ctl_q psi_d;
-    ctl_q psi_q;
-    return ctl_torque_psi(&ctl_config(c)->model, ctl_clamp(i_d, -lim, lim),
-                          ctl_clamp(i_q, -lim, lim), &psi_d, &psi_q);
+    return ctl_torque_held(&ctl_config(c)->model, i_d, i_q);
 }
 SIXPHASE_RAMFUNC ctl_q ctl_diag_torque_est(const ctl_t *c)
 {
@@ -144,10 +138,7 @@ SIXPHASE_RAMFUNC ctl_q ctl_diag_torque_est(const ctl_t *c)
 }
 SIXPHASE_RAMFUNC ctl_q ctl_diag_flux_est(const ctl_t *c)
 {
-    const ctl_model_t *m = &ctl_config(c)->model;
-    const ctl_q lim = CTL_Q(CTL_RANGE_CURRENT);
-    return ctl_flux_magnitude(ctl_flux_d(m, ctl_clamp(c->diag.i_d, -lim, lim)),
-                              ctl_flux_q(m, ctl_clamp(c->diag.i_q, -lim, lim)));
+    return ctl_flux_held(&ctl_config(c)->model, c->diag.i_d, c->diag.i_q);
 }
 void ctl_set_stage_hook(ctl_t *c, ctl_stage_hook_t hook) { c->stage_hook = hook; }
 

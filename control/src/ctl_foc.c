@@ -146,19 +146,14 @@ static void foc_diag(ctl_t *c, const ctl_config_t *cfg, const ctl_vsd_t *i, ctl_
                      ctl_q torque_ref, ctl_q flux_ref, const foc_work_t *fw)
 {
     ctl_diag_t *dg = &c->diag;
-    ctl_q pd;
-    ctl_q pq;
     dg->i_d = id;
     dg->i_q = iq;
     dg->i_x = i->x;
     dg->i_y = i->y;
     dg->torque_ref = torque_ref;
     dg->flux_ref = flux_ref;
-    /* the references' torque, of references held to the range analysis' current (its fluxes
-     * are the bounded forms'; a reference beyond 40 A is one no PI reaches) */
-    dg->torque_pred = ctl_torque_psi(
-        &cfg->model, ctl_clamp(fw->id_ref, -CTL_Q(CTL_RANGE_CURRENT), CTL_Q(CTL_RANGE_CURRENT)),
-        ctl_clamp(fw->iq_ref, -CTL_Q(CTL_RANGE_CURRENT), CTL_Q(CTL_RANGE_CURRENT)), &pd, &pq);
+    /* the references' torque (held: a reference beyond 40 A is one no PI reaches) */
+    dg->torque_pred = ctl_torque_held(&cfg->model, fw->id_ref, fw->iq_ref);
     dg->flux_pred = flux_ref;
     dg->cost = CTL_Q(0.0);
     dg->flux_sector = -1;

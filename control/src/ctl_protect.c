@@ -195,19 +195,10 @@ SIXPHASE_RAMFUNC static ctl_q turn_difference(ctl_q a, ctl_q b)
     return ctl_sub(ctl_wrap_turn(ctl_add(ctl_sub(a, b), CTL_Q(0.5))), CTL_Q(0.5));
 }
 
-/* Te from the input's measured currents with its model, held to the range analysis' domain
- * (ctl_range.h: an estimate beyond 40 A is above any threshold, and the bounded forms take no
- * more); 0 without a model. */
+/* Te from the input's measured currents with its model; 0 without a model. */
 SIXPHASE_RAMFUNC static ctl_q protect_torque(const ctl_protect_input_t *in)
 {
-    const ctl_q lim = CTL_Q(CTL_RANGE_CURRENT);
-    ctl_q psi_d;
-    ctl_q psi_q;
-    if (in->model == 0) {
-        return CTL_Q(0.0);
-    }
-    return ctl_torque_psi(in->model, ctl_clamp(in->i_d, -lim, lim), ctl_clamp(in->i_q, -lim, lim),
-                          &psi_d, &psi_q);
+    return (in->model == 0) ? CTL_Q(0.0) : ctl_torque_held(in->model, in->i_d, in->i_q);
 }
 
 /* No count this period: while torque acts, the motion a free rotor would have made since the

@@ -119,25 +119,32 @@ void sim_plot_open_gate(sim_plot_job_t *job)
     }
 }
 
-int sim_plot_finish(sim_plot_job_t *job)
+/* The script's end: its gate opened, its stderr read to the end, its exit collected (here, or
+ * by a batch of runs that reaped it while waiting for its workers, run/batch.h). True when it
+ * exited with 0. */
+static bool plot_end(sim_plot_job_t *job, char *output, size_t size)
 {
-    char output[16384];
     int status = 0;
     pid_t got;
     bool waited;
-    if (job->pid < 0) {
-        return -1;
-    }
     sim_plot_open_gate(job);
-    plot_collect(job->fd, output, sizeof output);
+    plot_collect(job->fd, output, size);
     (void)close(job->fd);
-    /* a batch of runs may have reaped it while waiting for its workers (run/batch.h) */
     do {
         got = waitpid((pid_t)job->pid, &status, 0);
     } while (got < 0 && errno == EINTR);
     waited = got == (pid_t)job->pid || sim_batch_reaped(job->pid, &status);
     job->pid = -1;
-    if (!waited || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+    return waited && WIFEXITED(status) && WEXITSTATUS(status) == 0;
+}
+
+int sim_plot_finish(sim_plot_job_t *job)
+{
+    char output[16384];
+    if (job->pid < 0) {
+        return -1;
+    }
+    if (!plot_end(job, output, sizeof output)) {
         /* one line: the script's own last word, not its traceback */
         fprintf(stderr, "sixphase-sim: %s failed: %s\n", job->what,
                 output[0] ? plot_last_line(output) : "no message");
@@ -150,18 +157,11 @@ int sim_plot_finish(sim_plot_job_t *job)
 void sim_plot_cancel(sim_plot_job_t *job)
 {
     char output[256];
-    int status;
     if (job->pid < 0) {
         return;
     }
     (void)kill((pid_t)job->pid, SIGTERM);
-    sim_plot_open_gate(job);
-    plot_collect(job->fd, output, sizeof output);
-    (void)close(job->fd);
-    while (waitpid((pid_t)job->pid, &status, 0) < 0 && errno == EINTR) {
-    }
-    (void)sim_batch_reaped(job->pid, &status);
-    job->pid = -1;
+    (void)plot_end(job, output, sizeof output);
 }
 
 int sim_plot(sim_plot_t which, const char *dir)

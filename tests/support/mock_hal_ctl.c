@@ -228,11 +228,7 @@ const ctl_diag_t *ctl_diag(const ctl_t *c)
  * core's formulas (ctl_predict.h), pure functions of the configuration. */
 ctl_q ctl_torque_estimate(const ctl_t *c, ctl_q i_d, ctl_q i_q)
 {
-    const ctl_q lim = CTL_Q(CTL_RANGE_CURRENT); /* held as the real one holds them */
-    ctl_q psi_d;
-    ctl_q psi_q;
-    return ctl_torque_psi(&ctl_config(c)->model, ctl_clamp(i_d, -lim, lim),
-                          ctl_clamp(i_q, -lim, lim), &psi_d, &psi_q);
+    return ctl_torque_held(&ctl_config(c)->model, i_d, i_q);
 }
 ctl_q ctl_diag_torque_est(const ctl_t *c)
 {
@@ -240,8 +236,5 @@ ctl_q ctl_diag_torque_est(const ctl_t *c)
 }
 ctl_q ctl_diag_flux_est(const ctl_t *c)
 {
-    const ctl_model_t *m = &ctl_config(c)->model;
-    const ctl_q lim = CTL_Q(CTL_RANGE_CURRENT);
-    return ctl_flux_magnitude(ctl_flux_d(m, ctl_clamp(mock_diag.i_d, -lim, lim)),
-                              ctl_flux_q(m, ctl_clamp(mock_diag.i_q, -lim, lim)));
+    return ctl_flux_held(&ctl_config(c)->model, mock_diag.i_d, mock_diag.i_q);
 }
