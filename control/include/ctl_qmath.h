@@ -10,6 +10,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 
+#include "ctl_constants.h"
 #include "ctl_q.h"
 
 /* True for a normal finite float (or exactly zero) within [lo, hi]: NaN, infinities and
@@ -36,7 +37,33 @@ int16_t ctl_turn_sector(ctl_q angle_turn, int16_t n);
 
 /* Index k in 0..23 of the 15-degree sector [15k, 15k + 15) deg that holds the vector (x, y),
  * by comparisons against tan(15 deg) multiples (no atan, no division). (0, 0) gives 0. */
-int16_t ctl_sector24(ctl_q y, ctl_q x);
+static inline int16_t ctl_sector24(ctl_q y, ctl_q x)
+{
+    /* First-quadrant angle phi of (|x|, |y|): phi >= 15j deg <=> |y| >= |x| tan(15j deg). */
+    const ctl_q ax = ctl_abs(x);
+    const ctl_q ay = ctl_abs(y);
+    int16_t s;
+    /* On the axes the reflections below would land on the wrong side of a boundary. Tested as
+     * "not above zero" (ax, ay are not negative): a float NaN takes the same defined way, and
+     * the compare needs no unordered test. */
+    if (!(ay > CTL_Q(0.0))) {
+        return (int16_t)((x < CTL_Q(0.0)) ? 12 : 0);
+    }
+    if (!(ax > CTL_Q(0.0))) {
+        return (int16_t)((y > CTL_Q(0.0)) ? 6 : 18);
+    }
+    if (ay >= ax) { /* tan 45 deg = 1: ax itself, as ctl_mul(ax, 1) gives it */
+        s = (ay >= ctl_mul(ax, CTL_K_TAN_60_DEG)) ? ((ay >= ctl_mul(ax, CTL_K_TAN_75_DEG)) ? 5 : 4)
+                                                  : 3;
+    } else {
+        s = (ay >= ctl_mul(ax, CTL_K_TAN_30_DEG)) ? 2
+                                                  : ((ay >= ctl_mul(ax, CTL_K_TAN_15_DEG)) ? 1 : 0);
+    }
+    if (x < CTL_Q(0.0)) {
+        return (int16_t)((y < CTL_Q(0.0)) ? 12 + s : 11 - s);
+    }
+    return (int16_t)((y < CTL_Q(0.0)) ? 23 - s : s);
+}
 
 /* Index s in 0..11 of the 30-degree sector [30s - 15, 30s + 15) deg that holds (x, y): a pair of
  * ctl_sector24's, the last half of sector 0 wrapping round (a shift and a test, no division). */

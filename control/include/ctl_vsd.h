@@ -26,45 +26,77 @@ void ctl_vsd_inverse(const ctl_vsd_t *v, ctl_q phase[6]);
 /* The phase currents of an alpha-beta current alone (x = y = 0): each phase's share of it. */
 void ctl_vsd_alpha_beta_phases(ctl_q alpha, ctl_q beta, ctl_q phase[6]);
 
-/* The VSD of a step's sampled phase currents, held to the domain of the range analysis
- * (ctl_range.h: each of alpha, beta, x, y within +-CTL_RANGE_CURRENT). A real sample lies inside
- * it (the board reads at most 2 per unit); one beyond it is an input the protection trips on,
- * and the step still computes nothing outside the proven bounds. Fixed point: the rows of
- * ctl_vsd_forward exactly in 64 bits, then the clamp (the same values as ctl_vsd_forward and a
- * clamp whenever no sum of the former saturates, without its saturation tests); float: the
- * VSD as it comes (single precision has no range to protect here). */
+/* The four rows of the forward VSD before their end (saturation or the domain's hold). The rows
+ * share terms: with a = i_A/3 - (i_B + i_C)/6, p = (i_D - i_E) sqrt3/6, b = (i_D + i_E)/6 - i_F/3
+ * and q = (i_B - i_C) sqrt3/6: alpha = a + p, x = a - p, beta = b + q, y = b - q. Six
+ * multiplies instead of 24. Fixed point: exactly in 64 bits, each of a, p, b, q rounded once
+ * (|phase| < 2^31 keeps every product below 2^56 and every sum inside int64); float: as it
+ * comes (single precision has no range to protect here). */
 #if CTL_MATH_FLOAT
-static inline void ctl_vsd_forward_in_range(const ctl_q phase[6], ctl_vsd_t *out)
-{
-    ctl_vsd_forward(phase, out);
-}
+typedef float ctl_vsd_wide_t;
 #else
-/* A VSD current held to the range analysis' domain. */
-static inline ctl_q ctl_vsd_in_range(int64_t v)
+typedef int64_t ctl_vsd_wide_t;
+#endif
+typedef struct {
+    ctl_vsd_wide_t alpha, beta, x, y;
+} ctl_vsd_rows_t;
+
+static inline void ctl_vsd_rows(const ctl_q phase[6], ctl_vsd_rows_t *r)
 {
-    const int64_t lim = (int64_t)CTL_RANGE_CURRENT * CTL_Q_ONE;
-    return (ctl_q)((v > lim) ? lim : ((v < -lim) ? -lim : v));
-}
-/* Inline: one call fewer in each step's period. |phase| < 2^31 keeps every product below 2^56
- * and every sum inside int64. */
-static inline void ctl_vsd_forward_in_range(const ctl_q phase[6], ctl_vsd_t *out)
-{
+#if CTL_MATH_FLOAT
+    const float a = phase[0] * CTL_K_ONE_THIRD - (phase[1] + phase[2]) * CTL_K_ONE_SIXTH;
+    const float p = (phase[3] - phase[4]) * CTL_K_SQRT3_OVER_6;
+    const float b = (phase[3] + phase[4]) * CTL_K_ONE_SIXTH - phase[5] * CTL_K_ONE_THIRD;
+    const float q = (phase[1] - phase[2]) * CTL_K_SQRT3_OVER_6;
+#else
     const int64_t a = ctl_q48_round((int64_t)phase[0] * CTL_K_ONE_THIRD -
                                     ((int64_t)phase[1] + phase[2]) * CTL_K_ONE_SIXTH);
     const int64_t p = ctl_q48_round(((int64_t)phase[3] - phase[4]) * CTL_K_SQRT3_OVER_6);
     const int64_t b = ctl_q48_round(((int64_t)phase[3] + phase[4]) * CTL_K_ONE_SIXTH -
                                     (int64_t)phase[5] * CTL_K_ONE_THIRD);
     const int64_t q = ctl_q48_round(((int64_t)phase[1] - phase[2]) * CTL_K_SQRT3_OVER_6);
+#endif
 #if defined(CTL_COUNT_OPS)
-    ctl_op_counts[CTL_OP_MUL] += 6u; /* as ctl_vsd_forward: six multiplies, ten adds */
+    ctl_op_counts[CTL_OP_MUL] += 6u;
     ctl_op_counts[CTL_OP_ADD] += 10u;
 #endif
-    out->alpha = ctl_vsd_in_range(a + p);
-    out->x = ctl_vsd_in_range(a - p);
-    out->beta = ctl_vsd_in_range(b + q);
-    out->y = ctl_vsd_in_range(b - q);
+    r->alpha = a + p;
+    r->x = a - p;
+    r->beta = b + q;
+    r->y = b - q;
 }
+
+/* A row ended: held to lim (the domain), or saturated to Q24's range (lim 0); float: as it is. */
+static inline ctl_q ctl_vsd_row_end(ctl_vsd_wide_t v, ctl_q lim)
+{
+#if CTL_MATH_FLOAT
+    (void)lim;
+    return v;
+#else
+    return (lim > 0) ? ctl_held(v, lim) : ctl_sat64(v);
 #endif
+}
+
+static inline void ctl_vsd_rows_end(const ctl_vsd_rows_t *r, ctl_q lim, ctl_vsd_t *out)
+{
+    out->alpha = ctl_vsd_row_end(r->alpha, lim);
+    out->x = ctl_vsd_row_end(r->x, lim);
+    out->beta = ctl_vsd_row_end(r->beta, lim);
+    out->y = ctl_vsd_row_end(r->y, lim);
+}
+
+/* The VSD of a step's sampled phase currents, held to the domain of the range analysis
+ * (ctl_range.h: each of alpha, beta, x, y within +-CTL_RANGE_CURRENT). A real sample lies inside
+ * it (the board reads at most 2 per unit); one beyond it is an input the protection trips on,
+ * and the step still computes nothing outside the proven bounds: the same values as
+ * ctl_vsd_forward and a clamp, without its saturation tests. Inline: one call fewer in each
+ * step's period. */
+static inline void ctl_vsd_forward_in_range(const ctl_q phase[6], ctl_vsd_t *out)
+{
+    ctl_vsd_rows_t r;
+    ctl_vsd_rows(phase, &r);
+    ctl_vsd_rows_end(&r, CTL_Q(CTL_RANGE_CURRENT), out);
+}
 
 /* The step's sampled speed (omega_max: the model's, ctl_predict.h) and DC link held to the
  * same domain; float: as they come. */

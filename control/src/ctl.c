@@ -257,7 +257,7 @@ SIXPHASE_RAMFUNC static void predict(const ctl_t *c, const ctl_config_t *cfg, co
     if (cfg->params.mid_period_angle) {
         mid_period_angles(m, smp, delta, &s_in_force, &c_in_force, h);
     }
-    if (c->applied_duty != CTL_Q(0.0)) { /* a zero vector in force applies no voltage */
+    if (c->applied_duty > CTL_Q(0.0)) { /* a zero vector in force (duty 0) applies no voltage */
         ctl_voltage_in_force(applied, c->applied_duty, smp->vdc, s_in_force, c_in_force, &u0, &ud0,
                              &uq0);
     }

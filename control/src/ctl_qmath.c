@@ -37,7 +37,7 @@ CTL_RAMFUNC_FLOAT float ctl_sqrtf(float x)
     v.f = x;
     v.u = 0x5F3759DFu - (v.u >> 1);
     y = v.f;
-    for (i = 0; i < 3; i++) {
+    for (i = 0; i < 2; i++) {
         y = y * (1.5f - 0.5f * x * y * y);
     }
     /* r = x y, then one Newton step on r itself (y ~ 1/r): removes the last-ulp error. */
@@ -71,26 +71,46 @@ SIXPHASE_RAMFUNC ctl_q ctl_wrap_turn(ctl_q angle_turn)
     return w;
 }
 
-/* Sine of an angle already wrapped into [0, 1). */
-SIXPHASE_RAMFUNC static ctl_q sin_of_wrapped(ctl_q w)
+/* Table segment and interpolation fraction of an angle already wrapped into [0, 1): pos is
+ * w * 1024 exactly (a power of two), so the fraction is exact. */
+SIXPHASE_RAMFUNC static int32_t sin_segment(ctl_q w, float *frac)
 {
     const float pos = w * (float)CTL_SIN_SEGMENTS;
     int32_t k = (int32_t)pos;
-    float frac;
-    CTL_COUNT_OP(CTL_OP_SIN);
     if (k >= CTL_SIN_SEGMENTS) {
         k = CTL_SIN_SEGMENTS - 1;
     }
-    frac = pos - (float)k;
+    *frac = pos - (float)k;
+    return k;
+}
+
+/* The table interpolated in segment k (0..CTL_SIN_SEGMENTS - 1). */
+SIXPHASE_RAMFUNC static ctl_q sin_interpolated(int32_t k, float frac)
+{
+    CTL_COUNT_OP(CTL_OP_SIN);
     return ctl_sin_table[k] + frac * (ctl_sin_table[k + 1] - ctl_sin_table[k]);
 }
 
-/* The wrapped angle plus a quarter turn, wrapped again (as ctl_wrap_turn would: w + 0.25 is
- * below 1.25, and subtracting 1 from it is exact). */
-SIXPHASE_RAMFUNC static ctl_q quarter_turn_on(ctl_q w)
+/* A quarter turn on in segments, wrapped: the cosine's segment with the sine's exact fraction
+ * (adding 0.25 to the angle itself would round away its low bits below a quarter turn). */
+SIXPHASE_RAMFUNC static int32_t quarter_turn_on(int32_t k)
 {
-    const float w2 = w + 0.25f;
-    return (w2 >= 1.0f) ? w2 - 1.0f : w2;
+    return (k + CTL_SIN_SEGMENTS / 4) & (CTL_SIN_SEGMENTS - 1);
+}
+
+SIXPHASE_RAMFUNC static ctl_q sin_of_wrapped(ctl_q w)
+{
+    float frac;
+    const int32_t k = sin_segment(w, &frac);
+    return sin_interpolated(k, frac);
+}
+
+SIXPHASE_RAMFUNC static void sincos_of_wrapped(ctl_q w, ctl_q *s, ctl_q *c)
+{
+    float frac;
+    const int32_t k = sin_segment(w, &frac);
+    *s = sin_interpolated(k, frac);
+    *c = sin_interpolated(quarter_turn_on(k), frac);
 }
 
 int16_t ctl_turn_sector(ctl_q angle_turn, int16_t n)
@@ -205,6 +225,12 @@ SIXPHASE_RAMFUNC static ctl_q sin_of_wrapped(ctl_q angle_wrapped)
 /* The wrapped angle plus a quarter turn, wrapped again. */
 SIXPHASE_RAMFUNC static ctl_q quarter_turn_on(ctl_q w) { return ctl_wrap_turn(w + CTL_Q(0.25)); }
 
+SIXPHASE_RAMFUNC static void sincos_of_wrapped(ctl_q w, ctl_q *s, ctl_q *c)
+{
+    *s = sin_of_wrapped(w);
+    *c = sin_of_wrapped(quarter_turn_on(w));
+}
+
 int16_t ctl_turn_sector(ctl_q angle_turn, int16_t n)
 {
     const int64_t w = (int64_t)ctl_wrap_turn(angle_turn);
@@ -217,41 +243,16 @@ ctl_q ctl_sin_pu(ctl_q angle_turn) { return sin_of_wrapped(ctl_wrap_turn(angle_t
 
 ctl_q ctl_cos_pu(ctl_q angle_turn)
 {
-    return sin_of_wrapped(quarter_turn_on(ctl_wrap_turn(angle_turn)));
+    ctl_q s;
+    ctl_q c;
+    sincos_of_wrapped(ctl_wrap_turn(angle_turn), &s, &c);
+    return c;
 }
 
 /* One wrap for both: the same results as ctl_sin_pu and ctl_cos_pu. */
 SIXPHASE_RAMFUNC void ctl_sincos_pu(ctl_q angle_turn, ctl_q *s, ctl_q *c)
 {
-    const ctl_q w = ctl_wrap_turn(angle_turn);
-    *s = sin_of_wrapped(w);
-    *c = sin_of_wrapped(quarter_turn_on(w));
-}
-
-SIXPHASE_RAMFUNC int16_t ctl_sector24(ctl_q y, ctl_q x)
-{
-    /* First-quadrant angle phi of (|x|, |y|): phi >= 15j deg <=> |y| >= |x| tan(15j deg). */
-    static const ctl_q tan15[5] = {CTL_K_TAN_15_DEG, CTL_K_TAN_30_DEG, CTL_Q(1.0), CTL_K_TAN_60_DEG,
-                                   CTL_K_TAN_75_DEG};
-    const ctl_q ax = ctl_abs(x);
-    const ctl_q ay = ctl_abs(y);
-    int16_t s;
-    /* On the axes the reflections below would land on the wrong side of a boundary. */
-    if (ay == CTL_Q(0.0)) {
-        return (int16_t)((x < CTL_Q(0.0)) ? 12 : 0);
-    }
-    if (ax == CTL_Q(0.0)) {
-        return (int16_t)((y > CTL_Q(0.0)) ? 6 : 18);
-    }
-    if (ay >= ax) { /* tan 45 deg = 1: ax itself, as ctl_mul(ax, 1) gives it */
-        s = (ay >= ctl_mul(ax, tan15[3])) ? ((ay >= ctl_mul(ax, tan15[4])) ? 5 : 4) : 3;
-    } else {
-        s = (ay >= ctl_mul(ax, tan15[1])) ? 2 : ((ay >= ctl_mul(ax, tan15[0])) ? 1 : 0);
-    }
-    if (x < CTL_Q(0.0)) {
-        return (int16_t)((y < CTL_Q(0.0)) ? 12 + s : 11 - s);
-    }
-    return (int16_t)((y < CTL_Q(0.0)) ? 23 - s : s);
+    sincos_of_wrapped(ctl_wrap_turn(angle_turn), s, c);
 }
 
 /* atan(t) in turns for t in [0, 1] by table interpolation. */
