@@ -71,6 +71,48 @@ class CostModelTest(unittest.TestCase):
         self.assertEqual(per["mul64"][1:], [7 * 4, 7 * 10])
         self.assertEqual(cm.totals(per)[0], 31)
 
+    def _narrow(self, listing):
+        """narrow_product of the last instruction of a listing [(mnemonic, operands)]."""
+        dis = {0x100 + 4 * i: (m, o, "f") for i, (m, o) in enumerate(listing)}
+        last = max(dis)
+        return cm.narrow_product(last, dis, cm.Blocks(dis))
+
+    def test_a_product_of_32_bit_values_is_priced_as_one(self):
+        # sign extension, a 32-bit write, a 32-bit immediate, a copy and a frame slot
+        self.assertTrue(self._narrow([("movslq", "0x4(%rdi),%rax"), ("movl", "(%rsi),%edx"),
+                                      ("imulq", "%rdx,%rax")]))
+        self.assertTrue(self._narrow([("movslq", "(%rdi),%rcx"), ("movq", "%rcx,%rax"),
+                                      ("imulq", "$0x2aaaab,%rax,%rax")]))
+        self.assertTrue(self._narrow([("movslq", "(%rdi),%rcx"), ("movq", "%rcx,0x8(%rsp)"),
+                                      ("movl", "(%rsi),%edx"), ("imulq", "0x8(%rsp),%rdx")]))
+        self.assertTrue(self._narrow([("movslq", "(%rdi),%rcx"), ("imulq", "%rcx,%rcx"),
+                                      ("sarq", "$0x20,%rcx"), ("movslq", "(%rsi),%rax"),
+                                      ("imulq", "%rcx,%rax")]))
+        dis = {0x100: ("movslq", "(%rdi),%rax", "f"), 0x104: ("imulq", "%rax,%rax", "f")}
+        per = cm.price({0x104: 2}, {}, dis)
+        self.assertEqual(per["mul32x32"][1:], [2 * 4, 2 * 5])
+        self.assertEqual(per["mul64"][0], 0)
+
+    def test_a_product_not_shown_32_bit_keeps_the_wide_price(self):
+        # a 64-bit sum, a right shift by less than 32, a 64-bit load, a caller-saved register
+        # across a call, a path where the operand is wide
+        self.assertFalse(self._narrow([("movslq", "(%rdi),%rax"), ("addq", "%rsi,%rax"),
+                                       ("movslq", "(%rsi),%rdx"), ("imulq", "%rdx,%rax")]))
+        self.assertFalse(self._narrow([("movslq", "(%rdi),%rax"), ("sarq", "$0x18,%rax"),
+                                       ("movslq", "(%rsi),%rdx"), ("imulq", "%rdx,%rax")]))
+        self.assertFalse(self._narrow([("movq", "(%rdi),%rax"), ("movslq", "(%rsi),%rdx"),
+                                       ("imulq", "%rdx,%rax")]))
+        self.assertFalse(self._narrow([("movslq", "(%rdi),%rax"), ("movslq", "(%rsi),%rbx"),
+                                       ("callq", "200 <g>"), ("imulq", "%rbx,%rax")]))
+        self.assertFalse(self._narrow([("movslq", "(%rdi),%rax"), ("je", "10c <f+0xc>"),
+                                       ("movq", "(%rsi),%rax"), ("movslq", "(%rsi),%rdx"),
+                                       ("imulq", "%rdx,%rax")]))
+        self.assertFalse(self._narrow([("movslq", "(%rdi),%rax"), ("imulq", "(%rsi),%rax")]))
+
+    def test_a_callee_saved_register_stays_narrow_across_a_call(self):
+        self.assertTrue(self._narrow([("movslq", "(%rdi),%rbx"), ("callq", "200 <g>"),
+                                      ("movslq", "(%rsi),%rax"), ("imulq", "%rbx,%rax")]))
+
     def test_unknown_instruction_fails(self):
         with self.assertRaises(ValueError):
             cm.price({0x1000: 1}, {}, {0x1000: ("vfmadd231ss", "%xmm1,%xmm2,%xmm0", "f")})

@@ -61,9 +61,14 @@ PRICES = collections.OrderedDict([
                  "+1 to move the result out of ACC:P")),
     ("mul32", ("integer multiply, 32 x 32 -> 32", 2, 3, "SPRU430",
                "MOVL XT,loc32 + IMPYL ACC,XT,loc32 (2)")),
-    ("mul64", ("integer multiply, 64-bit result (Q24 products)", 4, 10, "SPRU430",
-               "32 x 32 -> 64: MOVL XT + IMPYL P,XT + QMPYL ACC,XT = 4..5; a 64 x 32 product "
-               "(IMPYXUL, QMPYL, partial sums) up to 10")),
+    ("mul32x32", ("integer multiply, 64-bit result of two 32-bit operands (Q24 products)", 4, 5,
+                  "SPRU430",
+                  "MOVL XT + IMPYL P,XT + QMPYL ACC,XT = 4..5 (IMPYXUL/QMPYXUL where an operand "
+                  "is unsigned); both operands shown 32-bit in the block (sign- or zero-extended "
+                  "or a 32-bit immediate)")),
+    ("mul64", ("integer multiply, 64-bit result, an operand not shown 32-bit", 4, 10, "SPRU430",
+               "a 32 x 32 product 4..5 as above; a 64 x 32 product (IMPYXUL, QMPYL, partial "
+               "sums) up to 10")),
     ("mulwide", ("multiply to 128 bits (mul/imul with one operand)", 8, 30, "SPRU430",
                  "64 x 64 partial products (IMPYXUL/QMPYL/IMPYL with carries) or the run-time "
                  "library's LL$$MPY")),
@@ -274,6 +279,183 @@ def disassemble(binary):
     return dis
 
 
+# Register families: every name of one x86-64 register (a write to the 32-bit name clears the
+# upper half, so its value is a 32-bit one).
+_FAMILIES = [("rax", "eax", "ax", "al"), ("rbx", "ebx", "bx", "bl"), ("rcx", "ecx", "cx", "cl"),
+             ("rdx", "edx", "dx", "dl"), ("rsi", "esi", "si", "sil"), ("rdi", "edi", "di", "dil"),
+             ("rbp", "ebp", "bp", "bpl"), ("rsp", "esp", "sp", "spl")] + \
+    [("r%d" % n, "r%dd" % n, "r%dw" % n, "r%db" % n) for n in range(8, 16)]
+_FAMILY = {name: fam[0] for fam in _FAMILIES for name in fam}
+_REG32 = {fam[1] for fam in _FAMILIES}
+_IMPLICIT = {"cltq": ("rax",), "cqto": ("rdx",), "cltd": ("rdx",)}
+_SIGN_EXTEND_64 = ("movslq", "movswq", "movsbq", "cltq")
+
+
+def _operands(ops):
+    """AT&T operands split at the commas outside parentheses."""
+    out, depth, cur = [], 0, ""
+    for ch in ops:
+        depth += (ch == "(") - (ch == ")")
+        if ch == "," and depth == 0:
+            out.append(cur.strip())
+            cur = ""
+        else:
+            cur += ch
+    if cur.strip():
+        out.append(cur.strip())
+    return out
+
+
+def _written_family(mnem, ops):
+    """The register family an instruction writes (its last operand, or an implicit one)."""
+    if mnem in _IMPLICIT:
+        return _IMPLICIT[mnem][0]
+    if mnem.startswith(("cmp", "test", "push", "j", "bt", "ucomis", "comis")):
+        return None
+    last = _operands(ops)[-1:] or [""]
+    return _FAMILY.get(last[0].lstrip("%")) if last[0].startswith("%") else None
+
+
+def _immediate(operand):
+    """The value of an AT&T immediate ($0x..), objdump's 64-bit spelling of negatives undone."""
+    v = int(operand[1:], 0)
+    return v - 2 ** 64 if v >= 2 ** 63 else v
+
+
+def _narrow_writer(mnem, ops):
+    """True when the value this writer leaves in its destination is a 32-bit one."""
+    if mnem in _SIGN_EXTEND_64:
+        return True
+    operands = _operands(ops)
+    dest = operands[-1] if operands else ""
+    if dest.lstrip("%") in _REG32:
+        return True  # a 32-bit write clears the upper half
+    if mnem == "movq" and operands and operands[0].startswith("$"):
+        return -2 ** 31 <= _immediate(operands[0]) < 2 ** 31
+    return False
+
+
+def _stack_slot(operand):
+    """A frame slot addressed from %rsp (its offset), else None."""
+    m = re.match(r"^(-?0x[0-9a-f]+|-?[0-9]+)?\(%rsp\)$", operand)
+    if not m:
+        return None
+    return int(m.group(1) or "0", 0)
+
+
+def _shift_leaves_narrow(mnem, ops):
+    """A 64-bit right shift by 32 or more leaves a 32-bit value."""
+    if mnem not in ("sarq", "shrq") or not ops.startswith("$"):
+        return False
+    return _immediate(_operands(ops)[0]) >= 32
+
+
+def _transfer(state, mnem, ops):
+    """The set of narrow locations (register families, frame slots) after one instruction."""
+    operands = _operands(ops)
+    out = set(state)
+    if mnem in ("call", "callq"):
+        return {r for r in out if r in _CALLEE_SAVED}
+    if mnem.startswith(("imul", "mul", "div", "idiv")) and len(operands) < 2:
+        return out - {"rax", "rdx"}
+    fam = _written_family(mnem, ops)
+    if fam == "rsp":
+        return {r for r in out if not isinstance(r, int)}
+    if fam is not None:
+        src = operands[0] if operands else ""
+        copy = mnem == "movq" and len(operands) == 2
+        narrow = _narrow_writer(mnem, ops) or _shift_leaves_narrow(mnem, ops) or \
+            (copy and _FAMILY.get(src.lstrip("%")) in state) or \
+            (copy and _stack_slot(src) in state)
+        out.discard(fam)
+        if narrow:
+            out.add(fam)
+        return out
+    if operands and _stack_slot(operands[-1]) is not None:
+        slot = _stack_slot(operands[-1])
+        out.discard(slot)
+        if mnem == "movq" and _FAMILY.get(operands[0].lstrip("%")) in state:
+            out.add(slot)
+        elif mnem == "movl" or mnem == "movq" and operands[0].startswith("$"):
+            out.discard(slot)  # half a slot or an immediate: not tracked
+    return out
+
+
+_CALLEE_SAVED = {"rbx", "rbp", "r12", "r13", "r14", "r15"}
+
+
+class Blocks:
+    """Which registers hold a value shown 32-bit before each instruction: a forward data-flow
+    over each function's control flow (a 32-bit write, a sign extension, a 32-bit immediate, a
+    right shift by 32 or more, copies of those through registers and frame slots; a call keeps
+    only the callee-saved registers; where paths join, what holds on all of them)."""
+
+    def __init__(self, dis):
+        self.dis = dis
+        self.order = sorted(dis)
+        self.narrow_before = {}
+        by_fn = collections.defaultdict(list)
+        for addr in self.order:
+            by_fn[dis[addr][2]].append(addr)
+        for addrs in by_fn.values():
+            self._solve(addrs)
+
+    def _successors(self, addrs, i):
+        mnem, ops, _ = self.dis[addrs[i]]
+        succ = []
+        if mnem.startswith("j") and not ops.startswith("*"):
+            try:
+                succ.append(int(ops.split()[0], 16))
+            except ValueError:
+                pass
+        if mnem not in ("jmp", "jmpq", "ret", "retq") and i + 1 < len(addrs):
+            succ.append(addrs[i + 1])
+        return succ
+
+    def _solve(self, addrs):
+        inside = set(addrs)
+        pos = {a: i for i, a in enumerate(addrs)}
+        state = {addrs[0]: frozenset()}
+        work = [addrs[0]]
+        while work:
+            a = work.pop()
+            mnem, ops, _ = self.dis[a]
+            out = frozenset(_transfer(state[a], mnem, ops))
+            for nxt in self._successors(addrs, pos[a]):
+                if nxt not in inside:
+                    continue
+                old = state.get(nxt)
+                new = out if old is None else (old & out)
+                if new != old:
+                    state[nxt] = new
+                    work.append(nxt)
+        self.narrow_before.update(state)
+
+
+_BLOCKS_CACHE = []
+
+
+def _blocks_of(dis):
+    """Blocks of dis, built once per disassembly (price runs once per function and config)."""
+    if not _BLOCKS_CACHE or _BLOCKS_CACHE[0][0] is not dis:
+        _BLOCKS_CACHE[:] = [(dis, Blocks(dis))]
+    return _BLOCKS_CACHE[0][1]
+
+
+def narrow_product(addr, dis, blocks):
+    """True when a 64-bit imul multiplies two values shown 32-bit where it executes."""
+    _, ops, _ = dis[addr]
+    operands = _operands(ops)
+    sources = operands[:2] if len(operands) == 3 else operands
+    state = blocks.narrow_before.get(addr, frozenset())
+    for src in sources:
+        if src.startswith("$"):
+            continue  # an imm32, sign-extended
+        if _FAMILY.get(src.lstrip("%")) not in state and _stack_slot(src) not in state:
+            return False
+    return True
+
+
 def _position(token, last):
     if token.startswith("0x"):
         return int(token, 16)
@@ -332,6 +514,7 @@ def price(counts, taken, dis, exclude=("bench_", "flt_bench_")):
     model has no class for."""
     per_class = collections.OrderedDict((k, [0, 0, 0]) for k in PRICES)
     unknown = collections.Counter()
+    blocks = _blocks_of(dis)
     for addr, n in counts.items():
         if addr not in dis:
             unknown["<no disassembly at 0x%x>" % addr] += n
@@ -343,6 +526,8 @@ def price(counts, taken, dis, exclude=("bench_", "flt_bench_")):
         if cls is None:
             unknown[mnem] += n
             continue
+        if cls == "mul64" and narrow_product(addr, dis, blocks):
+            cls = "mul32x32"
         if cls == "jcc":
             t = min(taken.get(addr, 0), n)
             _add(per_class, "jcc_taken", t)
