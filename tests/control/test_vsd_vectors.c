@@ -147,6 +147,54 @@ static void test_vsd_forward_matches_formula(void **state)
     print_message("ctl_vsd_forward: max component err %.3g (tol %.1g)\n", max_err, VSD_TOL);
 }
 
+/* Phase values at the ends of Q24's range (fixed point): each row computed exactly and ended
+ * once, saturated to Q24's range by ctl_vsd_forward and held to +-CTL_RANGE_CURRENT by the steps'
+ * ctl_vsd_forward_in_range; no intermediate sum saturates on its own (i_B + i_C at the top of
+ * the range would, and halve a's share of it). Float has no range to end at. */
+/* The constants' half-LSB error times phase values up to 2^7 per unit, over three terms. */
+#define VSD_END_TOL 4.0e-5
+static void test_vsd_rows_end_once(void **state)
+{
+#if CTL_MATH_FLOAT
+    (void)state;
+#else
+    static const ctl_q ends[4] = {INT32_MAX, INT32_MIN, INT32_MAX / 2, 0};
+    const double q24_max = (double)INT32_MAX / 16777216.0;
+    const double held = (double)CTL_RANGE_CURRENT;
+    int32_t n;
+    (void)state;
+    for (n = 0; n < 4096; n++) { /* every phase at each of the four ends: 4^6 */
+        ctl_q pq[6];
+        double pin[6];
+        vsd_d want;
+        ctl_vsd_t sat;
+        ctl_vsd_t in_range;
+        int32_t k;
+        int32_t code = n;
+        for (k = 0; k < 6; k++) {
+            pq[k] = ends[code % 4];
+            pin[k] = qd(pq[k]);
+            code /= 4;
+        }
+        want = vsd_ref_forward(pin);
+        ctl_vsd_forward(pq, &sat);
+        ctl_vsd_forward_in_range(pq, &in_range);
+        expect_close(qd(sat.alpha), fmax(-q24_max, fmin(q24_max, want.alpha)), VSD_END_TOL,
+                     "saturated alpha", pin[1]);
+        expect_close(qd(sat.x), fmax(-q24_max, fmin(q24_max, want.x)), VSD_END_TOL, "saturated x",
+                     pin[1]);
+        expect_close(qd(sat.beta), fmax(-q24_max, fmin(q24_max, want.beta)), VSD_END_TOL,
+                     "saturated beta", pin[1]);
+        expect_close(qd(sat.y), fmax(-q24_max, fmin(q24_max, want.y)), VSD_END_TOL, "saturated y",
+                     pin[1]);
+        expect_close(qd(in_range.alpha), fmax(-held, fmin(held, want.alpha)), VSD_END_TOL,
+                     "held alpha", pin[1]);
+        expect_close(qd(in_range.y), fmax(-held, fmin(held, want.y)), VSD_END_TOL, "held y",
+                     pin[1]);
+    }
+#endif
+}
+
 static void test_vsd_round_trip(void **state)
 {
     double max_err = 0.0;
@@ -602,6 +650,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_vsd_forward_matches_formula),
+        cmocka_unit_test(test_vsd_rows_end_once),
         cmocka_unit_test(test_vsd_round_trip),
         cmocka_unit_test(test_vsd_amplitude_invariance),
         cmocka_unit_test(test_park),
