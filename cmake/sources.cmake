@@ -93,6 +93,25 @@ set(SIXPHASE_FW_F28335_SOURCES
 set(SIXPHASE_FW_F28335_ASM_SOURCES
     firmware/f28335/codestart.asm)
 
+# The processor-in-the-loop image (firmware/pil): the drive through the simulator's bridge, the
+# simulator's peripheral bus that the host's frames fill, the PIL service; then per platform
+# its start-up and the two HAL services of its own (serial port, cycle counter). Built with the
+# drive's lists above (docs/profiling.md).
+set(SIXPHASE_PIL_SOURCES
+    firmware/pil/pil_target.c
+    hal/sim/hal_sim.c
+    host_sim/bridge/sim_controller_bridge.c
+    host_sim/bridge/sim_ctl_wire.c)
+set(SIXPHASE_PIL_MPS2_SOURCES
+    firmware/pil/mps2_main.c
+    firmware/pil/mps2_startup.c
+    hal/mps2/hal_mps2.c)
+set(SIXPHASE_PIL_INCLUDE_DIRS
+    firmware/pil
+    host_sim/bridge
+    hal/sim
+    hal/mps2)
+
 # Include directories of the drive application: the one root of firmware/app's folders (an
 # include names the folder, "drive/drive.h"; firmware/app/README.md) and the protocol's lists
 # the application shares (firmware/link). The host libraries and the tests take them from here.

@@ -1,14 +1,11 @@
-/* Simulator HAL: see hal_sim.h. */
-#define _POSIX_C_SOURCE 199309L /* clock_gettime */
-
+/* Simulator HAL, its peripheral bus (PWM, ADC, encoder): see hal_sim.h. Free of the host: a
+ * processor-in-the-loop target links this file as its peripherals (firmware/app/pil); the
+ * serial port and the clock are in hal_sim_serial.c and hal_sim_clock.c. */
 #include "hal_sim.h"
 
 #include <string.h>
-#include <time.h>
 
 #include "hal_board.h"
-#include "hal_cycles.h"
-#include "hal_serial.h"
 
 hal_sim_bus_t hal_sim_bus;
 
@@ -137,74 +134,3 @@ uint32_t hal_encoder_offset(void) { return hal_sim_bus.encoder_elec_offset; }
  * (host_sim/plant/sim_encoder.c), so a new offset shows from the next period's sample on, as on
  * the eQEP. */
 void hal_encoder_set_offset(uint32_t elec_offset) { hal_sim_bus.encoder_elec_offset = elec_offset; }
-
-/* ---- hal_serial.h and its line side ---- */
-
-bool hal_sim_uart_arrive(uint16_t byte)
-{
-    hal_sim_bus_t *b = &hal_sim_bus;
-    if (b->uart_rx_count >= HAL_SIM_UART_FIFO) {
-        b->uart_rx_overruns++;
-        return false;
-    }
-    b->uart_rx[(b->uart_rx_head + b->uart_rx_count) % HAL_SIM_UART_FIFO] = (uint16_t)(byte & 0xFFu);
-    b->uart_rx_count++;
-    return true;
-}
-
-bool hal_serial_read(uint16_t *byte)
-{
-    hal_sim_bus_t *b = &hal_sim_bus;
-    if (b->uart_rx_count == 0u) {
-        return false;
-    }
-    *byte = b->uart_rx[b->uart_rx_head];
-    b->uart_rx_head = (uint16_t)((b->uart_rx_head + 1u) % HAL_SIM_UART_FIFO);
-    b->uart_rx_count--;
-    return true;
-}
-
-bool hal_serial_write(uint16_t byte)
-{
-    hal_sim_bus_t *b = &hal_sim_bus;
-    if (b->uart_tx_count >= HAL_SIM_UART_FIFO) {
-        return false;
-    }
-    b->uart_tx[(b->uart_tx_head + b->uart_tx_count) % HAL_SIM_UART_FIFO] = (uint16_t)(byte & 0xFFu);
-    b->uart_tx_count++;
-    return true;
-}
-
-bool hal_sim_uart_depart(uint16_t *byte)
-{
-    hal_sim_bus_t *b = &hal_sim_bus;
-    if (b->uart_tx_count == 0u) {
-        return false;
-    }
-    *byte = b->uart_tx[b->uart_tx_head];
-    b->uart_tx_head = (uint16_t)((b->uart_tx_head + 1u) % HAL_SIM_UART_FIFO);
-    b->uart_tx_count--;
-    return true;
-}
-
-/* ---- hal_cycles.h: nanoseconds of simulated time, or of the host's monotonic clock ---- */
-
-static bool hal_sim_host_clock;
-
-void hal_sim_use_host_clock(bool host) { hal_sim_host_clock = host; }
-
-void hal_sim_clock_advance(uint32_t ns) { hal_sim_bus.clock_ns += ns; }
-
-void hal_cycles_init(void) {}
-
-uint32_t hal_cycles_now(void)
-{
-    struct timespec ts;
-    if (!hal_sim_host_clock) {
-        return hal_sim_bus.clock_ns;
-    }
-    (void)clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (uint32_t)((uint64_t)ts.tv_sec * 1000000000u + (uint64_t)ts.tv_nsec);
-}
-
-uint32_t hal_cycles_per_second(void) { return 1000000000u; }

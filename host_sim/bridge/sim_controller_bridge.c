@@ -262,14 +262,20 @@ static bool bridge_platform(void *ctx, const sxl_frame_t *req, sxl_frame_t *repl
     return true;
 }
 
+/* The ISR timed and its stages marked, as fw_startup sets the board up. */
+static void bridge_profile(void)
+{
+    bridge_board = true;
+    ctl_set_stage_hook(&bridge_drive.ctl, prof_ctl_stage);
+}
+
 /* A partial frame older than gap_s (of hal_cycles, host time on the simulator) is dropped. */
 static void bridge_link_init(double gap_s)
 {
     link_service_init(&bridge_link, (uint32_t)(gap_s * (double)hal_cycles_per_second()));
     link_service_set_platform(&bridge_link, bridge_platform, NULL);
     bridge_shutdown = false;
-    bridge_board = true;
-    ctl_set_stage_hook(&bridge_drive.ctl, prof_ctl_stage); /* stage timing, as fw_startup */
+    bridge_profile();
 }
 static void bridge_link_step(void) { link_service_step(&bridge_link, &bridge_drive); }
 
@@ -337,4 +343,5 @@ const sim_ctl_ops_t SIM_BRIDGE_OPS = {SIM_BRIDGE_ARITH,
                                       bridge_isolate_leg,
                                       bridge_commission_start,
                                       bridge_commission_status,
-                                      bridge_commission_apply};
+                                      bridge_commission_apply,
+                                      bridge_profile};

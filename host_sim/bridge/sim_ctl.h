@@ -10,33 +10,48 @@
 
 #include <stdbool.h>
 
+/* The configuration of one controller build, one list: X(KIND, name), KIND INT (int), REAL
+ * (double) or BOOL. The struct and its byte image for a processor-in-the-loop target
+ * (sim_ctl_wire.h) come from it. */
+#define SIM_CTL_CONFIG_FIELDS(X)                                                                   \
+    X(INT, controller)            /* 0 ddc, 1 mptc49, 2 mptc13, 3 foc, 4 vvmptc */                 \
+    X(REAL, lambda)               /* N*m/Wb */                                                     \
+    X(REAL, ts_s)                 /* control period */                                             \
+    X(INT, duty_levels)           /* <= 0: core default */                                         \
+    X(INT, ddc_direction)         /* < 0: core default; 0 flux-error, 1 xy-table */                \
+    X(INT, flux_ref_mode)         /* < 0: core default; 0 constant, 1 MTPA */                      \
+    X(INT, ddc_torque_guard)      /* < 0: core default (on); 0 off (paper), 1 on */                \
+    X(INT, mid_period_angle)      /* < 0: core default (off); 1 on */                              \
+    X(INT, pulse_pattern)         /* < 0: core default; else a ctl_pulse_pattern_t */              \
+    X(REAL, flux_tie_band)        /* < 0: core default; 0 off (paper), else a fraction */          \
+    X(REAL, light_load_current_a) /* < 0: core default; 0: plain MTPA */                           \
+    X(REAL, flux_ref_wb)          /* <= 0: core default */                                         \
+    X(REAL, r_ohm)                /* the machine as the controller knows it */                     \
+    X(REAL, ld_h)                                                                                  \
+    X(REAL, lq_h)                                                                                  \
+    X(REAL, lxy_h)                                                                                 \
+    X(REAL, psi_f_wb)                                                                              \
+    X(INT, pole_pairs)                                                                             \
+    X(REAL, j_kgm2)                                                                                \
+    X(REAL, speed_kp) /* speed loop; <= 0: core default */                                         \
+    X(REAL, speed_ki)                                                                              \
+    X(REAL, torque_limit_nm)                                                                       \
+    X(BOOL, speed_gains_from_j)    /* the gains designed from j_kgm2 (speed_kp, ki unused) */      \
+    X(INT, protect)                /* 1: ctl_protect_default limits; 0: out of reach */            \
+    X(REAL, current_full_span_a)   /* the board's phase-current sensors, -span/2 .. +span/2 A */   \
+    X(INT, open_phase_action)      /* < 0: the drive's build default; 0 stop, 1 ride through */    \
+    X(INT, postfault_strategy)     /* < 0: core default (minimum loss); 1 maximum torque */        \
+    X(INT, torque_limited_action)  /* < 0: drive default (continue); 1 stop */                     \
+    X(REAL, torque_limited_stop_s) /* <= 0: drive default */
+
+#define SIM_CTL_KIND_INT int
+#define SIM_CTL_KIND_REAL double
+#define SIM_CTL_KIND_BOOL bool
+#define SIM_CTL_CONFIG_MEMBER(kind, name) SIM_CTL_KIND_##kind name;
 typedef struct {
-    int controller;       /* 0 ddc, 1 mptc49, 2 mptc13, 3 foc, 4 vvmptc (ctl_controller_t) */
-    double lambda;        /* N*m/Wb */
-    double ts_s;          /* control period */
-    int duty_levels;      /* <= 0: core default */
-    int ddc_direction;    /* < 0: core default; 0 flux-error, 1 xy-table */
-    int flux_ref_mode;    /* < 0: core default; 0 constant, 1 MTPA */
-    int ddc_torque_guard; /* < 0: core default (on); 0 off (paper), 1 on (docs/improvements.md) */
-    int mid_period_angle; /* < 0: core default (off); 1 on */
-    int pulse_pattern;    /* < 0: core default; else a ctl_pulse_pattern_t */
-    double flux_tie_band; /* < 0: core default; 0 off (paper), else a fraction of a level */
-    double light_load_current_a; /* < 0: core default; 0: plain MTPA */
-    double flux_ref_wb;          /* <= 0: core default */
-    /* machine as the controller knows it */
-    double r_ohm, ld_h, lq_h, lxy_h, psi_f_wb;
-    int pole_pairs;
-    double j_kgm2;
-    /* speed loop; <= 0: core default */
-    double speed_kp, speed_ki, torque_limit_nm;
-    bool speed_gains_from_j; /* the speed gains designed from j_kgm2 (then speed_kp, ki unused) */
-    int protect;             /* 1: ctl_protect_default limits; 0: every threshold out of reach */
-    double current_full_span_a;   /* the board's phase-current sensors, -span/2 .. +span/2 A */
-    int open_phase_action;        /* < 0: the drive's build default; 0 stop, 1 ride through */
-    int postfault_strategy;       /* < 0: core default (minimum loss); 1 maximum torque */
-    int torque_limited_action;    /* < 0: drive default (continue); 1 stop */
-    double torque_limited_stop_s; /* <= 0: drive default */
+    SIM_CTL_CONFIG_FIELDS(SIM_CTL_CONFIG_MEMBER)
 } sim_ctl_config_t;
+#undef SIM_CTL_CONFIG_MEMBER
 
 typedef struct {
     int state; /* drive_state_t, as a number (reported in metrics.json) */
@@ -130,6 +145,9 @@ typedef struct {
     void (*commission_status)(sim_comm_status_t *st);
     /* speed_gains: kp, ki of the set it handed to the core (those in force when none) */
     int (*commission_apply)(unsigned *applied, double speed_gains[2]);
+    /* time each ISR and mark its stages in hal_cycles, as a board does (measure/profile.h):
+     * the virtual board (link_init does it) and a processor-in-the-loop target */
+    void (*profile)(void);
 } sim_ctl_ops_t;
 
 /* Defined by the two builds of the bridge. The float build's symbols are all

@@ -13,6 +13,7 @@
 #include "ctl_params.h"
 #include "decimal_arg.h"
 #include "motor_params_file.h"
+#include "pil/pil_port.h"
 #include "run/scenario.h"
 #include "sxlink_commission.h"
 
@@ -29,7 +30,8 @@ typedef enum {
     OPT_CHOICE,    /* one of choices[], its index into an int */
     OPT_SCENARIO,  /* a scenario or fault-<name> */
     OPT_DIRECTORY, /* a path */
-    OPT_FILE       /* a file to read once the options are parsed (a const char * field) */
+    OPT_FILE,      /* a file to read once the options are parsed (a const char * field) */
+    OPT_PIL        /* a processor-in-the-loop target (pil/pil_port.h's spelling) */
 } opt_kind_t;
 
 #define OPT_RUN 1u
@@ -68,16 +70,17 @@ static const char *const open_models[] = {"resistor", "open", NULL};
 
 /* The usage's headings, in order (an option's section). */
 enum {
-    SEC_0, /* what runs */
-    SEC_1, /* the controller's settings */
-    SEC_2, /* faults, open phase, torque limit */
-    SEC_3, /* the plant's machine (the controller keeps the reference machine) */
-    SEC_4, /* the controller's machine (the plant stays) */
-    SEC_5, /* commissioning (--scenario commission) */
-    SEC_6, /* the board and the plant's non-idealities */
-    SEC_7, /* the plant's numerics */
-    SEC_8, /* output */
-    SEC_9, /* serve */
+    SEC_0,  /* what runs */
+    SEC_1,  /* the controller's settings */
+    SEC_2,  /* faults, open phase, torque limit */
+    SEC_3,  /* the plant's machine (the controller keeps the reference machine) */
+    SEC_4,  /* the controller's machine (the plant stays) */
+    SEC_5,  /* commissioning (--scenario commission) */
+    SEC_6,  /* the board and the plant's non-idealities */
+    SEC_7,  /* the plant's numerics */
+    SEC_8,  /* output */
+    SEC_9,  /* serve */
+    SEC_10, /* processor in the loop */
     SEC_COUNT
 };
 static const char *const cli_sections[SEC_COUNT] = {
@@ -90,7 +93,8 @@ static const char *const cli_sections[SEC_COUNT] = {
     "the board and the plant's non-idealities",
     "the plant's numerics",
     "output",
-    "serve"};
+    "serve",
+    "processor in the loop (docs/profiling.md)"};
 
 #define F(member) offsetof(sim_cli_t, member)
 #define FLAG(n, k, m, g, v, sec, arg, help)                                                        \
@@ -179,6 +183,7 @@ enum {
     G_CTL_PARAMS,
     G_COMM_STEPS,
     G_COMM_CURRENT,
+    G_PIL,
     G_IDEAL
 };
 
@@ -338,6 +343,9 @@ static const opt_t options[] = {
      "pacing: as fast as possible"},
     {"--baud", OPT_INTEGER, OPT_SERVE, F(serve_baud), G_BAUD, 1200.0, 4000000.0, 0, NULL, SEC_9,
      "B", "the virtual line's baud"},
+    {"--pil", OPT_PIL, OPT_RUN, F(cfg.pil_target), G_PIL, 0.0, 0.0, 0, NULL, SEC_10, "TARGET",
+     "each control period on a target over its serial line: qemu (the emulated Cortex-M4) or "
+     "serial:PATH[@BAUD] (a board running the PIL image)"},
 };
 
 #define OPTION_COUNT ((int)(sizeof options / sizeof options[0]))
@@ -470,6 +478,12 @@ static int apply_option(const opt_t *opt, const char *v, sim_cli_t *o, char *err
             return cli_fail(err, len, "bad value for %s: '%s'", opt->name, v);
         }
         *(const char **)(void *)(base + opt->field) = v;
+        return 2;
+    case OPT_PIL:
+        if (!v || pil_port_check_spec(v, err, len) != 0) {
+            return -1;
+        }
+        o->cfg.pil_target = v;
         return 2;
     case OPT_DIRECTORY:
     default:

@@ -74,6 +74,22 @@ static int sim_finish_files(sim_run_t *rs, const sim_result_t *r, char *err, siz
     return 0;
 }
 
+/* The PIL session's end: its statistics into r; -1 (with why in err) when it failed. */
+static int sim_end_pil(sim_run_t *rs, sim_result_t *r, char *err, size_t err_len)
+{
+    int rc = 0;
+    if (!rs->pil_open) {
+        return 0;
+    }
+    if (sim_pil_error() && err) {
+        (void)snprintf(err, err_len, "%s", sim_pil_error());
+        rc = -1;
+    }
+    sim_pil_close(&r->pil);
+    rs->pil_open = false;
+    return rc;
+}
+
 int sim_run(const sim_config_t *c, sim_result_t *r, char *err, size_t err_len)
 {
     sim_run_t rs;
@@ -88,9 +104,12 @@ int sim_run(const sim_config_t *c, sim_result_t *r, char *err, size_t err_len)
     if (sim_setup(&rs, c, err, err_len) == 0 && sim_setup_calibrate(&rs, r, err, err_len) == 0 &&
         ((c->scenario == SIM_SCEN_COMMISSION) ? sim_commission_loop(&rs, r, err, err_len)
                                               : sim_loop_run(&rs, r, err, err_len)) == 0) {
-        sim_result_fill(&rs, r);
-        rc = sim_finish_files(&rs, r, err, err_len);
+        sim_result_fill(&rs, r); /* the drive's end state: the PIL reference's, still open */
+        if (sim_end_pil(&rs, r, err, err_len) == 0) {
+            rc = sim_finish_files(&rs, r, err, err_len);
+        }
     }
+    (void)sim_end_pil(&rs, r, NULL, 0u); /* a failed run's session too: the emulator stopped */
     if (rc != 0 && rs.rec.limit_reached) {
         char close_err[64]; /* the files up to the limit are kept, flushed and closed */
         (void)sim_recorder_close(&rs.rec, close_err, sizeof close_err);

@@ -11,6 +11,7 @@
 
 #include "bridge/sim_ctl.h"
 #include "plant/fault_inject.h"
+#include "pil/pil.h"
 #include "plant/plant.h"
 #include "record/recorder.h"
 
@@ -85,7 +86,8 @@ typedef struct {
      * of rated), as COMMISSION_START takes them */
     int commission_steps;
     int commission_permille;
-    const char *out_dir; /* NULL: write nothing */
+    const char *out_dir;    /* NULL: write nothing */
+    const char *pil_target; /* NULL: the drive runs here; else its periods on this target (pil.h) */
     bool write_trace;
     bool write_fine;
     double out_limit_mb; /* trace.csv and fine.csv together stop at this size (MB, 1e6 bytes) */
@@ -210,6 +212,7 @@ typedef struct {
     int p_duty_levels, p_ddc_direction, p_flux_ref_mode, p_ddc_torque_guard;
     int p_mid_period_angle, p_pulse_pattern;
     double p_flux_tie_band;
+    sim_pil_summary_t pil; /* processor in the loop (pil.on) */
 } sim_result_t;
 
 /* Scenario defaults: speed, load, duration, event time. */

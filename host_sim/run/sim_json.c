@@ -227,6 +227,9 @@ static void sim_print_json(FILE *f, const sim_config_t *c, const sim_result_t *r
     sim_print_fault_json(f, c, r);
     sim_open_phase_json(f, c, r);
     sim_print_commission_json(f, r);
+    if (r->pil.on) {
+        sim_pil_print_json(f, &r->pil);
+    }
     fprintf(f,
             "  \"controller_params\": {\"lambda_nm_per_wb\": %.6g, \"speed_kp_nm_per_rad_s\": "
             "%.6g, \"speed_ki_nm_per_rad\": %.6g, \"torque_limit_nm\": %.6g, "

@@ -265,6 +265,11 @@ int sim_loop_run(sim_run_t *rs, sim_result_t *r, char *err, size_t err_len)
             (void)snprintf(err, err_len, "plant state diverged");
             return -1;
         }
+        if (rs->pil_open && sim_pil_error()) {
+            (void)snprintf(err, err_len, "%s (at %.4f s simulated)", sim_pil_error(),
+                           (double)k * rs->ts);
+            return -1;
+        }
         if (rs->rec.limit_reached && sim_loop_out_limit(rs, k, err, err_len) != 0) {
             return -1; /* the flag tested here: no call in the usual period */
         }

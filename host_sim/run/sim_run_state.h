@@ -37,6 +37,7 @@ typedef struct {
 typedef struct sim_run {
     const sim_config_t *cfg;
     const sim_ctl_ops_t *ops;
+    bool pil_open; /* ops are the PIL session's (sim_pil_open): closed at the run's end */
     sim_plan_t plan;
     plant_params_t plant; /* the plant as any injected fault leaves it */
     sim_fault_state_t fault;

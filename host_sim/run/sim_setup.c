@@ -151,11 +151,31 @@ static int setup_drive(sim_run_t *rs, char *err, size_t err_len)
     return 0;
 }
 
+/* Processor in the loop: the drive's periods on the target, this build beside it. */
+static int setup_pil(sim_run_t *rs, char *err, size_t err_len)
+{
+    char csv[1200];
+    const char *dir = rs->cfg->out_dir;
+    if (dir) {
+        (void)snprintf(csv, sizeof csv, "%s/pil.csv", dir);
+    }
+    rs->ops = sim_pil_open(rs->ops, rs->cfg->pil_target, 1.0 / rs->cfg->fs_hz, dir ? csv : NULL,
+                           err, err_len);
+    if (!rs->ops) {
+        return -1;
+    }
+    rs->pil_open = true;
+    return 0;
+}
+
 int sim_setup(sim_run_t *rs, const sim_config_t *c, char *err, size_t err_len)
 {
     memset(rs, 0, sizeof *rs);
     rs->cfg = c;
     rs->ops = (c->arith == 1) ? &simflt_sim_ctl_ops_float : &sim_ctl_ops_fixed;
+    if (c->pil_target && setup_pil(rs, err, err_len) != 0) {
+        return -1;
+    }
     rs->plant = c->plant;
     rs->k_detect = -1;
     sim_plan(c, &rs->plan);
