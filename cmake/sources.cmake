@@ -108,7 +108,7 @@ set(SIXPHASE_PIL_MPS2_SOURCES
     hal/mps2/hal_mps2.c)
 set(SIXPHASE_PIL_INCLUDE_DIRS
     firmware/pil
-    host_sim/bridge
+    host_sim
     hal/sim
     hal/mps2)
 

@@ -74,7 +74,10 @@ static int cmd_run(int argc, char **argv)
     if (!cli.quiet) {
         sim_print_metrics_json(stdout, &cli.cfg, &res);
     }
-    return (cli.plot && sim_plot(SIM_PLOT_RUN, cli.cfg.out_dir) != 0) ? 1 : 0;
+    if (cli.plot && sim_plot(SIM_PLOT_RUN, cli.cfg.out_dir) != 0) {
+        return 1;
+    }
+    return (cli.plot && res.pil.on && sim_plot(SIM_PLOT_PIL, cli.cfg.out_dir) != 0) ? 1 : 0;
 }
 
 static int cmd_serve(int argc, char **argv)

@@ -29,7 +29,8 @@ import sys
 # ("plant/plant.h", "drive/drive.h").
 DEFAULT_INCLUDES = ["control/include", "control/platform", "control/src", "hal/include",
                     "hal/sim", "hal/f28335/include", "firmware/app", "firmware/link",
-                    "firmware/tools", "firmware/f28335", "host_sim", "tools/bench"]
+                    "firmware/tools", "firmware/f28335", "firmware/pil", "hal/mps2", "host_sim",
+                    "tools/bench"]
 DEFAULT_SOURCES = ["control", "hal", "firmware", "host_sim", "tools/bench"]
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"', re.M)
 RULE = re.compile(r"^May include:(.*)$", re.M)

@@ -5,7 +5,7 @@
 set -euo pipefail
 packages=(cmake gcc make libcmocka-dev clang-format cppcheck gcc-arm-none-eabi clang libclang-rt-14-dev llvm
           libnewlib-arm-none-eabi python3 python3-matplotlib python3-numpy valgrind
-          gcc-avr avr-libc binutils-avr simavr libsimavr-dev)
+          gcc-avr avr-libc binutils-avr simavr libsimavr-dev qemu-system-arm)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -137,12 +137,14 @@ static uint16_t on_init(pil_target_t *t, const sxl_frame_t *req, sxl_frame_t *re
     return SXL_OK;
 }
 
-/* The profile's stages of this ISR (prof_stage_t ADC .. PWM) and its TOTAL. */
-static void step_cycles(sim_ctl_wire_out_t *out)
+/* The profile's stages this ISR ran (prof_stage_t ADC .. PWM; one it did not run, 0: its count
+ * did not move) and its TOTAL. */
+static void step_cycles(const uint32_t *counts_before, sim_ctl_wire_out_t *out)
 {
     uint16_t k;
     for (k = 0u; k < SXL_PIL_OUT_STAGE_COUNT; k++) {
-        out->stage[k] = drive_profile.stage[PROF_ADC + k].last;
+        const prof_stat_t *s = &drive_profile.stage[PROF_ADC + k];
+        out->stage[k] = (s->count != counts_before[k]) ? s->last : 0u;
     }
     out->cycles = drive_profile.stage[PROF_TOTAL].last;
 }
@@ -151,6 +153,8 @@ static uint16_t on_step(pil_target_t *t, const sxl_frame_t *req, sxl_frame_t *re
 {
     sim_ctl_wire_out_t out;
     sim_ctl_status_t st;
+    uint32_t counts[SXL_PIL_OUT_STAGE_COUNT];
+    uint16_t k;
     if (!t->initialised) {
         return SXL_ERR_REFUSED;
     }
@@ -162,13 +166,16 @@ static uint16_t on_step(pil_target_t *t, const sxl_frame_t *req, sxl_frame_t *re
     }
     calls_run(t->ops, &req->payload[SXL_PIL_IN_BYTES], (uint16_t)(req->len - SXL_PIL_IN_BYTES));
     out.seq = sim_ctl_wire_take_inputs(req->payload, &hal_sim_bus);
+    for (k = 0u; k < SXL_PIL_OUT_STAGE_COUNT; k++) {
+        counts[k] = drive_profile.stage[PROF_ADC + k].count;
+    }
     t->ops->isr();
     t->steps++;
     sim_ctl_wire_outputs_of_bus(&hal_sim_bus, &out);
     t->ops->period_status(&st);
     out.state = (uint16_t)st.state;
     out.faults = (uint16_t)st.fault;
-    step_cycles(&out);
+    step_cycles(counts, &out);
     sim_ctl_wire_put_outputs(&out, reply->payload);
     reply->len = SXL_PIL_OUT_BYTES;
     return SXL_OK;

@@ -10,8 +10,8 @@
 #include <stdbool.h>
 #include <stdint.h>
 
-#include "sim_ctl.h"
-#include "sim_ctl_wire.h"
+#include "bridge/sim_ctl.h"
+#include "bridge/sim_ctl_wire.h"
 #include "sxlink.h"
 
 typedef struct {

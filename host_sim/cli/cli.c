@@ -652,6 +652,12 @@ static int check_serve(const sim_cli_t *o, unsigned where, char *err, size_t len
                         "DIR afterwards%s%s",
                         "", "");
     }
+    if (o->cfg.pil_target) {
+        return cli_fail(err, len,
+                        "serve has no --pil: the virtual board is the drive itself (a target runs "
+                        "the periods of `sixphase-sim run --pil`)%s%s",
+                        "", "");
+    }
     return 0;
 }
 

@@ -21,13 +21,14 @@ static int exchange(pil_session_t *s, uint16_t cmd, const uint16_t *payload, uin
 {
     uint16_t tx[SXL_MAX_FRAME];
     const uint16_t n = sxl_encode(cmd, payload, len, tx, SXL_MAX_FRAME);
+    const int limit = (cmd == SXL_CMD_PIL_HELLO) ? PIL_SESSION_HELLO_MS : PIL_SESSION_TIMEOUT_MS;
     int waited = 0;
     if (n == 0u || pil_port_write(&s->port, tx, n) != 0) {
         (void)snprintf(s->err, sizeof s->err, "PIL: cannot send %s to %.200s",
                        pil_command_name(cmd), s->port.path);
         return -1;
     }
-    while (waited < PIL_SESSION_TIMEOUT_MS) {
+    while (waited < limit) {
         uint8_t buf[256];
         const int got = pil_port_read(&s->port, buf, sizeof buf, 100);
         int k;
@@ -53,7 +54,7 @@ static int exchange(pil_session_t *s, uint16_t cmd, const uint16_t *payload, uin
         }
     }
     (void)snprintf(s->err, sizeof s->err, "PIL: no answer to %s from %.200s within %d s",
-                   pil_command_name(cmd), s->port.path, PIL_SESSION_TIMEOUT_MS / 1000);
+                   pil_command_name(cmd), s->port.path, limit / 1000);
     return -1;
 }
 

@@ -15,6 +15,7 @@
 #include "sxlink.h"
 
 #define PIL_SESSION_TIMEOUT_MS 30000 /* a parameter build on a slow target included */
+#define PIL_SESSION_HELLO_MS 5000    /* the first frame: no target there answers within it */
 
 typedef struct {
     pil_port_t port;

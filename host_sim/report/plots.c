@@ -22,7 +22,8 @@
 #define SIM_PLOT_DIR ""
 #endif
 
-static const char *const plot_scripts[] = {"plot_reproduce.py", "plot_sweep.py", "plot_run.py"};
+static const char *const plot_scripts[] = {"plot_reproduce.py", "plot_sweep.py", "plot_run.py",
+                                           "plot_pil.py"};
 
 /* What the script wrote on stderr, the start of it when long (the rest is read and dropped). */
 static void plot_collect(int fd, char *buf, size_t size)

@@ -8,7 +8,8 @@
 typedef enum {
     SIM_PLOT_REPRODUCE = 0, /* host_sim/report/plot_reproduce.py DIR -> DIR/plots/ */
     SIM_PLOT_SWEEP = 1,     /* host_sim/report/plot_sweep.py DIR -> DIR/plots/ */
-    SIM_PLOT_RUN = 2        /* host_sim/report/plot_run.py DIR -> DIR/run.png */
+    SIM_PLOT_RUN = 2,       /* host_sim/report/plot_run.py DIR -> DIR/run.png */
+    SIM_PLOT_PIL = 3        /* host_sim/report/plot_pil.py DIR -> DIR/pil.png (run --pil) */
 } sim_plot_t;
 
 /* Runs the script on dir; 0 on success, -1 after a one-line message on stderr (no Python

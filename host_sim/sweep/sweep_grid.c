@@ -175,6 +175,12 @@ int sweep_grid_parse(int argc, char **argv, sweep_grid_t *g, char *err, size_t l
             if (kind < 0) {
                 return grid_fail(err, len, "unknown option '%s'%s", argv[i], "");
             }
+            if (strcmp(argv[i], "--pil") == 0) {
+                return grid_fail(err, len,
+                                 "sweep runs its points side by side: --pil is for one "
+                                 "run (sixphase-sim run --pil)%s%s",
+                                 "", "");
+            }
             if (takes_value && i + 1 >= argc) {
                 return grid_fail(err, len, "%s needs a value%s", argv[i], "");
             }
