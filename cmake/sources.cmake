@@ -86,6 +86,7 @@ set(SIXPHASE_HAL_F28335_HOST_SOURCES
 
 # F28335 start-up, control interrupt, background loop.
 set(SIXPHASE_FW_F28335_SOURCES
+    firmware/f28335/fw_ramfuncs.c
     firmware/f28335/fw_startup.c
     firmware/f28335/fw_isr.c
     firmware/f28335/fw_background.c
@@ -102,6 +103,18 @@ set(SIXPHASE_PIL_SOURCES
     hal/sim/hal_sim.c
     host_sim/bridge/sim_controller_bridge.c
     host_sim/bridge/sim_ctl_wire.c)
+# The F28335's PIL image (firmware/f28335/CMakeLists.txt, SIXPHASE_FW_PIL): the PIL sources, the
+# register-level HAL but for the peripherals the bus stands in for (PWM, ADC, eQEP), the RAM copy
+# and its own main.
+set(SIXPHASE_PIL_F28335_SOURCES
+    hal/f28335/src/f28335_regs_check.c
+    hal/f28335/src/f28335_gpio.c
+    hal/f28335/src/f28335_sysctrl.c
+    hal/f28335/src/f28335_pie.c
+    hal/f28335/src/f28335_cycles.c
+    hal/f28335/src/f28335_sci.c
+    firmware/f28335/fw_ramfuncs.c
+    firmware/pil/f28335_pil_main.c)
 set(SIXPHASE_PIL_MPS2_SOURCES
     firmware/pil/mps2_main.c
     firmware/pil/mps2_startup.c

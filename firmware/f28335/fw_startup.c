@@ -25,13 +25,6 @@ drive_t fw_drive;
 fw_state_t fw_state;
 
 #if F28335_TARGET
-/* Defined by the linker command file (F28335_flash.cmd). */
-extern uint16_t RamfuncsLoadStart;
-extern uint16_t RamfuncsLoadEnd;
-extern uint16_t RamfuncsRunStart;
-extern uint16_t RamconstsLoadStart;
-extern uint16_t RamconstsLoadEnd;
-extern uint16_t RamconstsRunStart;
 /* The run-time stack, .stack (TI SPRU513, --stack_size): the RTS start-up (boot.asm) defines
  * __stack at its start and points SP there; the linker defines __STACK_SIZE, its size in words,
  * as the symbol's value. COFF adds one leading underscore to C names. */
@@ -41,33 +34,7 @@ extern uint16_t _STACK_SIZE;
 /* Host: a stand-in stack region, painted as the target's is (the host's own stack is not the
  * C28x's and is not measured), with the first FW_HOST_STACK_IN_USE words taken as in use. */
 volatile uint16_t fw_host_stack[FW_HOST_STACK_WORDS];
-/* Host: stand-in sections so the copies run and can be checked. */
-uint16_t fw_host_ramfuncs_load[4] = {0x1234u, 0x5678u, 0x9ABCu, 0xDEF0u};
-uint16_t fw_host_ramfuncs_run[4];
-uint16_t fw_host_ramconsts_load[3] = {0x0BADu, 0xCAFEu, 0xF00Du};
-uint16_t fw_host_ramconsts_run[3];
 #endif
-
-void fw_copy_words(uint16_t *dst, const uint16_t *src, uint32_t n)
-{
-    uint32_t i;
-    for (i = 0u; i < n; i++) {
-        dst[i] = src[i];
-    }
-}
-
-void fw_ramfuncs_copy(void)
-{
-#if F28335_TARGET
-    fw_copy_words(&RamfuncsRunStart, &RamfuncsLoadStart,
-                  (uint32_t)((uintptr_t)&RamfuncsLoadEnd - (uintptr_t)&RamfuncsLoadStart));
-    fw_copy_words(&RamconstsRunStart, &RamconstsLoadStart,
-                  (uint32_t)((uintptr_t)&RamconstsLoadEnd - (uintptr_t)&RamconstsLoadStart));
-#else
-    fw_copy_words(fw_host_ramfuncs_run, fw_host_ramfuncs_load, 4u);
-    fw_copy_words(fw_host_ramconsts_run, fw_host_ramconsts_load, 3u);
-#endif
-}
 
 /* Paints the stack above this function's frame (stack_watch.h). The C28x stack grows upward:
  * everything below `here` is the callers' (c_int00, main, fw_startup), and the guard covers
