@@ -69,17 +69,20 @@ set(SIXPHASE_DRIVE_LINK_SOURCES
     firmware/app/service/drive_link.c
     firmware/app/service/link_service.c)
 
-# F28335 register-level HAL.
-set(SIXPHASE_HAL_F28335_SOURCES
+# F28335 register-level HAL: the system's part (clock, interrupts, counter, serial port) and the
+# power stage's (PWM, ADC, eQEP; a PIL image has the simulator's bus instead).
+set(SIXPHASE_HAL_F28335_SYSTEM_SOURCES
     hal/f28335/src/f28335_regs_check.c
     hal/f28335/src/f28335_gpio.c
     hal/f28335/src/f28335_sysctrl.c
     hal/f28335/src/f28335_pie.c
     hal/f28335/src/f28335_cycles.c
+    hal/f28335/src/f28335_sci.c)
+set(SIXPHASE_HAL_F28335_SOURCES
+    ${SIXPHASE_HAL_F28335_SYSTEM_SOURCES}
     hal/f28335/src/f28335_pwm.c
     hal/f28335/src/f28335_adc.c
-    hal/f28335/src/f28335_eqep.c
-    hal/f28335/src/f28335_sci.c)
+    hal/f28335/src/f28335_eqep.c)
 # Host build only: the register frames as RAM.
 set(SIXPHASE_HAL_F28335_HOST_SOURCES
     hal/f28335/src/f28335_host_regs.c)
@@ -107,12 +110,7 @@ set(SIXPHASE_PIL_SOURCES
 # register-level HAL but for the peripherals the bus stands in for (PWM, ADC, eQEP), the RAM copy
 # and its own main.
 set(SIXPHASE_PIL_F28335_SOURCES
-    hal/f28335/src/f28335_regs_check.c
-    hal/f28335/src/f28335_gpio.c
-    hal/f28335/src/f28335_sysctrl.c
-    hal/f28335/src/f28335_pie.c
-    hal/f28335/src/f28335_cycles.c
-    hal/f28335/src/f28335_sci.c
+    ${SIXPHASE_HAL_F28335_SYSTEM_SOURCES}
     firmware/f28335/fw_ramfuncs.c
     firmware/pil/f28335_pil_main.c)
 set(SIXPHASE_PIL_MPS2_SOURCES

@@ -10,14 +10,6 @@
 #include "hal_cycles.h"
 #include "pil_target.h"
 
-#if CTL_MATH_FLOAT
-#define PIL_OPS sim_ctl_ops_float
-#define PIL_ARITH SXL_PIL_ARITH_FLOAT
-#else
-#define PIL_OPS sim_ctl_ops_fixed
-#define PIL_ARITH SXL_PIL_ARITH_FIXED
-#endif
-
 /* The line's speed: `--pil serial:PORT@921600` on the host (an FTDI-type adapter, docs). */
 #define PIL_SCI_BAUD ((uint32_t)921600u)
 
@@ -37,7 +29,7 @@ int main(void)
         for (;;) { /* no clock or no line: nothing to answer (the host times out on HELLO) */
         }
     }
-    pil_target_init(&pil, &PIL_OPS, PIL_ARITH, SXL_PIL_TARGET_F28335);
+    pil_target_init(&pil, &PIL_TARGET_OPS, PIL_TARGET_ARITH, SXL_PIL_TARGET_F28335);
     for (;;) {
         pil_target_poll(&pil);
     }

@@ -6,20 +6,12 @@
 #include "hal_mps2.h"
 #include "pil_target.h"
 
-#if CTL_MATH_FLOAT
-#define PIL_OPS sim_ctl_ops_float
-#define PIL_ARITH SXL_PIL_ARITH_FLOAT
-#else
-#define PIL_OPS sim_ctl_ops_fixed
-#define PIL_ARITH SXL_PIL_ARITH_FIXED
-#endif
-
 static pil_target_t pil;
 
 int main(void)
 {
     hal_mps2_init();
-    pil_target_init(&pil, &PIL_OPS, PIL_ARITH, SXL_PIL_TARGET_MPS2);
+    pil_target_init(&pil, &PIL_TARGET_OPS, PIL_TARGET_ARITH, SXL_PIL_TARGET_MPS2);
     for (;;) {
         pil_target_poll(&pil);
     }

@@ -14,6 +14,15 @@
 #include "bridge/sim_ctl_wire.h"
 #include "sxlink.h"
 
+/* The bridge and arithmetic of the image being built (a platform's main hands them over). */
+#if CTL_MATH_FLOAT
+#define PIL_TARGET_OPS sim_ctl_ops_float
+#define PIL_TARGET_ARITH SXL_PIL_ARITH_FLOAT
+#else
+#define PIL_TARGET_OPS sim_ctl_ops_fixed
+#define PIL_TARGET_ARITH SXL_PIL_ARITH_FIXED
+#endif
+
 typedef struct {
     const sim_ctl_ops_t *ops; /* the drive, through the simulator's bridge */
     uint16_t arith;           /* SXL_PIL_ARITH_* of this image */

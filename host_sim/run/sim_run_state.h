@@ -95,6 +95,11 @@ void sim_result_fill(sim_run_t *rs, sim_result_t *r);
 int sim_ctl_pole_pairs(const sim_config_t *c);
 /* The controller's whole machine: each field set, or the reference machine's. */
 void sim_ctl_machine_resolve(const sim_config_t *c, sim_ctl_machine_t *m);
+/* The controller as the firmware's parameter set would configure it for a run: the controller's
+ * machine (sim_ctl_machine_t), its inertia the reference machine's unless set; p the plant (its
+ * sensors' span), ts_s the period, torque_limit_nm the scenario's (0: the core's). */
+void sim_controller_config(const sim_config_t *c, const plant_params_t *p, double ts_s,
+                           double torque_limit_nm, sim_ctl_config_t *cc);
 
 /* Monotonic wall clock, s. */
 double sim_wall_now(void);

@@ -56,16 +56,13 @@ void sim_ctl_machine_resolve(const sim_config_t *c, sim_ctl_machine_t *m)
     m->speed_gains_from_j = c->ctl.speed_gains_from_j;
 }
 
-/* The controller as the firmware's parameter set would configure it for this run: the
- * controller's machine (sim_ctl_machine_t), its inertia the reference machine's unless set. */
-static void setup_controller_config(const sim_run_t *rs, sim_ctl_config_t *cc)
+void sim_controller_config(const sim_config_t *c, const plant_params_t *p, double ts_s,
+                           double torque_limit_nm, sim_ctl_config_t *cc)
 {
-    const sim_config_t *c = rs->cfg;
-    const plant_params_t *p = &rs->plant;
     memset(cc, 0, sizeof *cc);
     cc->controller = c->controller;
     cc->lambda = c->lambda;
-    cc->ts_s = rs->ts;
+    cc->ts_s = ts_s;
     cc->duty_levels = c->duty_levels;
     cc->ddc_direction = c->ddc_direction;
     cc->flux_ref_mode = c->flux_ref_mode;
@@ -87,7 +84,7 @@ static void setup_controller_config(const sim_run_t *rs, sim_ctl_config_t *cc)
     cc->speed_kp = m.speed_kp;
     cc->speed_ki = m.speed_ki;
     cc->speed_gains_from_j = m.speed_gains_from_j;
-    cc->torque_limit_nm = rs->plan.torque_limit;
+    cc->torque_limit_nm = torque_limit_nm;
     cc->protect = c->protect ? 1 : 0;
     cc->current_full_span_a = 2.0 * p->current_sensor_span_a;
     cc->open_phase_action = c->open_phase_action;
@@ -143,7 +140,7 @@ static int setup_drive(sim_run_t *rs, char *err, size_t err_len)
         return setup_fail(err, err_len, "simulator HAL refused its configuration");
     }
     hal_cycles_init();
-    setup_controller_config(rs, &cc);
+    sim_controller_config(rs->cfg, &rs->plant, rs->ts, rs->plan.torque_limit, &cc);
     if (rs->ops->init(&cc, &why) != 0) {
         (void)snprintf(err, err_len, "control core rejected the parameters: %s", why);
         return -1;

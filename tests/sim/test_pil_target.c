@@ -143,33 +143,9 @@ static void test_comparison(void **state)
 static void reference_config(sim_ctl_config_t *cc)
 {
     sim_config_t c;
-    sim_ctl_machine_t m;
     sim_config_default(&c);
-    sim_ctl_machine_resolve(&c, &m);
-    memset(cc, 0, sizeof *cc);
-    cc->controller = 0;
-    cc->lambda = 20.0;
-    cc->ts_s = 1e-4;
-    cc->duty_levels = c.duty_levels;
-    cc->ddc_direction = c.ddc_direction;
-    cc->flux_ref_mode = c.flux_ref_mode;
-    cc->ddc_torque_guard = c.ddc_torque_guard;
-    cc->mid_period_angle = c.mid_period_angle;
-    cc->pulse_pattern = c.pulse_pattern;
-    cc->flux_tie_band = c.flux_tie_band;
-    cc->light_load_current_a = c.light_load_current_a;
-    cc->r_ohm = m.r_ohm;
-    cc->ld_h = m.ld_h;
-    cc->lq_h = m.lq_h;
-    cc->lxy_h = m.lxy_h;
-    cc->psi_f_wb = m.psi_f_wb;
-    cc->pole_pairs = m.pole_pairs;
-    cc->j_kgm2 = m.j_kgm2;
-    cc->protect = 1;
-    cc->current_full_span_a = 2.0 * c.plant.current_sensor_span_a;
-    cc->open_phase_action = -1;
-    cc->postfault_strategy = -1;
-    cc->torque_limited_action = -1;
+    c.controller = 0;
+    sim_controller_config(&c, &c.plant, 1e-4, 0.0, cc);
 }
 
 /* A request answered by the service; its result byte. */
