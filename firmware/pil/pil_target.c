@@ -172,9 +172,9 @@ static uint16_t on_step(pil_target_t *t, const sxl_frame_t *req, sxl_frame_t *re
     t->ops->isr();
     t->steps++;
     sim_ctl_wire_outputs_of_bus(&hal_sim_bus, &out);
-    t->ops->period_status(&st);
+    t->ops->status(&st); /* outside the ISR's count: the faults latched, not only the code */
     out.state = (uint16_t)st.state;
-    out.faults = (uint16_t)st.fault;
+    out.faults = (uint16_t)st.faults_latched;
     step_cycles(counts, &out);
     sim_ctl_wire_put_outputs(&out, reply->payload);
     reply->len = SXL_PIL_OUT_BYTES;

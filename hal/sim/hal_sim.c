@@ -1,5 +1,5 @@
 /* Simulator HAL, its peripheral bus (PWM, ADC, encoder): see hal_sim.h. Free of the host: a
- * processor-in-the-loop target links this file as its peripherals (firmware/app/pil); the
+ * processor-in-the-loop target links this file as its peripherals (firmware/pil); the
  * serial port and the clock are in hal_sim_serial.c and hal_sim_clock.c. */
 #include "hal_sim.h"
 

@@ -106,9 +106,9 @@ static void pil_isr(void)
         return;
     }
     sim_ctl_wire_outputs_of_bus(&hal_sim_bus, &mine);
-    pil.ref->period_status(&st);
+    pil.ref->status(&st);
     mine.state = (uint16_t)st.state;
-    mine.faults = (uint16_t)st.fault;
+    mine.faults = (uint16_t)st.faults_latched;
     if (pil.ncalls > room && pil_session_calls(&pil.s, pil.calls, pil.ncalls) != 0) {
         pil_fail();
         return;

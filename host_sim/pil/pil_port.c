@@ -10,6 +10,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <termios.h>
 #include <time.h>
@@ -43,7 +44,7 @@ static int parse_serial(const char *target, char *path, size_t cap, speed_t *cod
     const char *spec = target + strlen("serial:");
     const char *at = strrchr(spec, '@');
     const size_t n = at ? (size_t)(at - spec) : strlen(spec);
-    long baud = 115200;
+    long baud = 921600; /* the F28335 PIL image's (firmware/pil/f28335_pil_main.c) */
     size_t k;
     if (n == 0u || n >= cap) {
         return port_fail(err, len, "--pil serial:PATH[@BAUD]: the path is missing or too long", "");
@@ -162,6 +163,11 @@ static int port_spawn_qemu(pil_port_t *p, const char *image, char *err, size_t l
     }
     p->child = fork();
     if (p->child == 0) {
+        /* the emulator ends with the simulator, however it ends (a signal, a test's timeout) */
+        (void)prctl(PR_SET_PDEATHSIG, SIGTERM);
+        if (getppid() == 1) {
+            _exit(1);
+        }
         (void)dup2(out[1], STDOUT_FILENO);
         (void)dup2(out[1], STDERR_FILENO);
         (void)close(out[0]);

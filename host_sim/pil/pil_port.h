@@ -22,7 +22,8 @@ typedef struct {
 #define PIL_PORT_ICOUNT_SHIFT 6u
 
 /* Opens a target given as "qemu" (the emulated MPS2 AN386, the image of arith: "fixed" or
- * "float") or "serial:PATH[@BAUD]" (default 115200 baud). 0, or -1 with a one-line reason. */
+ * "float") or "serial:PATH[@BAUD]" (default 921600 baud, the F28335 PIL image's). 0, or -1 with a
+ * one-line reason. */
 int pil_port_open(pil_port_t *p, const char *target, const char *arith, char *err, size_t len);
 
 /* Checks a target's spelling only (the command line's check): 0 or -1 with the reason. */

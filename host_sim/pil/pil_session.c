@@ -1,8 +1,18 @@
 /* The frames of a PIL session, see pil_session.h. */
+#define _POSIX_C_SOURCE 199309L /* clock_gettime */
+
 #include "pil_session.h"
 
 #include <stdio.h>
 #include <string.h>
+#include <time.h>
+
+static long session_ms(void)
+{
+    struct timespec t;
+    (void)clock_gettime(CLOCK_MONOTONIC, &t);
+    return (long)t.tv_sec * 1000L + t.tv_nsec / 1000000L;
+}
 
 static const char *pil_command_name(uint16_t cmd)
 {
@@ -22,13 +32,13 @@ static int exchange(pil_session_t *s, uint16_t cmd, const uint16_t *payload, uin
     uint16_t tx[SXL_MAX_FRAME];
     const uint16_t n = sxl_encode(cmd, payload, len, tx, SXL_MAX_FRAME);
     const int limit = (cmd == SXL_CMD_PIL_HELLO) ? PIL_SESSION_HELLO_MS : PIL_SESSION_TIMEOUT_MS;
-    int waited = 0;
+    const long deadline = session_ms() + limit; /* noise or other frames do not extend it */
     if (n == 0u || pil_port_write(&s->port, tx, n) != 0) {
         (void)snprintf(s->err, sizeof s->err, "PIL: cannot send %s to %.200s",
                        pil_command_name(cmd), s->port.path);
         return -1;
     }
-    while (waited < limit) {
+    while (session_ms() < deadline) {
         uint8_t buf[256];
         const int got = pil_port_read(&s->port, buf, sizeof buf, 100);
         int k;
@@ -39,7 +49,6 @@ static int exchange(pil_session_t *s, uint16_t cmd, const uint16_t *payload, uin
                 s->port.child_said[0] ? "; the emulator said: " : "", s->port.child_said);
             return -1;
         }
-        waited += (got == 0) ? 100 : 0;
         for (k = 0; k < got; k++) {
             if (sxl_decoder_push(&s->decoder, buf[k], reply) == SXL_RX_FRAME &&
                 reply->cmd == (uint16_t)(cmd | SXL_REPLY)) {

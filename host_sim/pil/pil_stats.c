@@ -55,7 +55,7 @@ static int describe_outputs(char *out, size_t cap, const char *who, const sim_ct
 {
     return snprintf(out, cap,
                     "%s: duty [%u %u %u %u %u %u], flags 0x%02x, isolated 0x%02x, "
-                    "state %u, fault %u; ",
+                    "state %u, faults latched 0x%04x; ",
                     who, o->duty[0], o->duty[1], o->duty[2], o->duty[3], o->duty[4], o->duty[5],
                     o->flags, o->isolated, o->state, o->faults);
 }
@@ -88,11 +88,15 @@ static void keep_period(pil_stats_t *st, const sim_ctl_wire_out_t *theirs)
 {
     pil_period_t *pp;
     int k;
+    if (st->full) {
+        return; /* out of memory once: the statistics end there, the comparison goes on */
+    }
     if (st->steps == st->cap) {
         const size_t cap = st->cap ? 2u * st->cap : 4096u;
         pil_period_t *grown = realloc(st->periods, cap * sizeof *grown);
         if (!grown) {
-            return; /* the statistics then end here; the comparison goes on */
+            st->full = true;
+            return;
         }
         st->periods = grown;
         st->cap = cap;

@@ -25,7 +25,8 @@ typedef struct {
     bool float_image;
     FILE *csv;
     pil_period_t *periods;
-    size_t steps, cap;
+    size_t steps, cap; /* periods seen; room for */
+    bool full;         /* a growth failed: periods from then on are compared, not kept */
 } pil_stats_t;
 
 /* csv_path NULL: no file. 0, or -1 with the reason in err. */

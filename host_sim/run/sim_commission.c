@@ -121,7 +121,8 @@ int sim_commission_loop(sim_run_t *rs, sim_result_t *r, char *err, size_t err_le
                 (void)snprintf(err, err_len, "plant state diverged");
                 return -1;
             }
-            if (sim_loop_out_limit(rs, k, err, err_len) != 0) {
+            if (sim_loop_out_limit(rs, k, err, err_len) != 0 ||
+                sim_loop_pil_failed(rs, k, err, err_len)) {
                 return -1;
             }
             comm_track_peak(rs, r);

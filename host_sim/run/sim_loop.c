@@ -234,6 +234,15 @@ int sim_loop_period(sim_run_t *rs, sim_result_t *r, long k)
     return 0;
 }
 
+bool sim_loop_pil_failed(const sim_run_t *rs, long k, char *err, size_t err_len)
+{
+    if (!rs->pil_open || !sim_pil_error()) {
+        return false;
+    }
+    (void)snprintf(err, err_len, "%s (at %.4f s simulated)", sim_pil_error(), (double)k * rs->ts);
+    return true;
+}
+
 int sim_loop_out_limit(const sim_run_t *rs, long k, char *err, size_t err_len)
 {
     if (!rs->rec.limit_reached) {
@@ -265,9 +274,7 @@ int sim_loop_run(sim_run_t *rs, sim_result_t *r, char *err, size_t err_len)
             (void)snprintf(err, err_len, "plant state diverged");
             return -1;
         }
-        if (rs->pil_open && sim_pil_error()) {
-            (void)snprintf(err, err_len, "%s (at %.4f s simulated)", sim_pil_error(),
-                           (double)k * rs->ts);
+        if (sim_loop_pil_failed(rs, k, err, err_len)) {
             return -1;
         }
         if (rs->rec.limit_reached && sim_loop_out_limit(rs, k, err, err_len) != 0) {

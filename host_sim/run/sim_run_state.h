@@ -77,6 +77,9 @@ void sim_teardown(sim_run_t *rs, bool ok);
  * recorder and metrics); -1 when the plant diverged. */
 int sim_loop_period(sim_run_t *rs, sim_result_t *r, long k);
 
+/* The PIL session failed (the run stops): why, with the period's time, into err. */
+bool sim_loop_pil_failed(const sim_run_t *rs, long k, char *err, size_t err_len);
+
 /* After period k: 0, or -1 with a one-line message when the output files reached their size
  * limit (the run or session stops there; the files end at the last whole row). */
 int sim_loop_out_limit(const sim_run_t *rs, long k, char *err, size_t err_len);

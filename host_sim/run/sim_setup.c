@@ -216,6 +216,9 @@ static void calibrate_periods(sim_run_t *rs, sim_ctl_status_t *st)
     long cal;
     rs->ops->period_status(st);
     for (cal = 0; cal < SIM_CAL_PERIODS_MAX && !st->ready; cal++) {
+        if (rs->pil_open && sim_pil_error()) {
+            break; /* the target is gone: sim_setup_calibrate says so */
+        }
         double iph[6];
         hal_sim_clock_advance(rs->ts_ns);
         plant_phase_currents(&rs->plant, &rs->x, iph);
@@ -238,6 +241,9 @@ int sim_setup_calibrate(sim_run_t *rs, sim_result_t *r, char *err, size_t err_le
 {
     sim_ctl_status_t st;
     calibrate_periods(rs, &st);
+    if (sim_loop_pil_failed(rs, 0, err, err_len)) {
+        return -1;
+    }
     if (st.faulted && sim_fault_at_power_up(rs->cfg->fault)) {
         /* found by the calibration: the latency is the calibration itself */
         r->fault_inject_s = 0.0;

@@ -27,12 +27,15 @@ static void test_config_image_round_trip(void **state)
     sim_ctl_config_t a;
     sim_ctl_config_t b;
     uint16_t image[SIM_CTL_CONFIG_IMAGE_BYTES];
+    int n = 0;
     (void)state;
     memset(&a, 0, sizeof a);
-#define FILL_INT(name) a.name = -7;
+    memset(&b, 0, sizeof b);
+    /* a value of its own in every field: a swapped or shifted field shows */
+#define FILL_INT(name) a.name = -(++n);
+#define FILL_REAL(name) a.name = 0.25 + (double)(++n);
+#define FILL_BOOL(name) a.name = ((++n) % 2) == 0;
 #define FILL(kind, name) FILL_##kind(name)
-#define FILL_REAL(name) a.name = 0.125 + (double)sizeof(a.name);
-#define FILL_BOOL(name) a.name = true;
     SIM_CTL_CONFIG_FIELDS(FILL)
     a.pole_pairs = 100000; /* beyond int16: held */
     sim_ctl_config_encode(&a, image);
@@ -58,6 +61,7 @@ static void test_inputs_and_outputs_round_trip(void **state)
     sim_ctl_wire_out_t back;
     int k;
     (void)state;
+    memset(&back, 0, sizeof back); /* the padding too: the structs are compared whole */
     memset(&in, 0, sizeof in);
     memset(&got, 0, sizeof got);
     for (k = 0; k < 6; k++) {
@@ -148,6 +152,20 @@ static void reference_config(sim_ctl_config_t *cc)
     sim_controller_config(&c, &c.plant, 1e-4, 0.0, cc);
 }
 
+/* The fixed bridge with its background share and run request counted: which calls ran. */
+static sim_ctl_ops_t recording;
+static int backgrounds, run_requests;
+static void count_background(void)
+{
+    backgrounds++;
+    sim_ctl_ops_fixed.background();
+}
+static void count_run(void)
+{
+    run_requests++;
+    sim_ctl_ops_fixed.request_run();
+}
+
 /* A request answered by the service; its result byte. */
 static uint16_t ask(pil_target_t *t, uint16_t cmd, const uint16_t *payload, uint16_t len)
 {
@@ -171,7 +189,10 @@ static void test_target_service(void **state)
     hal_sim_bus_t setup;
     uint16_t at;
     (void)state;
-    pil_target_init(&t, &sim_ctl_ops_fixed, SXL_PIL_ARITH_FIXED, SXL_PIL_TARGET_MPS2);
+    recording = sim_ctl_ops_fixed;
+    recording.background = count_background;
+    recording.request_run = count_run;
+    pil_target_init(&t, &recording, SXL_PIL_ARITH_FIXED, SXL_PIL_TARGET_MPS2);
     assert_int_equal(ask(&t, SXL_CMD_PIL_HELLO, NULL, 0u), SXL_OK);
     assert_int_equal(t.reply.payload[1], SXL_PIL_VERSION);
     assert_int_equal(t.reply.payload[3], SXL_PIL_TARGET_MPS2);
@@ -204,9 +225,14 @@ static void test_target_service(void **state)
     /* a STEP whose calls end in an unknown code: refused, none of them run, no period */
     memset(p, 0, sizeof p);
     p[SXL_PIL_IN_BYTES] = SXL_PIL_CALL_BACKGROUND;
-    p[SXL_PIL_IN_BYTES + 1u] = SXL_PIL_CALL_COUNT;
-    assert_int_equal(ask(&t, SXL_CMD_PIL_STEP, p, SXL_PIL_IN_BYTES + 2u), SXL_ERR_VALUE);
+    p[SXL_PIL_IN_BYTES + 1u] = SXL_PIL_CALL_RUN;
+    p[SXL_PIL_IN_BYTES + 2u] = SXL_PIL_CALL_COUNT;
+    assert_int_equal(ask(&t, SXL_CMD_PIL_STEP, p, SXL_PIL_IN_BYTES + 3u), SXL_ERR_VALUE);
     assert_int_equal(t.steps, 0u);
+    assert_int_equal(backgrounds, 0);
+    assert_int_equal(run_requests, 0);
+    assert_int_equal(ask(&t, SXL_CMD_PIL_CALLS, &p[SXL_PIL_IN_BYTES], 3u), SXL_ERR_VALUE);
+    assert_int_equal(backgrounds + run_requests, 0);
     p[SXL_PIL_IN_BYTES] = SXL_PIL_CALL_SET_SPEED; /* its REAL cut short */
     assert_int_equal(ask(&t, SXL_CMD_PIL_STEP, p, SXL_PIL_IN_BYTES + 3u), SXL_ERR_VALUE);
     assert_int_equal(ask(&t, SXL_CMD_PIL_STEP, p, SXL_PIL_IN_BYTES - 1u), SXL_ERR_LENGTH);
@@ -222,6 +248,7 @@ static void test_target_service(void **state)
     assert_int_equal(t.reply.len, SXL_PIL_OUT_BYTES);
     assert_int_equal(sxl_get_u16(&t.reply.payload[SXL_PIL_OUT_SEQ]), 0x1234);
     assert_int_equal(t.steps, 1u);
+    assert_int_equal(backgrounds, 1);    /* the call ran, once, before the period */
     assert_false(hal_sim_bus.adc_fresh); /* the period read it */
 }
 

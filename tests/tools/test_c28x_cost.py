@@ -109,6 +109,23 @@ class CostModelTest(unittest.TestCase):
                                        ("imulq", "%rdx,%rax")]))
         self.assertFalse(self._narrow([("movslq", "(%rdi),%rax"), ("imulq", "(%rsi),%rax")]))
 
+    def test_what_may_change_a_value_unseen_makes_it_wide(self):
+        # the upper half of a tracked slot written; the frame's address taken (a store through
+        # it could write the slot); an exchange; an indirect jump anywhere in the function
+        self.assertFalse(self._narrow([("movslq", "(%rdi),%rcx"), ("movq", "%rcx,0x8(%rsp)"),
+                                       ("movl", "%esi,0xc(%rsp)"), ("movl", "(%rsi),%edx"),
+                                       ("imulq", "0x8(%rsp),%rdx")]))
+        self.assertFalse(self._narrow([("movslq", "(%rdi),%rcx"), ("movq", "%rcx,0x8(%rsp)"),
+                                       ("leaq", "0x8(%rsp),%rdi"), ("movl", "(%rsi),%edx"),
+                                       ("imulq", "0x8(%rsp),%rdx")]))
+        self.assertFalse(self._narrow([("movslq", "(%rdi),%rax"), ("movslq", "(%rsi),%rdx"),
+                                       ("xchgq", "%rax,%r8"), ("imulq", "%rdx,%rax")]))
+        self.assertFalse(self._narrow([("movslq", "(%rdi),%rax"), ("movslq", "(%rsi),%rdx"),
+                                       ("imulq", "%rdx,%rax"), ("jmpq", "*%rcx")]))
+        # a sign extension is not a string move (movslq starts as movs does)
+        self.assertTrue(self._narrow([("movslq", "(%rdi),%rax"), ("movslq", "(%rsi),%rdx"),
+                                      ("imulq", "%rdx,%rax")]))
+
     def test_a_callee_saved_register_stays_narrow_across_a_call(self):
         self.assertTrue(self._narrow([("movslq", "(%rdi),%rbx"), ("callq", "200 <g>"),
                                       ("movslq", "(%rsi),%rax"), ("imulq", "%rbx,%rax")]))

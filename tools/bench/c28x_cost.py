@@ -350,12 +350,53 @@ def _shift_leaves_narrow(mnem, ops):
     return _immediate(_operands(ops)[0]) >= 32
 
 
-def _transfer(state, mnem, ops):
+_MULTI_WRITERS = ("xchg", "xadd", "cmpxchg")  # write every register operand (cmpxchg: rax too)
+_STRING_OPS = tuple(op + w for op in ("stos", "lods", "scas", "cmps") for w in "bwlq")
+_BIT_WRITERS = ("bts", "btr", "btc")
+_SSE_STORE_BYTES = {"movss": 4, "movd": 4, "movsd": 8, "movlps": 8, "movhps": 8, "movlpd": 8,
+                    "movhpd": 8, "movaps": 16, "movups": 16, "movapd": 16, "movupd": 16,
+                    "movdqa": 16, "movdqu": 16}
+
+
+def _store_bytes(mnem, operands):
+    """Bytes an instruction writes to its memory destination (8 when unsure: the most a slot
+    holds; a 16-byte SSE store its 16)."""
+    if mnem in _SSE_STORE_BYTES:
+        return _SSE_STORE_BYTES[mnem]
+    if mnem == "movq" and operands and operands[0].startswith("%xmm"):
+        return 8
+    return {"b": 1, "w": 2, "l": 4, "q": 8}.get(mnem[-1:], 8)
+
+
+def _frame_store(out, mnem, operands, state):
+    """A store into the frame: every tracked slot it overlaps forgotten; an 8-byte copy of a
+    value shown 32-bit tracked. A store into the frame addressed otherwise forgets them all."""
+    dest = operands[-1]
+    slot = _stack_slot(dest)
+    if slot is None:
+        return {r for r in out if not isinstance(r, int)}
+    width = _store_bytes(mnem, operands)
+    out = {r for r in out if not isinstance(r, int) or r + 8 <= slot or r >= slot + width}
+    if mnem == "movq" and _FAMILY.get(operands[0].lstrip("%")) in state:
+        out.add(slot)
+    return out
+
+
+def _transfer(state, mnem, ops, track_slots=True):
     """The set of narrow locations (register families, frame slots) after one instruction."""
     operands = _operands(ops)
     out = set(state)
     if mnem in ("call", "callq"):
         return {r for r in out if r in _CALLEE_SAVED}
+    if mnem.startswith(("push", "pop", "leave", "ret")):  # %rsp moves: the slots' offsets too
+        out = {r for r in out if not isinstance(r, int)}
+    string_op = mnem in _STRING_OPS or "%es:" in ops  # movs with -M suffix: movsq %ds:..,%es:..
+    if mnem.startswith(_MULTI_WRITERS + _BIT_WRITERS) or string_op:
+        written = {_FAMILY.get(o.lstrip("%")) for o in operands if o.startswith("%")}
+        if mnem.startswith("cmpxchg") or string_op:
+            written |= {"rax", "rcx", "rdi", "rsi"}
+        out = {r for r in out if r not in written and not isinstance(r, int)}
+        return out  # the frame forgotten too: a string op or a memory operand may write it
     if mnem.startswith(("imul", "mul", "div", "idiv")) and len(operands) < 2:
         return out - {"rax", "rdx"}
     fam = _written_family(mnem, ops)
@@ -371,24 +412,42 @@ def _transfer(state, mnem, ops):
         if narrow:
             out.add(fam)
         return out
-    if operands and _stack_slot(operands[-1]) is not None:
-        slot = _stack_slot(operands[-1])
-        out.discard(slot)
-        if mnem == "movq" and _FAMILY.get(operands[0].lstrip("%")) in state:
-            out.add(slot)
-        elif mnem == "movl" or mnem == "movq" and operands[0].startswith("$"):
-            out.discard(slot)  # half a slot or an immediate: not tracked
+    if operands and "(%rsp" in operands[-1] and not mnem.startswith(_NO_WRITE):
+        out = _frame_store(out, mnem, operands, state)
+        if not track_slots:
+            out = {r for r in out if not isinstance(r, int)}
     return out
 
 
+_NO_WRITE = ("cmp", "test", "bt", "ucomis", "comis", "j", "push", "nop", "prefetch")
 _CALLEE_SAVED = {"rbx", "rbp", "r12", "r13", "r14", "r15"}
+
+
+def _frame_escapes(dis, addrs):
+    """The frame's address leaves %rsp (a lea of a slot, a copy of %rsp, an indexed slot): a
+    store through another register may then write a slot, so none is tracked."""
+    for a in addrs:
+        mnem, ops, _ = dis[a]
+        for o in _operands(ops):
+            if "%rsp" not in o:
+                continue
+            if _stack_slot(o) is None and o != "%rsp":
+                return True
+            if o == "%rsp" and not mnem.startswith(("add", "sub", "and", "push", "pop")):
+                return True
+            if mnem.startswith("lea") and _stack_slot(o) is not None:
+                return True
+    return False
 
 
 class Blocks:
     """Which registers hold a value shown 32-bit before each instruction: a forward data-flow
     over each function's control flow (a 32-bit write, a sign extension, a 32-bit immediate, a
-    right shift by 32 or more, copies of those through registers and frame slots; a call keeps
-    only the callee-saved registers; where paths join, what holds on all of them)."""
+    right shift by 32 or more, copies of those through registers and, where the frame's address
+    never escapes, frame slots; a call keeps only the callee-saved registers; where paths join,
+    what holds on all of them). A function with an indirect jump (its targets unknown here) is
+    left without any: every operand of it is priced wide, as is every instruction that only a
+    jump from another function (a .cold part's) reaches."""
 
     def __init__(self, dis):
         self.dis = dis
@@ -398,7 +457,9 @@ class Blocks:
         for addr in self.order:
             by_fn[dis[addr][2]].append(addr)
         for addrs in by_fn.values():
-            self._solve(addrs)
+            if any(dis[a][0].startswith("jmp") and dis[a][1].startswith("*") for a in addrs):
+                continue
+            self._solve(addrs, not _frame_escapes(dis, addrs))
 
     def _successors(self, addrs, i):
         mnem, ops, _ = self.dis[addrs[i]]
@@ -412,7 +473,7 @@ class Blocks:
             succ.append(addrs[i + 1])
         return succ
 
-    def _solve(self, addrs):
+    def _solve(self, addrs, track_slots):
         inside = set(addrs)
         pos = {a: i for i, a in enumerate(addrs)}
         state = {addrs[0]: frozenset()}
@@ -420,7 +481,7 @@ class Blocks:
         while work:
             a = work.pop()
             mnem, ops, _ = self.dis[a]
-            out = frozenset(_transfer(state[a], mnem, ops))
+            out = frozenset(_transfer(state[a], mnem, ops, track_slots))
             for nxt in self._successors(addrs, pos[a]):
                 if nxt not in inside:
                     continue
