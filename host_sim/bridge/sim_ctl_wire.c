@@ -136,7 +136,7 @@ uint16_t sim_ctl_wire_take_inputs(const uint16_t *payload, hal_sim_bus_t *b)
 void sim_ctl_wire_outputs_of_bus(const hal_sim_bus_t *b, sim_ctl_wire_out_t *o)
 {
     uint16_t k;
-    for (k = 0u; k < 6u; k++) {
+    for (k = 0u; k < HAL_PWM_LEGS; k++) {
         o->duty[k] = b->duty[k];
     }
     o->flags = (uint16_t)(flag(b->forced_off, SXL_PIL_OUT_FORCED_OFF) |
@@ -151,7 +151,7 @@ void sim_ctl_wire_outputs_of_bus(const hal_sim_bus_t *b, sim_ctl_wire_out_t *o)
 void sim_ctl_wire_outputs_to_bus(const sim_ctl_wire_out_t *o, hal_sim_bus_t *b)
 {
     uint16_t k;
-    for (k = 0u; k < 6u; k++) {
+    for (k = 0u; k < HAL_PWM_LEGS; k++) {
         b->duty[k] = o->duty[k];
     }
     b->forced_off = (o->flags & SXL_PIL_OUT_FORCED_OFF) != 0u;
@@ -180,7 +180,7 @@ void sim_ctl_wire_put_outputs(const sim_ctl_wire_out_t *o, uint16_t *payload)
 {
     uint16_t k;
     sxl_put_u16(&payload[SXL_PIL_OUT_SEQ], o->seq);
-    for (k = 0u; k < 6u; k++) {
+    for (k = 0u; k < HAL_PWM_LEGS; k++) {
         sxl_put_u16(&payload[SXL_PIL_OUT_DUTY + 2u * k], o->duty[k]);
     }
     payload[SXL_PIL_OUT_FLAGS] = (uint16_t)(o->flags & 0xFFu);
@@ -198,7 +198,7 @@ void sim_ctl_wire_get_outputs(const uint16_t *payload, sim_ctl_wire_out_t *o)
 {
     uint16_t k;
     o->seq = sxl_get_u16(&payload[SXL_PIL_OUT_SEQ]);
-    for (k = 0u; k < 6u; k++) {
+    for (k = 0u; k < HAL_PWM_LEGS; k++) {
         o->duty[k] = sxl_get_u16(&payload[SXL_PIL_OUT_DUTY + 2u * k]);
     }
     o->flags = payload[SXL_PIL_OUT_FLAGS];

@@ -47,7 +47,7 @@ uint16_t sim_ctl_wire_take_inputs(const uint16_t *payload, hal_sim_bus_t *b);
 /* What a period left on the bus (the application's part) and what it cost on the target. */
 typedef struct {
     uint16_t seq;
-    uint16_t duty[6];
+    uint16_t duty[HAL_PWM_LEGS];
     uint16_t flags; /* SXL_PIL_OUT_* bits */
     uint16_t isolated;
     uint32_t encoder_offset;

@@ -18,6 +18,10 @@
  * Q15 duty (1/32768 of the period); everything else must be equal. Fixed: nothing may differ. */
 #define SIM_PIL_FLOAT_DUTY_TOL 1
 
+/* The profile's stages a STEP reply carries (SXL_PIL_OUT_STAGES: ADC .. PWM), as the report,
+ * pil.csv and its figure name them. */
+extern const char *const sim_pil_stage_names[SXL_PIL_OUT_STAGE_COUNT];
+
 typedef struct {
     double mean, worst;
 } sim_pil_stat_t;

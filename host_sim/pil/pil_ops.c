@@ -25,17 +25,10 @@ static struct {
     const char *error;
     uint16_t calls[PIL_CALLS_MAX];
     uint16_t ncalls;
-    uint16_t seq;
     double ts;
     struct timespec t_first, t_last;
     pil_stats_t stats;
 } pil;
-
-static double pil_now(struct timespec *t)
-{
-    (void)clock_gettime(CLOCK_MONOTONIC, t);
-    return (double)t->tv_sec + 1e-9 * (double)t->tv_nsec;
-}
 
 static void pil_fail(void) { pil.error = pil.s.err; }
 
@@ -113,19 +106,18 @@ static void pil_isr(void)
         pil_fail();
         return;
     }
-    if (pil_session_step(&pil.s, &in, pil.seq, pil.calls, (pil.ncalls > room) ? 0u : pil.ncalls,
-                         &theirs) != 0) {
+    if (pil_session_step(&pil.s, &in, (uint16_t)pil.stats.steps, pil.calls,
+                         (pil.ncalls > room) ? 0u : pil.ncalls, &theirs) != 0) {
         pil_fail();
         return;
     }
     pil.ncalls = 0u;
     sim_ctl_wire_outputs_to_bus(&theirs, &hal_sim_bus);
+    (void)clock_gettime(CLOCK_MONOTONIC, &pil.t_last);
     if (pil.stats.steps == 0u) {
-        (void)pil_now(&pil.t_first);
+        pil.t_first = pil.t_last;
     }
-    (void)pil_now(&pil.t_last);
     pil_stats_add(&pil.stats, &in, &mine, &theirs, (double)pil.stats.steps * pil.ts);
-    pil.seq++;
 }
 
 static void pil_request_run(void)

@@ -3,8 +3,8 @@
 
 #include "pil.h"
 
-static const char *const report_stage_names[SXL_PIL_OUT_STAGE_COUNT] = {
-    "adc", "transforms", "predict", "table", "search", "pwm"};
+const char *const sim_pil_stage_names[SXL_PIL_OUT_STAGE_COUNT] = {"adc",   "transforms", "predict",
+                                                                  "table", "search",     "pwm"};
 
 /* Counter ticks of the emulator as instructions: 2^shift ns of virtual time per instruction. */
 static double report_instructions(const sim_pil_summary_t *s, double ticks)
@@ -49,7 +49,7 @@ void sim_pil_print_json(FILE *f, const sim_pil_summary_t *s)
     fprintf(f, "    \"worst_step\": %lu,\n", s->worst_step);
     report_stat(f, "cycles_in_run", s, &s->cycles_run, ",");
     for (k = 0; k < (int)SXL_PIL_OUT_STAGE_COUNT; k++) {
-        report_stat(f, report_stage_names[k], s, &s->stage[k], ",");
+        report_stat(f, sim_pil_stage_names[k], s, &s->stage[k], ",");
     }
     fprintf(f, "    \"histogram\": {\"from\": %.0f, \"bin_width\": %.0f, \"counts\": [", s->hist_lo,
             s->hist_width);

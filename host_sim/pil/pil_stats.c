@@ -11,9 +11,6 @@
 enum { DRIVE_STATE_LIST(PIL_STATE_NUMBER) PIL_STATES_END_ };
 #undef PIL_STATE_NUMBER
 
-static const char *const stage_names[SXL_PIL_OUT_STAGE_COUNT] = {"adc",   "transforms", "predict",
-                                                                 "table", "search",     "pwm"};
-
 int pil_stats_open(pil_stats_t *st, const char *csv_path, char *err, size_t len)
 {
     int k;
@@ -30,7 +27,7 @@ int pil_stats_open(pil_stats_t *st, const char *csv_path, char *err, size_t len)
     }
     fprintf(st->csv, "step,t_s,state,cycles");
     for (k = 0; k < (int)SXL_PIL_OUT_STAGE_COUNT; k++) {
-        fprintf(st->csv, ",%s", stage_names[k]);
+        fprintf(st->csv, ",%s", sim_pil_stage_names[k]);
     }
     fprintf(st->csv, ",agrees\n");
     return 0;
@@ -41,7 +38,7 @@ bool pil_outputs_agree(const sim_ctl_wire_out_t *a, const sim_ctl_wire_out_t *b,
 {
     unsigned worst = 0u;
     int k;
-    for (k = 0; k < 6; k++) {
+    for (k = 0; k < HAL_PWM_LEGS; k++) {
         const unsigned d = (a->duty[k] > b->duty[k]) ? (unsigned)(a->duty[k] - b->duty[k])
                                                      : (unsigned)(b->duty[k] - a->duty[k]);
         worst = (d > worst) ? d : worst;

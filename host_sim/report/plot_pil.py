@@ -12,7 +12,6 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-STAGES = ["adc", "transforms", "predict", "table", "search", "pwm"]
 RUN = 3  # the drive's RUN state (firmware/app/lists/drive_states.h)
 
 
@@ -23,9 +22,13 @@ def main():
     if not os.path.exists(path):
         sys.exit("plot_pil.py: %s not found (the run needs --pil and --out)" % path)
     with open(path) as f:
-        rows = list(csv.DictReader(f))
+        reader = csv.DictReader(f)
+        rows = list(reader)
     if len(rows) < 2:
         sys.exit("plot_pil.py: %s holds no periods" % path)
+    # the stages are pil.csv's columns between the whole ISR's and the comparison's
+    stages = reader.fieldnames[reader.fieldnames.index("cycles") + 1:
+                               reader.fieldnames.index("agrees")]
     t = [float(r["t_s"]) for r in rows]
     total = [float(r["cycles"]) for r in rows]
     fig, axs = plt.subplots(3, 1, figsize=(10, 9))
@@ -33,7 +36,7 @@ def main():
     axs[0].set_ylabel("ISR, counter ticks")
     axs[0].set_title("the target's count per control period")
     bottom = [0.0] * len(rows)
-    for name in STAGES:
+    for name in stages:
         v = [float(r[name]) for r in rows]
         axs[1].fill_between(t, bottom, [b + x for b, x in zip(bottom, v)], step="post",
                             label=name, lw=0)
