@@ -140,6 +140,25 @@ class PilTest(unittest.TestCase):
         self.assertEqual(p.returncode, 1)
         self.assertIn("the target's image is the float build", p.stderr)
 
+    def test_documented_frame_sizes(self):
+        """docs/profiling.md's bytes a period: the protocol's own sizes."""
+        root = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")
+        with open(os.path.join(root, "firmware", "link", "sxlink_pil.h")) as f:
+            header = f.read()
+        with open(os.path.join(root, "firmware", "link", "sxlink.h")) as f:
+            link = f.read()
+        with open(os.path.join(root, "docs", "profiling.md")) as f:
+            doc = " ".join(f.read().split())
+
+        def const(text, name):
+            return int(re.search(r"#define %s (\d+)u" % name, text).group(1))
+        overhead = 3 + const(link, "SXL_CRC_BYTES")  # start byte, length, command; the CRC
+        request = const(header, "SXL_PIL_IN_BYTES") + overhead + 1  # the background's call
+        reply = const(header, "SXL_PIL_OUT_BYTES") + overhead
+        self.assertIn("(at least %d:" % request, doc)
+        self.assertIn("SXL_PIL_OUT_BYTES + %d (%d)" % (overhead, reply), doc)
+        self.assertIn("SXL_PIL_IN_BYTES + %d bytes" % overhead, doc)
+
     def test_silent_line_times_out(self):
         master, slave = pty.openpty()
         try:
